@@ -1,0 +1,43 @@
+# curverecon: everything runs inside a virtual environment that this Makefile makes.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed-stamp
+
+.PHONY: setup derive test demo bench lint format clean
+
+setup: $(STAMP)
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[dev]'
+	touch $(STAMP)
+
+## derive: rebuild generated/ and docs/derivation.md from derivations/
+derive: $(STAMP)
+	$(BIN)/python -m derivations
+
+## test: the whole test suite (includes the generated-code staleness check)
+test: $(STAMP)
+	$(BIN)/python -m pytest -q
+
+## demo: reconstruct the bundled example and write demo-output/
+demo: $(STAMP)
+	mkdir -p demo-output
+	$(BIN)/curverecon reconstruct examples/wire.json -o demo-output/wire.reconstruction.json --plot demo-output/wire.png
+	@echo "wrote demo-output/wire.reconstruction.json and demo-output/wire.png"
+
+## bench: accuracy, robustness, stability and speed; writes bench/REPORT.md and bench/report.json
+bench: $(STAMP)
+	$(BIN)/python -m bench
+
+lint: $(STAMP)
+	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
+
+format: $(STAMP)
+	$(BIN)/ruff format .
+
+clean:
+	rm -rf $(VENV) demo-output .pytest_cache

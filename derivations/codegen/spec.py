@@ -1,0 +1,45 @@
+"""What a derivation hands to code generation.
+
+The derivation modules (``derivations.section3``, ``derivations.lean``, ``derivations.squaring``,
+``derivations.measurement``) describe their outputs with these two records; ``derivations.codegen``
+turns them into NumPy modules under ``generated/``.  Nothing here depends on a template.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+
+@dataclass(frozen=True)
+class FunctionSpec:
+    """One generated function: ``name(*args) -> outputs`` (a tuple in the order given).
+
+    ``args`` are SymPy symbols whose names become the Python argument names.  ``outputs`` maps
+    an output name to its expression; all outputs of all functions of one module share one
+    common-subexpression pass per function.  ``doc`` is the docstring: say the equation number,
+    the convention and the units.
+    """
+
+    name: str
+    args: tuple[sp.Symbol, ...]
+    outputs: dict[str, sp.Expr]
+    doc: str
+
+
+@dataclass(frozen=True)
+class PolynomialColumns:
+    """A polynomial in unknowns and per-frame observables, grouped by observable monomial.
+
+    ``columns[k] = ((i, j, l), u_k)`` means the polynomial equals
+    ``sum_k cp**i * dp**j * ep**l * u_k(unknowns)``, ``u_k`` a polynomial in ``unknowns`` only.
+    Columns are sorted by their observable exponent tuple, so the order is deterministic.
+    """
+
+    name: str
+    unknowns: tuple[sp.Symbol, ...]
+    observables: tuple[sp.Symbol, ...]
+    columns: tuple[tuple[tuple[int, int, int], sp.Expr], ...]
+    doc: str
+    facts: dict[str, object] = field(default_factory=dict)  # degree, term counts... for the report
