@@ -1,0 +1,17 @@
+# -------------------------------------------------------------------------------------------------
+# Generated, do not edit / do not modify: change derivations/ and run `make derive`.
+#
+# Derivation: derivations/__main__.py
+# SymPy:      1.14.0
+# -------------------------------------------------------------------------------------------------
+"""Code generated from derivations/ (NumPy only; imported as curverecon.generated).
+
+- ``measurement_model``: maximum-likelihood measurement model and its Jacobians
+  (derivations/measurement.py)
+- ``frame_equations``: section 3 per-frame equations (10), (11), (12) (derivations/section3.py)
+- ``lean_polynomial``: single-squaring elimination, grouped by observable monomial
+  (derivations/lean.py)
+- ``polynomial_12p``: the paper's (12'), grouped by observable monomial (derivations/squaring.py)
+"""
+
+__all__ = ("measurement_model", "frame_equations", "lean_polynomial", "polynomial_12p")

@@ -17,9 +17,14 @@ class FunctionSpec:
     """One generated function: ``name(*args) -> outputs`` (a tuple in the order given).
 
     ``args`` are SymPy symbols whose names become the Python argument names.  ``outputs`` maps
-    an output name to its expression; all outputs of all functions of one module share one
-    common-subexpression pass per function.  ``doc`` is the docstring: say the equation number,
+    an output name to its expression; all outputs of one function share one
+    common-subexpression pass.  ``doc`` is the docstring: say the equation number,
     the convention and the units.
+
+    Output shapes (every argument broadcasts; N is the broadcast frame shape): a scalar
+    expression gives an array of shape (N,); a tuple or list of n expressions gives (N, n);
+    an r x k ``sympy.Matrix`` gives (N, r, k).  One output is returned as an array, several as
+    a tuple in the order of ``outputs``.
     """
 
     name: str

@@ -1,0 +1,177 @@
+"""Accuracy against the Cramer-Rao bound: RMSE / CRLB per parameter, cell by cell.
+
+A cell is (noise level, frame count); the noise is ``sigma`` px on each image coordinate and
+``sigma`` degrees on each tangent angle.  On every scene of a cell:
+
+- the CRLB of the shape at the true parameters (``refine.crlb_covariance``: Fisher information of
+  the same measurement model, poses eliminated as nuisance parameters);
+- ``truth_start``: ``refine.refine`` started at the true shape and poses;
+- ``linear``: the paper's linearisation alone (``linear.solve_linear``), only where it is
+  determined (at least ``linear.min_frames()`` frames);
+- ``default``: the default pipeline ``reconstruct.reconstruct`` (no truth), on the first
+  ``n_default`` scenes of the cell (the plan may give it fewer than the others).
+
+Per method and parameter ``ratio = sqrt(mean err^2) / sqrt(mean crlb_var)`` over the scenes the
+method answered; c is taken relative (err / c, var / c^2) so scenes with different chords mix.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from typing import Any
+
+import numpy as np
+
+from bench.common import (
+    PARAMETERS,
+    SUCCESS_DEG,
+    make,
+    shape_errors,
+    true_poses,
+    worst_angle_deg,
+)
+from curverecon.errors import CurveReconError
+from curverecon.pose import normalise
+from curverecon.reconstruct import reconstruct
+from curverecon.refine import crlb_covariance, refine
+
+METHODS = ("linear", "default", "truth_start")
+METHOD_TITLES = {
+    "linear": "linearisation alone",
+    "default": "default pipeline",
+    "truth_start": "refinement from the truth",
+}
+
+
+def linear_min_frames() -> int:
+    """Frames the linearisation needs (``linear.min_frames()``), or a large number if absent."""
+    try:
+        from curverecon.linear import min_frames
+
+        return int(min_frames())
+    except (ImportError, AttributeError):  # pragma: no cover - runtime not there
+        return 10**9
+
+
+def _errors_list(errors: np.ndarray | None) -> list[float] | None:
+    return None if errors is None else [float(v) for v in errors]
+
+
+def run_scenes(
+    seed: int,
+    cell: int,
+    noise: float,
+    n_frames: int,
+    indices: range,
+    n_default: int,
+    chord: tuple[float, float],
+) -> list[dict[str, Any]]:
+    """Per-scene records of one accuracy cell (a pool task)."""
+    lin_min = linear_min_frames()
+    sig_t = math.radians(noise)
+    out = []
+    for i in indices:
+        scene = make(
+            seed,
+            "accuracy",
+            (cell, i),
+            n_frames,
+            point_sigma=noise,
+            tangent_sigma_deg=noise,
+            chord=chord,
+        )
+        obs = scene.observations
+        shape, poses = true_poses(scene)
+        rec: dict[str, Any] = {"index": i, "noise": noise, "n_frames": n_frames}
+        rec["truth"] = [float(v) for v in shape]
+        cov = crlb_covariance(shape, poses, noise, sig_t)
+        if cov is None:
+            rec["crlb_var"] = [math.inf] * 4
+        else:
+            var = np.clip(np.diag(cov), 0.0, None) / np.array([shape[0] ** 2, 1.0, 1.0, 1.0])
+            rec["crlb_var"] = [float(v) for v in var]
+
+        t0 = time.perf_counter()
+        res = refine(obs, shape, poses, noise, sig_t, covariance=False)
+        est, _ = normalise(res.shape, res.poses)
+        rec["truth_start"] = _errors_list(shape_errors(est, shape))
+        rec["truth_start_s"] = time.perf_counter() - t0
+
+        rec["linear"] = None
+        if n_frames >= lin_min:
+            from curverecon.linear import solve_linear
+
+            t0 = time.perf_counter()
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    lin = solve_linear(obs)
+                rec["linear"] = _errors_list(shape_errors(lin.shape, shape))
+            except (CurveReconError, ValueError, np.linalg.LinAlgError) as exc:
+                rec["linear_exception"] = str(exc)[:200]
+            rec["linear_s"] = time.perf_counter() - t0
+
+        rec["default"] = None
+        if i < n_default:
+            t0 = time.perf_counter()
+            try:
+                r = reconstruct(obs, point_sigma=noise, tangent_sigma_deg=noise)
+                rec["default"] = _errors_list(shape_errors(r.shape, shape))
+                rec["default_alternatives"] = len(r.alternatives)
+                rec["default_outliers"] = int(np.sum(~r.inliers))
+            except (CurveReconError, ValueError, np.linalg.LinAlgError) as exc:
+                rec["default_exception"] = str(exc)[:200]
+            rec["default_s"] = time.perf_counter() - t0
+        out.append(rec)
+    return out
+
+
+def summarise_method(records: list[dict[str, Any]], method: str) -> dict[str, Any] | None:
+    """RMSE, CRLB, their ratio and the success rate of one method over one cell's records."""
+    ran = [r for r in records if f"{method}_s" in r]
+    if not ran:
+        return None
+    ok = [r for r in ran if r[method] is not None]
+    finite = [r for r in ok if np.all(np.isfinite(r["crlb_var"]))]
+    out: dict[str, Any] = {
+        "n": len(ran),
+        "n_answered": len(ok),
+        "n_exceptions": len(ran) - len(ok),
+        "n_crlb_infinite": len(ok) - len(finite),
+    }
+    times = [r[f"{method}_s"] for r in ran if f"{method}_s" in r]
+    out["seconds_mean"] = float(np.mean(times)) if times else None
+    if not finite:
+        out.update({"rmse": None, "crlb": None, "ratio": None, "success_rate": None})
+        return out
+    err = np.array([r[method] for r in finite])
+    var = np.array([r["crlb_var"] for r in finite])
+    rmse = np.sqrt(np.mean(err**2, axis=0))
+    crlb = np.sqrt(np.mean(var, axis=0))
+    worst = np.array([worst_angle_deg(e) for e in err])
+    success = worst < SUCCESS_DEG
+    out["rmse"] = dict(zip(PARAMETERS, rmse.tolist(), strict=True))
+    out["crlb"] = dict(zip(PARAMETERS, crlb.tolist(), strict=True))
+    out["ratio"] = dict(zip(PARAMETERS, (rmse / crlb).tolist(), strict=True))
+    out["ratio_worst"] = float(np.max(rmse / crlb))
+    out["ratio_worst_angle"] = float(np.max((rmse / crlb)[1:]))
+    # success counts exceptions as failures
+    out["success_rate"] = float(np.sum(success) / len(ran))
+    if success.any():
+        rs = np.sqrt(np.mean(err[success] ** 2, axis=0)) / np.sqrt(np.mean(var[success], axis=0))
+        out["ratio_successes"] = dict(zip(PARAMETERS, rs.tolist(), strict=True))
+    out["median_worst_angle_deg"] = float(np.median(worst))
+    return out
+
+
+def summarise(cells: dict[tuple[float, int], list[dict[str, Any]]]) -> list[dict[str, Any]]:
+    """One row per cell: noise, frames, and the summary of each method."""
+    rows = []
+    for (noise, n_frames), records in sorted(cells.items()):
+        row: dict[str, Any] = {"noise": noise, "n_frames": n_frames, "n_scenes": len(records)}
+        for m in METHODS:
+            row[m] = summarise_method(records, m)
+        rows.append(row)
+    return rows

@@ -1,0 +1,116 @@
+"""Robustness: success rate of the default pipeline without the truth, with outlier frames.
+
+Scenes of the headline cell (1 px, 1 degree, 20 frames) with a fraction of outlier frames (the
+simulator's ``outlier_fraction``: gross tangent errors of 15-40 degrees, ``truth.inliers``
+False).  Success: worst angle error below 5 degrees.  Flagging: the frames the pipeline left out
+(``Reconstruction.inliers`` False) against the true outlier frames.  The 0 % row is the default
+pipeline's headline accuracy cell (same scenes as the accuracy table).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from bench.common import SUCCESS_DEG, make, shape_errors, true_poses, worst_angle_deg
+from curverecon.errors import CurveReconError
+from curverecon.reconstruct import reconstruct
+
+
+def run_scenes(
+    seed: int,
+    fraction_id: int,
+    fraction: float,
+    noise: float,
+    n_frames: int,
+    indices: range,
+    chord: tuple[float, float],
+) -> list[dict[str, Any]]:
+    """Per-scene records: errors, success, flagged and true outlier frames (a pool task)."""
+    out = []
+    for i in indices:
+        scene = make(
+            seed,
+            "robustness",
+            (fraction_id, i),
+            n_frames,
+            point_sigma=noise,
+            tangent_sigma_deg=noise,
+            chord=chord,
+            outlier_fraction=fraction,
+        )
+        shape, _ = true_poses(scene)
+        true_out = ~np.asarray(scene.truth.inliers, bool)
+        rec: dict[str, Any] = {"index": i, "fraction": fraction, "n_true_outliers": int(true_out.sum())}
+        t0 = time.perf_counter()
+        try:
+            r = reconstruct(scene.observations, point_sigma=noise, tangent_sigma_deg=noise)
+            err = shape_errors(r.shape, shape)
+            flagged = ~np.asarray(r.inliers, bool)
+            rec["errors"] = [float(v) for v in err]
+            rec["worst_deg"] = worst_angle_deg(err)
+            rec["true_flagged"] = int(np.sum(flagged & true_out))
+            rec["false_flagged"] = int(np.sum(flagged & ~true_out))
+        except (CurveReconError, ValueError, np.linalg.LinAlgError) as exc:
+            rec["errors"] = None
+            rec["worst_deg"] = math.inf
+            rec["exception"] = str(exc)[:200]
+        rec["seconds"] = time.perf_counter() - t0
+        out.append(rec)
+    return out
+
+
+def summarise_records(records: list[dict[str, Any]], fraction: float) -> dict[str, Any]:
+    """Success rate, flagging rates and timing of one outlier fraction."""
+    n = len(records)
+    worst = np.array([r["worst_deg"] for r in records], float)
+    out: dict[str, Any] = {
+        "fraction": fraction,
+        "n": n,
+        "success_rate": float(np.mean(worst < SUCCESS_DEG)) if n else None,
+        "n_exceptions": int(sum(r.get("errors") is None for r in records)),
+        "median_worst_deg": float(np.median(worst)) if n else None,
+        "seconds_mean": float(np.mean([r["seconds"] for r in records])) if n else None,
+    }
+    n_true = sum(r["n_true_outliers"] for r in records)
+    answered = [r for r in records if r.get("errors") is not None]
+    hit = sum(r["true_flagged"] for r in answered)
+    out["true_outlier_frames"] = n_true
+    out["outliers_flagged_rate"] = hit / n_true if n_true else None
+    out["scenes_all_outliers_flagged"] = (
+        float(np.mean([r["true_flagged"] == r["n_true_outliers"] for r in answered]))
+        if answered
+        else None
+    )
+    out["false_flags_per_scene"] = (
+        float(np.mean([r["false_flagged"] for r in answered])) if answered else None
+    )
+    return out
+
+
+def summarise_baseline(accuracy_records: list[dict[str, Any]]) -> dict[str, Any]:
+    """The 0 % row from the headline accuracy cell's default-pipeline records."""
+    ran = [r for r in accuracy_records if "default_s" in r]
+    worst = np.array(
+        [math.inf if r["default"] is None else worst_angle_deg(np.array(r["default"])) for r in ran]
+    )
+    n = len(ran)
+    return {
+        "fraction": 0.0,
+        "n": n,
+        "success_rate": float(np.mean(worst < SUCCESS_DEG)) if n else None,
+        "n_exceptions": int(sum(r["default"] is None for r in ran)),
+        "median_worst_deg": float(np.median(worst)) if n else None,
+        "seconds_mean": float(np.mean([r["default_s"] for r in ran])) if n else None,
+        "true_outlier_frames": 0,
+        "outliers_flagged_rate": None,
+        "scenes_all_outliers_flagged": None,
+        "false_flags_per_scene": (
+            float(np.mean([r.get("default_outliers", 0) for r in ran if r["default"] is not None]))
+            if n
+            else None
+        ),
+    }

@@ -1,0 +1,167 @@
+"""Command line: ``curverecon reconstruct | simulate | match-flat``.
+
+Bad input exits with status 2 and one line ``curverecon: error: <message>`` on stderr.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from collections.abc import Sequence
+
+import numpy as np
+
+from curverecon.errors import CurveReconError
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (status 2, no usage dump)."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise CurveReconError(message)
+
+
+def _warn(message: str) -> None:
+    print(f"curverecon: warning: {message}", file=sys.stderr)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="curverecon",
+        description="Recover a rigid smooth 3-D curve from orthographic images in which only two "
+        "points A, B and the tangents there are traced (after M. A. Klopotek, section 3).",
+    )
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
+
+    rec = sub.add_parser("reconstruct", help="reconstruct shape and poses from observations")
+    rec.add_argument("input", help="curverecon.observations/1 JSON file")
+    rec.add_argument("-o", "--output", required=True, help="curverecon.reconstruction/1 JSON")
+    rec.add_argument("--method", choices=["auto", "linear"], default="auto")
+    rec.add_argument(
+        "--point-sigma", type=float, default=1.0, help="image point noise (input units)"
+    )
+    rec.add_argument(
+        "--tangent-sigma", type=float, default=1.0, help="tangent direction noise (degrees)"
+    )
+    rec.add_argument("--plot", help="also draw the reconstruction to this PNG file")
+
+    sim = sub.add_parser("simulate", help="write a synthetic scene (and its truth)")
+    sim.add_argument("-o", "--output", required=True, help="scene (observations) JSON")
+    sim.add_argument("--truth", help="write the truth to this JSON file")
+    sim.add_argument("--frames", type=int, default=20)
+    sim.add_argument("--point-noise", type=float, default=0.0, help="pixels (std)")
+    sim.add_argument("--tangent-noise", type=float, default=0.0, help="degrees (std)")
+    sim.add_argument("--outlier-fraction", type=float, default=0.0)
+    sim.add_argument("--chord", type=float, nargs=2, default=(100.0, 300.0), metavar=("MIN", "MAX"))
+    sim.add_argument("--seed", type=int, default=0)
+    sim.add_argument("--with-curve", action="store_true", help="also write projected polylines")
+
+    flat = sub.add_parser("match-flat", help="match points of a planar curve between two views")
+    flat.add_argument("input", help="curverecon.flat-views/1 JSON file")
+    flat.add_argument("-o", "--output", required=True, help="curverecon.matches/1 JSON")
+    return parser
+
+
+def _cmd_reconstruct(args: argparse.Namespace) -> int:
+    from curverecon.io import load_observations, write_json
+    from curverecon.reconstruct import reconstruct
+
+    if not (math.isfinite(args.point_sigma) and args.point_sigma > 0):
+        raise CurveReconError("--point-sigma must be a positive number")
+    if not (math.isfinite(args.tangent_sigma) and args.tangent_sigma > 0):
+        raise CurveReconError("--tangent-sigma must be a positive number")
+    obs = load_observations(args.input)
+    rec = reconstruct(obs, args.method, args.point_sigma, args.tangent_sigma)
+    out = rec.to_json_dict()
+    for w in rec.warnings:
+        _warn(w)
+    curve3d = None
+    if obs.curves is not None:
+        try:
+            from curverecon.curve3d import reconstruct_curve
+        except ImportError:
+            _warn("curverecon.curve3d is not available: curve3d not written")
+        else:
+            res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
+            curve3d = np.asarray(res.points, float)
+            out["curve3d"] = curve3d.tolist()
+            for w in getattr(res, "warnings", []) or []:
+                _warn(w)
+    write_json(args.output, out)
+    if args.plot:
+        try:
+            from curverecon.plot import plot_reconstruction
+        except ImportError:
+            _warn("curverecon.plot is not available: no plot drawn")
+        else:
+            plot_reconstruction(
+                args.plot, obs.curves, curve3d, rec.rotations(), rec.translations()
+            )
+    return 0
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    from curverecon.io import observations_to_dict, write_json
+    from curverecon.simulate import make_scene, truth_to_dict
+
+    if args.frames < 1:
+        raise CurveReconError("--frames must be at least 1")
+    for name in ("point_noise", "tangent_noise", "outlier_fraction"):
+        v = getattr(args, name)
+        if not (math.isfinite(v) and v >= 0):
+            raise CurveReconError(f"--{name.replace('_', '-')} must be a non-negative number")
+    if args.outlier_fraction > 1:
+        raise CurveReconError("--outlier-fraction must be at most 1")
+    lo, hi = args.chord
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo <= hi):
+        raise CurveReconError("--chord needs 0 < MIN <= MAX")
+    scene = make_scene(
+        np.random.default_rng(args.seed),
+        args.frames,
+        point_sigma=args.point_noise,
+        tangent_sigma_deg=args.tangent_noise,
+        chord=(lo, hi),
+        outlier_fraction=args.outlier_fraction,
+        with_curve=args.with_curve,
+    )
+    write_json(args.output, observations_to_dict(scene.observations))
+    if args.truth:
+        write_json(args.truth, truth_to_dict(scene, seed=args.seed))
+    return 0
+
+
+def _cmd_match_flat(args: argparse.Namespace) -> int:
+    try:
+        from curverecon.flat import run_match_flat
+    except ImportError as exc:
+        raise CurveReconError("match-flat is not available (curverecon.flat missing)") from exc
+    run_match_flat(args.input, args.output)
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``curverecon`` console script; returns the exit status."""
+    try:
+        parser = build_parser()
+        args = parser.parse_args(argv)
+        if args.command is None:
+            parser.print_help(sys.stderr)
+            raise CurveReconError("a command is required: reconstruct, simulate or match-flat")
+        handler = {
+            "reconstruct": _cmd_reconstruct,
+            "simulate": _cmd_simulate,
+            "match-flat": _cmd_match_flat,
+        }[args.command]
+        with np.errstate(all="ignore"):
+            return handler(args)
+    except CurveReconError as exc:
+        print(f"curverecon: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("curverecon: error: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,410 @@
+"""Section 4 of the paper: recover the non-traceable points of the curve once the poses are known.
+
+Conventions (docs/CONVENTIONS.md): the pose of frame i maps curve coordinates to camera
+coordinates, ``X_cam = R_i X_curve + t_i``; orthographic projection keeps camera (x, y); A is the
+curve frame's origin, so ``A_cam = t_i`` and the translations put A at depth z = 0. Polylines are
+``(M_i, 2)`` image arrays ordered from A to B, in pixels. The result is expressed in frame 0's
+camera coordinates (the contract's ``curve3d``), in pixels.
+
+Method. A point X0 of frame 0's polyline fixes the line of sight ``(x0, y0, z)``, z free. Mapped
+through frame 0's pose into the curve frame and through frame i's pose into frame i, it is the
+3-D line ``P_i + z r_i`` whose image crosses frame i's polyline where the curve point X projects.
+Each crossing gives a depth candidate ``z`` with a standard error ``sigma / (|r_i,xy| sin g)``
+(g the crossing angle, sigma the pixel noise). Candidates from all frames are scored by how well
+the 3-D point ``(x0, y0, z)`` reprojects onto every frame's polyline (truncated squared distance),
+a dynamic programme along the curve picks one candidate per sample under a continuity penalty, and
+each chosen depth is refined as the inverse-variance mean of the per-frame crossings that agree
+with it. A is at z = 0 exactly; B is triangulated from the polylines' last points.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from curverecon import polyline as pl
+
+#: Crossings flatter than this (|sin| of the angle between the projected line of sight and the
+#: polyline) are rejected as grazing.
+MIN_CROSSING_SIN = 0.1
+#: Frames whose projected line-of-sight direction is shorter than this (|r_xy|, i.e. the sine of
+#: the angle between the frame's and frame 0's viewing directions) carry no depth information.
+MIN_VIEW_SIN = 0.05
+#: |det[AB, t_A, t_B]| (unit vectors) below this: A, B and the tangents are nearly coplanar.
+COPLANAR_THRESHOLD = 0.05
+
+
+@dataclass
+class CurveResult:
+    """Recovered curve in frame 0's camera coordinates.
+
+    points: (K, 3) curve samples from A to B (pixels; A at z = 0).
+    warnings: human-readable one-line warnings.
+    depth_std: (K,) estimated standard error of each sample's depth (pixels; inf where unknown).
+    n_frames_used: (K,) number of frames whose crossing supports each sample's depth.
+    interpolated: (K,) True where no frame gave a usable crossing and the depth was interpolated.
+    coplanarity: |det| of the unit vectors AB, t_A, t_B (0 = coplanar); NaN when unavailable.
+    frame_residual: (N,) median distance (pixels) from the reprojected curve to each frame's
+        polyline; large values flag frames whose pose disagrees with the others.
+    """
+
+    points: np.ndarray
+    warnings: list[str] = field(default_factory=list)
+    depth_std: np.ndarray | None = None
+    n_frames_used: np.ndarray | None = None
+    interpolated: np.ndarray | None = None
+    coplanarity: float = float("nan")
+    frame_residual: np.ndarray | None = None
+
+
+def _error(message: str) -> Exception:
+    from curverecon.errors import CurveReconError
+
+    return CurveReconError(message)
+
+
+def _check_inputs(
+    polylines: Sequence[np.ndarray], rotations: np.ndarray, translations: np.ndarray
+) -> tuple[list[np.ndarray], np.ndarray, np.ndarray]:
+    rot = np.asarray(rotations, dtype=float)
+    tr = np.asarray(translations, dtype=float)
+    n = len(polylines)
+    if rot.shape != (n, 3, 3):
+        raise _error(f"rotations: expected shape ({n}, 3, 3), got {rot.shape}")
+    if tr.shape != (n, 3):
+        raise _error(f"translations: expected shape ({n}, 3), got {tr.shape}")
+    if not (np.all(np.isfinite(rot)) and np.all(np.isfinite(tr))):
+        raise _error("rotations/translations contain NaN or infinite values")
+    err = np.abs(np.einsum("nij,nkj->nik", rot, rot) - np.eye(3)).max() if n else 0.0
+    if err > 1e-6:
+        raise _error("rotations are not orthonormal")
+    if n < 2:
+        raise _error(f"curve reconstruction needs at least 2 frames, got {n}")
+    polys = [pl.as_polyline(p, name=f"frame {i} curve") for i, p in enumerate(polylines)]
+    return polys, rot, tr
+
+
+def triangulate_point(
+    image_points: np.ndarray, rotations: np.ndarray, translations: np.ndarray
+) -> np.ndarray:
+    """Least-squares curve-frame point X with ``(R_i X + t_i)[:2] = image_points[i]`` for all i."""
+    a = rotations[:, :2, :].reshape(-1, 3)
+    b = (image_points - translations[:, :2]).reshape(-1)
+    x, *_ = np.linalg.lstsq(a, b, rcond=None)
+    return x
+
+
+def triangulate_direction(image_dirs: np.ndarray, rotations: np.ndarray) -> np.ndarray:
+    """Unit curve-frame direction d whose projections ``(R_i d)[:2]`` are parallel to image_dirs."""
+    nrm = np.column_stack([-image_dirs[:, 1], image_dirs[:, 0]])
+    nrm /= np.hypot(*nrm.T)[:, None]
+    a = np.einsum("nk,nkj->nj", nrm, rotations[:, :2, :])
+    _, _, vt = np.linalg.svd(a)
+    d = vt[-1]
+    # Orient along the first image direction.
+    if (rotations[0, :2, :] @ d) @ image_dirs[0] < 0:
+        d = -d
+    return d / np.linalg.norm(d)
+
+
+def coplanarity(ab: np.ndarray, tangent_a: np.ndarray, tangent_b: np.ndarray) -> float:
+    """|det| of the unit vectors along AB, the tangent at A and the tangent at B (0 = coplanar)."""
+    m = np.array([v / np.linalg.norm(v) for v in (ab, tangent_a, tangent_b)])
+    return float(abs(np.linalg.det(m)))
+
+
+def _robust_sigma(polys: list[np.ndarray]) -> float:
+    """Pixel noise used for weights and gates (never below 0.3 px: polyline discretisation)."""
+    est = [pl.noise_level(p) for p in polys]
+    return max(float(np.median(est)), 0.3)
+
+
+def _distances_for_frame(pts_xy: np.ndarray, poly: np.ndarray, spacing: float = 0.1) -> np.ndarray:
+    """Distance (pixels) of points to a polyline via a KD-tree on the densified polyline.
+
+    The densified vertices are at most ``spacing`` apart, so the distance is over-estimated by at
+    most spacing / 2 (spacing = 0.1 px here, far below the pixel noise the costs are scaled by).
+    """
+    from scipy.spatial import cKDTree
+
+    s = pl.arc_length(poly)
+    n = int(min(max(len(poly), s[-1] / spacing), 200_000))
+    dense, _ = pl.resample(poly, n)
+    return cKDTree(dense).query(pts_xy)[0]
+
+
+def reconstruct_curve(
+    polylines: Sequence[np.ndarray],
+    rotations: np.ndarray,
+    translations: np.ndarray,
+    *,
+    n_samples: int | None = None,
+    tangents: tuple[np.ndarray, np.ndarray] | None = None,
+    smooth: bool = True,
+) -> CurveResult:
+    """Recover the 3-D curve from every frame's polyline and the (known) poses (paper, section 4).
+
+    polylines: N arrays (M_i, 2), image points from A to B (pixels), one per frame.
+    rotations: (N, 3, 3), translations: (N, 3); ``X_cam = R_i X_curve + t_i`` and A_cam = t_i.
+    n_samples: number of output samples along frame 0's polyline (default min(200, 2 M_0),
+        at least 20); the samples are equally spaced in frame 0's image arc length.
+    tangents: optional 3-D unit tangent directions at A and at B in frame 0's camera coordinates
+        (for the coplanarity check); estimated from the polylines' end tangents when omitted.
+    smooth: apply a light local-quadratic smoothing along the curve (window ~3 % of the samples,
+        at least 5) to the depth and, when frame 0's polyline is noisy, to x and y; it averages
+        per-sample noise without visible bias on smooth curves.
+
+    Returns a :class:`CurveResult` with points (K, 3) in frame 0's camera coordinates.
+    Raises ``CurveReconError`` for inconsistent shapes, non-finite values, or bad polylines.
+    """
+    polys, rot, tr = _check_inputs(polylines, rotations, translations)
+    n_frames = len(polys)
+    warnings: list[str] = []
+    # Polylines run from A to B; A's image is t_i[:2]. Reverse any given from B to A.
+    flipped = []
+    for i, p in enumerate(polys):
+        if np.hypot(*(p[-1] - tr[i, :2])) < np.hypot(*(p[0] - tr[i, :2])):
+            polys[i] = p[::-1].copy()
+            flipped.append(i)
+    if flipped:
+        warnings.append(f"frames {flipped}: curve given from B to A; reversed")
+    sigma = _robust_sigma(polys)
+
+    p0 = polys[0]
+    if n_samples is None:
+        n_samples = int(np.clip(2 * len(p0), 20, 200))
+    if n_samples < 3:
+        raise _error(f"n_samples must be at least 3, got {n_samples}")
+    xy, _ = pl.resample(p0, int(n_samples))
+    k_total = len(xy)
+
+    # Frame 0 camera -> frame i camera: X_i = M_i X_0 + b_i.
+    m = np.einsum("nij,kj->nik", rot, rot[0])  # R_i R_0^T
+    b = tr - np.einsum("nij,j->ni", m, tr[0])
+    r = m[:, :, 2]  # direction of frame 0's line of sight in frame i
+    view_sin = np.hypot(r[:, 0], r[:, 1])
+    informative = [i for i in range(1, n_frames) if view_sin[i] >= MIN_VIEW_SIN]
+    if len(informative) < n_frames - 1:
+        bad = [i for i in range(1, n_frames) if i not in informative]
+        warnings.append(
+            f"frames {bad} look along nearly the same direction as frame 0 and give no depth"
+        )
+    if not informative:
+        raise _error("no frame views the curve from a different direction than frame 0")
+
+    # Per-frame crossing candidates for every sample: depth, standard error.
+    lengths = [float(pl.arc_length(p)[-1]) for p in polys]
+    cand_z: list[list[float]] = [[] for _ in range(k_total)]
+    cand_frame: list[list[int]] = [[] for _ in range(k_total)]
+    cand_std: list[list[float]] = [[] for _ in range(k_total)]
+    for i in informative:
+        origin = (m[i, :, :2] @ xy.T).T + b[i]  # (K, 3): z = 0 point on each line of sight
+        extend = 2.0 * sigma + 0.01 * lengths[i]
+        kk, u, sn = pl.parallel_line_crossings(polys[i], origin[:, :2], r[i, :2], extend=extend)
+        ok = sn >= MIN_CROSSING_SIN
+        kk, u, sn = kk[ok], u[ok], sn[ok]
+        order = np.lexsort((u, kk))
+        kk, u, sn = kk[order], u[order], sn[order]
+        # Merge the crossings that pixel noise splits into a tight cluster (wiggles of a noisy
+        # polyline near one true crossing): image distance along the line below 4 sigma.
+        gap_px = np.diff(u) * view_sin[i]
+        new_group = np.concatenate([[True], (np.diff(kk) != 0) | (gap_px > 4.0 * sigma)])
+        gid = np.cumsum(new_group) - 1
+        n_g = int(gid[-1]) + 1 if len(gid) else 0
+        cnt = np.bincount(gid, minlength=n_g)
+        g_k = kk[new_group]
+        g_z = np.bincount(gid, weights=u, minlength=n_g) / np.maximum(cnt, 1)
+        g_s = np.bincount(gid, weights=sn, minlength=n_g) / np.maximum(cnt, 1)
+        for k, z, s in zip(g_k, g_z, g_s, strict=True):
+            cand_z[k].append(float(z))
+            cand_frame[k].append(i)
+            cand_std[k].append(np.sqrt(2.0) * sigma / (view_sin[i] * s))
+
+    # Unary cost of each candidate: truncated squared reprojection distance over all frames.
+    trunc = (3.0 * sigma + 1.0) ** 2
+    flat_k = np.array([k for k in range(k_total) for _ in cand_z[k]], dtype=int)
+    flat_z = np.array([z for zs in cand_z for z in zs], dtype=float)
+    unary = np.zeros(len(flat_z))
+    if len(flat_z):
+        pts0 = np.column_stack([xy[flat_k], flat_z])
+        for i in informative:
+            pts_i = pts0 @ m[i].T + b[i]
+            dist = _distances_for_frame(pts_i[:, :2], polys[i])
+            unary += np.minimum(dist**2, trunc)
+    unary /= sigma**2
+
+    # Dynamic programme along the curve. States: candidates, plus a "missing" state per sample.
+    # Pairwise cost: continuity of depth relative to the image step between samples.
+    step = float(np.hypot(*(xy[1] - xy[0]))) if k_total > 1 else 1.0
+    step = max(step, 1e-9)
+    miss_cost = len(informative) * trunc / sigma**2  # as bad as a candidate every frame rejects
+    jump_w = 0.5  # cost per (depth slope)^2, in units of squared sigmas
+    offsets = np.concatenate([[0], np.cumsum([len(c) for c in cand_z])])
+    zs = [flat_z[offsets[k] : offsets[k + 1]] for k in range(k_total)]
+    us = [unary[offsets[k] : offsets[k + 1]] for k in range(k_total)]
+    # Endpoint A: depth 0 exactly (translations put A at z = 0).
+    zs[0] = np.array([0.0])
+    us[0] = np.array([0.0])
+    # Endpoint B: triangulated from the last points of every polyline.
+    b_curve = triangulate_point(np.array([p[-1] for p in polys]), rot, tr)
+    b_cam0 = rot[0] @ b_curve + tr[0]
+    zs[-1] = np.array([b_cam0[2]])
+    us[-1] = np.array([0.0])
+
+    big = 1e300
+    cost_prev = us[0].copy()
+    z_prev = zs[0]
+    last_valid_gap = np.zeros(1)  # samples since the state's last real candidate (for missing)
+    back: list[np.ndarray] = []
+    # Each state carries its depth; the "missing" state carries the previous depth forward.
+    state_z = [zs[0]]
+    for k in range(1, k_total):
+        zk = zs[k]
+        # Transition to real candidates.
+        if len(zk):
+            gap = last_valid_gap[None, :] + 1.0
+            slope = (zk[:, None] - z_prev[None, :]) / (step * gap)
+            tot = cost_prev[None, :] + jump_w * slope**2
+            j = np.argmin(tot, axis=1)
+            c_real = tot[np.arange(len(zk)), j] + us[k]
+        else:
+            j = np.zeros(0, dtype=int)
+            c_real = np.zeros(0)
+        # Transition to the missing state (keeps the best previous state's depth).
+        jm = int(np.argmin(cost_prev)) if len(cost_prev) else 0
+        c_miss = cost_prev[jm] + miss_cost if len(cost_prev) else big
+        allow_missing = 0 < k < k_total - 1
+        if allow_missing:
+            new_z = np.concatenate([zk, [z_prev[jm]]])
+            new_cost = np.concatenate([c_real, [c_miss]])
+            new_gap = np.concatenate([np.zeros(len(zk)), [last_valid_gap[jm] + 1.0]])
+            back.append(np.concatenate([j, [jm]]))
+        else:
+            new_z, new_cost, new_gap = zk, c_real, np.zeros(len(zk))
+            back.append(j)
+        z_prev, cost_prev, last_valid_gap = new_z, new_cost, new_gap
+        state_z.append(new_z)
+    # Backtrack.
+    choice = np.zeros(k_total, dtype=int)
+    choice[-1] = int(np.argmin(cost_prev))
+    for k in range(k_total - 1, 0, -1):
+        choice[k - 1] = back[k - 1][choice[k]]
+    interpolated = np.array([choice[k] >= len(zs[k]) for k in range(k_total)], dtype=bool)
+    z_dp = np.array([state_z[k][choice[k]] for k in range(k_total)])
+
+    # Refinement: inverse-variance mean of the crossings (one per frame) that agree with the DP.
+    z_ref = z_dp.copy()
+    depth_std = np.full(k_total, np.inf)
+    n_used = np.zeros(k_total, dtype=int)
+    depth_std[0] = 0.0
+    depth_std[-1] = sigma / max(np.sqrt(len(informative)), 1.0)
+    for k in range(1, k_total - 1):
+        if interpolated[k]:
+            continue
+        zk = np.asarray(cand_z[k])
+        fk = np.asarray(cand_frame[k])
+        sk = np.asarray(cand_std[k])
+        gate = np.maximum(3.0 * sk, 2.0 * sigma)
+        near = np.abs(zk - z_dp[k]) <= gate
+        if not np.any(near):
+            continue
+        # One crossing per frame: the nearest to the DP depth.
+        sel = []
+        for f in np.unique(fk[near]):
+            idx = np.nonzero(near & (fk == f))[0]
+            sel.append(idx[np.argmin(np.abs(zk[idx] - z_dp[k]))])
+        sel = np.asarray(sel)
+        w = 1.0 / sk[sel] ** 2
+        z_ref[k] = float(np.sum(w * zk[sel]) / np.sum(w))
+        depth_std[k] = float(1.0 / np.sqrt(np.sum(w)))
+        n_used[k] = len(sel)
+
+    # Fill interpolated samples by linear interpolation in arc length.
+    known = ~interpolated
+    idx = np.arange(k_total)
+    if np.any(interpolated):
+        z_ref[interpolated] = np.interp(idx[interpolated], idx[known], z_ref[known])
+        frac = float(np.mean(interpolated))
+        warnings.append(
+            f"{int(interpolated.sum())} of {k_total} curve samples ({100 * frac:.0f}%) had no "
+            "consistent crossing in any frame; their depth is interpolated"
+        )
+
+    points = np.column_stack([xy, z_ref])
+    if smooth:
+        points[:, 2] = _smooth_column(z_ref, depth_std)
+        if pl.noise_level(p0) > 0:
+            flat_std = np.ones(k_total)
+            for j in range(2):
+                points[:, j] = _smooth_column(xy[:, j], flat_std)
+
+    # Consistency of every frame with the recovered curve: median reprojection distance.
+    frame_residual = np.zeros(n_frames)
+    for i in range(n_frames):
+        proj_i = points @ m[i].T + b[i]
+        frame_residual[i] = float(np.median(_distances_for_frame(proj_i[:, :2], polys[i])))
+    limit = 3.0 * sigma + 1.0
+    bad_frames = [i for i in range(n_frames) if frame_residual[i] > limit]
+    if bad_frames:
+        worst = max(frame_residual[i] for i in bad_frames)
+        warnings.append(
+            f"frames {bad_frames}: the recovered curve reprojects up to {worst:.1f} px (median) "
+            f"from their polylines (limit {limit:.1f} px); their poses look inconsistent with "
+            "the other frames and were outvoted"
+        )
+
+    # Coplanarity of A, B and the tangents (the paper's condition for section 4).
+    ab_cam0 = b_cam0 - tr[0]
+    if tangents is not None:
+        ta3 = np.asarray(tangents[0], dtype=float)
+        tb3 = np.asarray(tangents[1], dtype=float)
+    else:
+        tans = [pl.end_tangents(p) for p in polys]
+        ta_c = triangulate_direction(np.array([t[0] for t in tans]), rot)
+        tb_c = triangulate_direction(np.array([t[1] for t in tans]), rot)
+        ta3, tb3 = rot[0] @ ta_c, rot[0] @ tb_c
+    cop = float("nan")
+    if np.linalg.norm(ab_cam0) > 0 and np.linalg.norm(ta3) > 0 and np.linalg.norm(tb3) > 0:
+        cop = coplanarity(ab_cam0, ta3, tb3)
+        if cop < COPLANAR_THRESHOLD:
+            warnings.append(
+                f"A, B and the end tangents are nearly coplanar (|det| = {cop:.3f} < "
+                f"{COPLANAR_THRESHOLD}): the paper's reconstruction of non-traceable points "
+                "needs them non-coplanar; the poses and the curve may be unreliable"
+            )
+    return CurveResult(
+        points=points,
+        warnings=warnings,
+        depth_std=depth_std,
+        n_frames_used=n_used,
+        interpolated=interpolated,
+        coplanarity=cop,
+        frame_residual=frame_residual,
+    )
+
+
+def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:
+    """Local weighted quadratic regression of one coordinate against sample index.
+
+    Window: +-max(2, 1.5 % of the samples); tricube weights times inverse variances; the two end
+    samples (A, B) are kept.
+    """
+    k_total = len(z)
+    half = max(2, int(round(0.015 * k_total)))
+    if k_total < 2 * half + 3:
+        return z
+    w_all = np.where(np.isfinite(std) & (std > 0), 1.0 / np.maximum(std, 1e-6) ** 2, 0.0)
+    w_all[~np.isfinite(std)] = 1e-6
+    w_all[0] = w_all[-1] = 1e6
+    out = z.copy()
+    for k in range(1, k_total - 1):
+        lo, hi = max(0, k - half), min(k_total, k + half + 1)
+        u = np.arange(lo, hi) - k
+        v = np.vander(u.astype(float), 3, increasing=True)
+        w = w_all[lo:hi] * (1 - (np.abs(u) / (half + 1)) ** 3) ** 3
+        a = v * w[:, None]
+        coef, *_ = np.linalg.lstsq(a.T @ v, a.T @ z[lo:hi], rcond=None)
+        out[k] = coef[0]
+    return out

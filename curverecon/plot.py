@@ -1,0 +1,118 @@
+"""Figure of a reconstruction: the recovered curve in 3-D and its reprojection into the frames.
+
+Conventions: ``curve3d`` is (K, 3) in frame 0's camera coordinates (pixels, A at z = 0); the pose
+of frame i maps curve coordinates to camera coordinates, ``X_cam = R_i X_curve + t_i``, so a
+point of frame 0's camera maps to frame i by ``X_i = R_i R_0^T (X_0 - t_0) + t_i``. Orthographic
+projection keeps (x, y). Image panels are drawn with y pointing down (pixel convention).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+#: Most frames drawn as reprojection panels (evenly chosen, frame 0 always included).
+MAX_PANELS = 12
+
+
+def reproject(curve3d: np.ndarray, rotations: np.ndarray, translations: np.ndarray) -> np.ndarray:
+    """Image points (N, K, 2) of a frame-0 camera-coordinate curve (K, 3) in every frame."""
+    rot = np.asarray(rotations, dtype=float)
+    tr = np.asarray(translations, dtype=float)
+    x = np.asarray(curve3d, dtype=float)
+    m = np.einsum("nij,kj->nik", rot, rot[0])  # R_i R_0^T
+    cam = np.einsum("nij,kj->nki", m, x - tr[0]) + tr[:, None, :]
+    return cam[..., :2]
+
+
+def _panel_frames(n: int) -> list[int]:
+    if n <= MAX_PANELS:
+        return list(range(n))
+    return sorted({int(round(v)) for v in np.linspace(0, n - 1, MAX_PANELS)})
+
+
+def plot_reconstruction(
+    path: str,
+    polylines: Sequence[np.ndarray] | None,
+    curve3d: np.ndarray,
+    rotations: np.ndarray,
+    translations: np.ndarray,
+) -> None:
+    """Write a PNG: the curve in 3-D (left) and, per frame, its reprojection over the polyline.
+
+    path: output PNG file. polylines: the observed (M_i, 2) polylines per frame, or None (then
+    only the reprojection is drawn). curve3d: (K, 3) in frame 0's camera coordinates.
+    rotations (N, 3, 3), translations (N, 3): poses, ``X_cam = R_i X_curve + t_i``.
+    At most ``MAX_PANELS`` frames are drawn. Uses the Agg backend (no display needed).
+    Raises ``CurveReconError`` for inconsistent shapes or an unwritable path.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    from curverecon.errors import CurveReconError
+
+    x = np.asarray(curve3d, dtype=float)
+    rot = np.asarray(rotations, dtype=float)
+    tr = np.asarray(translations, dtype=float)
+    if x.ndim != 2 or x.shape[1] != 3 or len(x) < 2:
+        raise CurveReconError(f"curve3d: expected shape (K, 3) with K >= 2, got {x.shape}")
+    if rot.ndim != 3 or rot.shape[1:] != (3, 3) or tr.shape != (len(rot), 3) or len(rot) == 0:
+        raise CurveReconError("rotations/translations: expected shapes (N, 3, 3) and (N, 3)")
+    if polylines is not None and len(polylines) != len(rot):
+        raise CurveReconError(f"got {len(polylines)} polylines for {len(rot)} poses")
+    n = len(rot)
+    frames = _panel_frames(n)
+    proj = reproject(x, rot, tr)
+
+    ncols = min(4, len(frames))
+    nrows = int(np.ceil(len(frames) / ncols))
+    fig = Figure(figsize=(4.0 + 2.6 * ncols, max(4.0, 2.6 * nrows)), dpi=100)
+    gs = fig.add_gridspec(nrows, ncols + 2, width_ratios=[1.6, 0.1] + [1.0] * ncols)
+
+    ax3 = fig.add_subplot(gs[:, 0], projection="3d")
+    ax3.plot(x[:, 0], x[:, 1], x[:, 2], color="C0", lw=1.8)
+    ax3.scatter(*x[0], color="C2", s=30, label="A")
+    ax3.scatter(*x[-1], color="C3", s=30, label="B")
+    span = float(np.ptp(x, axis=0).max()) or 1.0
+    centre = 0.5 * (x.min(axis=0) + x.max(axis=0))
+    for setlim, c in zip((ax3.set_xlim, ax3.set_ylim, ax3.set_zlim), centre, strict=True):
+        setlim(c - 0.55 * span, c + 0.55 * span)
+    ax3.invert_yaxis()  # image y points down
+    ax3.set_xlabel("x")
+    ax3.set_ylabel("y")
+    ax3.set_zlabel("z (depth)")
+    ax3.set_title("recovered curve\n(frame 0 camera coordinates)", fontsize=9)
+    ax3.legend(loc="upper left", fontsize=7)
+    ax3.tick_params(labelsize=6)
+
+    for slot, i in enumerate(frames):
+        ax = fig.add_subplot(gs[slot // ncols, 2 + slot % ncols])
+        if polylines is not None:
+            p = np.asarray(polylines[i], dtype=float)
+            if p.ndim == 2 and p.shape[1] == 2 and len(p):
+                ax.plot(p[:, 0], p[:, 1], color="0.6", lw=3.0, label="observed")
+        ax.plot(proj[i, :, 0], proj[i, :, 1], color="C1", lw=1.0, label="reprojected")
+        ax.plot(*proj[i, 0], "o", color="C2", ms=3)
+        ax.plot(*proj[i, -1], "o", color="C3", ms=3)
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.invert_yaxis()
+        ax.set_title(f"frame {i}", fontsize=8)
+        ax.tick_params(labelsize=6)
+        if slot == 0:
+            ax.legend(fontsize=6, loc="best")
+    fig.suptitle(
+        f"Reconstruction: {n} frame{'s' if n != 1 else ''}"
+        + (f" (showing {len(frames)})" if len(frames) < n else ""),
+        fontsize=10,
+    )
+    fig.subplots_adjust(left=0.02, right=0.98, top=0.9, bottom=0.06, wspace=0.35, hspace=0.4)
+    try:
+        fig.savefig(path)
+    except OSError as exc:
+        raise CurveReconError(f"cannot write plot {path}: {exc.strerror or exc}") from None
+    finally:
+        plt.close("all")

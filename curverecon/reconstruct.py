@@ -1,0 +1,303 @@
+"""The reconstruction pipeline: start, maximum-likelihood refinement, outlier frames, answer.
+
+``reconstruct(obs, method="auto")``: robust global start (``start.robust_start``; the
+linearisation seeds it too when it is determined) -> ML refinement over all frames -> outlier test
+(standardised per-frame chi2; the worst frame above the threshold is dropped and the fit redone
+until none is left) -> normalised answer (alpha, beta in [0, 90] deg, phi in [0, 180] deg,
+tau in (-90, 90] deg), the shape's standard deviations from the covariance, and every other shape
+that fits about equally well ("alternatives", e.g. with 4-5 frames).
+
+``method="linear"``: the paper's linearisation alone (``linear.solve_linear``), poses from the
+shape (``pose.poses_from_shape``), no refinement.
+
+Library units: lengths in input units, angles in radians; files use degrees.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.stats import chi2 as chi2_dist
+
+from curverecon.errors import CurveReconError
+from curverecon.generated import measurement_model
+from curverecon.observations import Observations, wrap_line_angle
+from curverecon.pose import normalise, poses_from_shape, rotations, translations
+from curverecon.refine import _pose_iterations, refine
+from curverecon.start import robust_start, shape_distance
+
+OUTLIER_P = 2e-4
+"""False-alarm probability per frame of the outlier test (chi2 with one degree of freedom)."""
+
+ALTERNATIVE_DCHI2 = 4.0
+"""Shapes whose chi2 is within this of the best count as fitting equally well."""
+
+METHODS = ("auto", "linear")
+
+
+@dataclass
+class Alternative:
+    """Another shape that fits the data about as well as the answer."""
+
+    shape: np.ndarray
+    poses: np.ndarray
+    chi2: float
+    std: np.ndarray | None = None
+
+
+@dataclass
+class Reconstruction:
+    """The answer.
+
+    Attributes:
+        shape: (4,) c (input units), alpha, beta, phi (radians), normalised.
+        poses: (N, 5) delta, tau, theta, tx, ty per frame (radians, input units).
+        std: (4,) standard deviations of c, alpha, beta, phi from the covariance, or None.
+        inliers: (N,) False for frames found not to fit (excluded from the shape estimate).
+        alternatives: other shapes fitting equally well (best first).
+        warnings: human-readable warnings (also printed by the command line).
+        method: "auto" or "linear".
+        chi2: sum of squared standardised residuals over the inlier frames (None for linear).
+        frame_chi2: (N,) per-frame chi2 (None for linear).
+    """
+
+    shape: np.ndarray
+    poses: np.ndarray
+    std: np.ndarray | None
+    inliers: np.ndarray
+    alternatives: list[Alternative] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    method: str = "auto"
+    chi2: float | None = None
+    frame_chi2: np.ndarray | None = None
+
+    @property
+    def c(self) -> float:
+        return float(self.shape[0])
+
+    @property
+    def alpha(self) -> float:
+        return float(self.shape[1])
+
+    @property
+    def beta(self) -> float:
+        return float(self.shape[2])
+
+    @property
+    def phi(self) -> float:
+        return float(self.shape[3])
+
+    def rotations(self) -> np.ndarray:
+        """(N, 3, 3) curve-to-camera rotations R_z(theta) R_y(tau) R_x(delta)."""
+        return rotations(self.poses)
+
+    def translations(self) -> np.ndarray:
+        """(N, 3) translations (tx, ty, 0): A at z = 0."""
+        return translations(self.poses)
+
+    def points_3d(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(A3, B3, tangent_A3, tangent_B3), each (N, 3), camera coordinates, A at z = 0."""
+        out = measurement_model.points_3d(*self.shape, *self.poses.T)
+        return tuple(np.asarray(v, float) for v in out)
+
+    def outlier_frames(self) -> list[int]:
+        return [int(i) for i in np.flatnonzero(~self.inliers)]
+
+    def to_json_dict(self) -> dict:
+        """The ``curverecon.reconstruction/1`` document (degrees; extra keys beyond the contract:
+        per-frame theta_deg, tx, ty, inlier, chi2; top-level method, std, chi2, outlier_frames,
+        alternatives, warnings)."""
+        a3, b3, ta3, tb3 = self.points_3d()
+        frames = []
+        for i in range(len(self.poses)):
+            d, t, th, tx, ty = self.poses[i]
+            frame = {
+                "delta_deg": math.degrees(d),
+                "tau_deg": math.degrees(t),
+                "A3": a3[i].tolist(),
+                "B3": b3[i].tolist(),
+                "tangent_A3": ta3[i].tolist(),
+                "tangent_B3": tb3[i].tolist(),
+                "theta_deg": math.degrees(th),
+                "inlier": bool(self.inliers[i]),
+            }
+            if self.frame_chi2 is not None:
+                frame["chi2"] = float(self.frame_chi2[i])
+            frames.append(frame)
+        out = {"format": "curverecon.reconstruction/1", **_shape_dict(self.shape)}
+        out["frames"] = frames
+        out["method"] = self.method
+        out["std"] = None if self.std is None else _shape_dict(self.std)
+        out["chi2"] = self.chi2
+        out["outlier_frames"] = self.outlier_frames()
+        out["alternatives"] = [
+            {
+                **_shape_dict(alt.shape),
+                "chi2": alt.chi2,
+                "std": None if alt.std is None else _shape_dict(alt.std),
+            }
+            for alt in self.alternatives
+        ]
+        out["warnings"] = list(self.warnings)
+        return out
+
+
+def _shape_dict(shape: np.ndarray) -> dict:
+    c, a, b, p = (float(v) for v in shape)
+    return {
+        "c": c,
+        "alpha_deg": math.degrees(a),
+        "beta_deg": math.degrees(b),
+        "phi_deg": math.degrees(p),
+    }
+
+
+def reconstruct(
+    obs: Observations,
+    method: str = "auto",
+    point_sigma: float = 1.0,
+    tangent_sigma_deg: float = 1.0,
+) -> Reconstruction:
+    """Recover c, alpha, beta, phi and every frame's pose.
+
+    Args:
+        obs: observations (at least 4 frames, not all related by in-plane similarity).
+        method: "auto" (robust start, ML refinement, outlier test) or "linear" (the paper's
+            linearisation alone; needs ``linear.min_frames()`` frames).
+        point_sigma: standard deviation of the image point coordinates (input units).
+        tangent_sigma_deg: standard deviation of the tangent directions (degrees).
+    Raises:
+        CurveReconError: bad input, too few frames, degenerate motion.
+    """
+    if method not in METHODS:
+        raise CurveReconError(f'unknown method "{method}" (choose {" or ".join(METHODS)})')
+    if not (point_sigma > 0 and tangent_sigma_deg > 0):
+        raise CurveReconError("point and tangent standard deviations must be positive")
+    obs.require_reconstructable()
+    if method == "linear":
+        return _reconstruct_linear(obs)
+    return _reconstruct_auto(obs, float(point_sigma), math.radians(tangent_sigma_deg))
+
+
+def _reconstruct_linear(obs: Observations) -> Reconstruction:
+    from curverecon.linear import solve_linear
+
+    lin = solve_linear(obs)
+    poses, _ = poses_from_shape(obs, lin.shape)
+    shape, poses = normalise(lin.shape, poses)
+    warnings = []
+    if lin.fit_residual > 1e-6:
+        warnings.append(
+            f"the linearisation's null vector fits the shape only to {lin.fit_residual:.1e} "
+            "(noisy data: the linear method is not reliable; use --method auto)"
+        )
+    return Reconstruction(
+        shape, poses, None, np.ones(obs.n_frames, bool), [], warnings, "linear", None, None
+    )
+
+
+def _linear_seed(obs: Observations) -> list[np.ndarray]:
+    """The linearisation's shape as an extra start, when it is determined (enough frames)."""
+    try:
+        from curverecon.linear import min_frames, solve_linear
+
+        if obs.n_frames < max(min_frames(), 45):
+            return []
+        lin = solve_linear(obs)
+    except (ImportError, CurveReconError, ValueError, np.linalg.LinAlgError):
+        return []
+    return [lin.shape] if np.all(np.isfinite(lin.shape)) else []
+
+
+def _threshold(frame_chi2: np.ndarray) -> float:
+    """Per-frame chi2 threshold: chi2(1) quantile, scaled up if the noise looks larger."""
+    base = float(chi2_dist.isf(OUTLIER_P, 1))
+    scale = max(1.0, float(np.median(frame_chi2)) / float(chi2_dist.median(1)))
+    return base * scale
+
+
+def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction:
+    n = obs.n_frames
+    cands = robust_start(obs, ps, ts, extra_shapes=_linear_seed(obs))
+    if not cands:
+        raise CurveReconError("no shape fits the data (the search found no candidate)")
+    best = cands[0].result
+    warnings: list[str] = []
+
+    # Outlier frames: drop the worst frame above the threshold, refit, repeat.
+    inliers = np.ones(n, dtype=bool)
+    fit = best
+    max_out = max(0, (n - 5) // 2)
+    while True:
+        idx = np.flatnonzero(inliers)
+        j = int(np.argmax(fit.frame_chi2))
+        if fit.frame_chi2[j] <= _threshold(fit.frame_chi2) or (~inliers).sum() >= max_out:
+            break
+        inliers[idx[j]] = False
+        keep = np.arange(idx.size) != j
+        fit = refine(obs.subset(inliers), fit.shape, fit.poses[keep], ps, ts, covariance=False)
+    final = refine(obs.subset(inliers), fit.shape, fit.poses, ps, ts, covariance=True)
+    if not final.converged:
+        warnings.append("the maximum-likelihood refinement did not converge within its limit")
+
+    # Poses of outlier frames: best pose for the final shape (shape held fixed).
+    poses = np.array(poses_from_shape(obs, final.shape)[0])
+    poses[inliers] = final.poses
+    meas = obs.measurements()
+    w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
+    poses, resid = _pose_iterations(final.shape, poses, meas, w8, 10)
+    frame_chi2 = np.sum(resid * resid, axis=1)
+    frame_chi2[inliers] = final.frame_chi2
+    shape, poses = normalise(final.shape, poses)
+    std = final.std
+    if std is None or not np.all(np.isfinite(std)):
+        std = None
+        warnings.append("the shape is not determined by these frames (singular information matrix)")
+    elif std[0] > 0.5 * shape[0] or np.any(std[1:] > math.radians(30.0)):
+        warnings.append(
+            "the shape is poorly determined by these frames (standard deviation "
+            f"c {std[0]:.3g}, angles {', '.join(f'{math.degrees(s):.1f}' for s in std[1:])} deg)"
+        )
+    outliers = np.flatnonzero(~inliers)
+    if outliers.size:
+        warnings.append(
+            f"{outliers.size} frame(s) do not fit and were left out of the shape estimate: "
+            + ", ".join(str(int(i)) for i in outliers)
+        )
+
+    # Alternatives: other refined candidates that fit the inlier frames about as well.
+    alternatives: list[Alternative] = []
+    sub = obs.subset(inliers)
+    seen = [shape]
+    for cand in cands[1:]:
+        r = cand.result
+        if cand.robust_cost - cands[0].robust_cost > 4 * ALTERNATIVE_DCHI2:
+            continue
+        if any(shape_distance(r.shape, s) < 0.02 for s in seen):
+            continue
+        alt = refine(sub, r.shape, r.poses[inliers], ps, ts, covariance=True)
+        if alt.chi2 - final.chi2 > ALTERNATIVE_DCHI2:
+            continue
+        alt_shape, alt_poses_in = normalise(alt.shape, alt.poses)
+        if any(shape_distance(alt_shape, s) < 0.02 for s in seen):
+            continue
+        seen.append(alt_shape)
+        alt_poses = np.array(poses_from_shape(obs, alt_shape)[0])
+        alt_poses[inliers] = alt_poses_in
+        alternatives.append(Alternative(alt_shape, alt_poses, alt.chi2, alt.std))
+    if alternatives:
+        warnings.append(
+            f"{len(alternatives) + 1} shapes fit the data about equally well (too few frames to "
+            "tell them apart); the best is returned, the others are listed in alternatives"
+        )
+    return Reconstruction(
+        shape, poses, std, inliers, alternatives, warnings, "auto", final.chi2, frame_chi2
+    )
+
+
+def angle_residuals_deg(rec: Reconstruction, obs: Observations) -> np.ndarray:
+    """(N, 2) tangent-angle residuals of a reconstruction (degrees), for diagnostics."""
+    pred = measurement_model.predict(*rec.shape, *rec.poses.T)
+    return np.degrees(wrap_line_angle(pred[:, 4:6] - obs.measurements()[:, 4:6]))

@@ -1,0 +1,399 @@
+"""A start for the maximum-likelihood fit that needs no truth: a global search over the shape.
+
+For a candidate shape (c, alpha, beta) and frame i, equation (10) fixes delta_i: multiplied by
+-u_x / c' (u = the unit tangent at B' in the paper's frame, so d' = -c' u_y / u_x), (10) reads
+
+    -c tan(alpha) u_x cos(delta) + c tan(alpha) sin(tau) u_y sin(delta) = u_y c'
+
+i.e. R cos(delta - w) = u_y c', finite even where d' is infinite.  That gives two deltas for each
+sign of sin(tau) = +-sqrt(1 - (c'/c)^2): four candidates per frame (infeasible ones clipped, their
+misfit at B kept).  Equation (11) multiplied likewise by the tangent at A is then LINEAR in
+X = c tan(beta) cos(phi), Y = c tan(beta) sin(phi):
+
+    r_A = c' v_y + X (sin(tau) sin(delta) v_y - cos(delta) v_x) + Y (sin(tau) cos(delta) v_y
+          + sin(delta) v_x)  =  (c / cos(beta)) |P t_A| sin(angle error at A)
+
+(v = the unit tangent at A' in the paper's frame, P t_A the projected unit tangent), so a whole
+grid of (beta, phi) is one matrix product per (c, alpha).  The per-frame misfit is the minimum
+over the four candidates of r_A^2 + r_B^2 (both scaled by cos/c to be sines of angle errors),
+truncated (robust to outlier frames), summed over frames.  The best distinct grid minima are
+then refined with the full maximum-likelihood fit (poses from the grid's branch per frame).
+
+Symmetries let the grid cover alpha, beta in (0, 90) degrees and phi in [0, 180] only
+(docs/CONVENTIONS.md); c = max(c') / cos(gamma) with gamma in [0, 80] degrees.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage
+
+from curverecon.observations import Observations, wrap_angle
+from curverecon.pose import normalise
+from curverecon.refine import RefineResult, _pose_iterations, refine_batch
+
+
+@dataclass
+class GridSpec:
+    """Grid resolution of the global search (counts of grid values)."""
+
+    n_gamma: int = 16
+    n_alpha: int = 18
+    n_beta: int = 18
+    n_phi: int = 19
+    gamma_max_deg: float = 80.0
+    truncate_deg: float = 12.0
+
+    @classmethod
+    def for_frames(cls, n_frames: int) -> GridSpec:
+        """A grid whose size (cells x frames) stays about constant: finer for few frames."""
+        if n_frames <= 8:
+            return cls(16, 22, 22, 25)
+        if n_frames <= 30:
+            return cls(10, 15, 15, 16)
+        return cls(8, 12, 12, 13)
+
+
+@dataclass
+class Candidate:
+    """A refined start: the ML result and its robust cost."""
+
+    result: RefineResult
+    robust_cost: float
+    grid_cost: float
+
+
+def _frame_terms(obs: Observations) -> dict[str, np.ndarray]:
+    return {
+        "cp": obs.cp,
+        "ua": np.column_stack([np.cos(obs.rel_a), np.sin(obs.rel_a)]),
+        "ub": np.column_stack([np.cos(obs.rel_b), np.sin(obs.rel_b)]),
+    }
+
+
+def branch_candidates(
+    cp: np.ndarray, ub: np.ndarray, c: np.ndarray, tan_alpha: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The four (delta, sin tau) solutions of (10) per frame, for shapes broadcast over frames.
+
+    Args:
+        cp: (N,) c'; ub: (N, 2) unit tangent at B' in the paper's frame.
+        c, tan_alpha: arrays of shape S (broadcast against a trailing frame axis).
+    Returns:
+        cos_delta, sin_delta, sin_tau, r_b: arrays (*S, N, 4); r_b is the misfit of (10) (a sine
+        of the angle error at B, nonzero only where (10) has no real solution and was clipped).
+    """
+    c = np.asarray(c, float)[..., None]
+    ta = np.asarray(tan_alpha, float)[..., None]
+    s_abs = np.sqrt(np.clip(1.0 - (cp / c) ** 2, 0.0, None))
+    t_a = c * ta
+    k4 = np.array([1.0, 1.0, -1.0, -1.0])  # sign of sin tau
+    r4 = np.array([1.0, -1.0, 1.0, -1.0])  # the two roots
+    s = s_abs[..., None] * k4
+    a_coef = (-t_a * ub[:, 0])[..., None] * np.ones(4)
+    b_coef = (t_a * ub[:, 1])[..., None] * s
+    rhs = (ub[:, 1] * cp)[..., None] * np.ones(a_coef.shape)
+    big_r = np.hypot(a_coef, b_coef)
+    w = np.arctan2(b_coef, a_coef)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(big_r > 0, rhs / big_r, 0.0)
+    ratio_c = np.clip(ratio, -1.0, 1.0)
+    delta = w + r4 * np.arccos(ratio_c)
+    r_b = (rhs - big_r * ratio_c) / (c * np.sqrt(1.0 + ta * ta))[..., None]
+    return np.cos(delta), np.sin(delta), s, r_b
+
+
+def grid_costs(obs: Observations, spec: GridSpec | None = None) -> tuple[np.ndarray, dict]:
+    """Robust cost on the (gamma, alpha, beta, phi) grid; returns (costs, grid axes)."""
+    spec = spec or GridSpec()
+    t = _frame_terms(obs)
+    cp, ua, ub = t["cp"], t["ua"], t["ub"]
+    n = cp.size
+    gam = np.radians(np.linspace(0.0, spec.gamma_max_deg, spec.n_gamma))
+    alp = np.radians((np.arange(spec.n_alpha) + 0.5) * 90.0 / spec.n_alpha)
+    bet = np.radians((np.arange(spec.n_beta) + 0.5) * 90.0 / spec.n_beta)
+    phi = np.radians(np.linspace(0.0, 180.0, spec.n_phi))
+    c = np.max(cp) / np.cos(gam)  # (G,)
+    cg, ag = np.meshgrid(c, np.tan(alp), indexing="ij")  # (G, A)
+    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, cg, ag)  # (G, A, N, 4)
+    vx, vy = ua[:, 0][:, None], ua[:, 1][:, None]  # (N, 1)
+    dt = np.float32
+    # Projected tangent at A times cos(beta) / c, with X = c tan(beta) cos(phi), Y = ... sin(phi):
+    #     P = (c' + s (X sin d + Y cos d), X cos d - Y sin d)
+    # and its cross product with the observed unit direction v:
+    #     r_A = c' v_y + X (s sin d v_y - cos d v_x) + Y (s cos d v_y + sin d v_x).
+    # All three are linear in (1, X, Y): one matrix product each for the whole (beta, phi) grid.
+    ones = np.ones(cos_d.shape)
+    lin_cross = np.stack(
+        [cp[:, None] * vy * ones, s * sin_d * vy - cos_d * vx, s * cos_d * vy + sin_d * vx], -1
+    )
+    lin_px = np.stack([cp[:, None] * ones, s * sin_d, s * cos_d], -1)
+    lin_py = np.stack([0.0 * ones, cos_d, -sin_d], -1)
+    tb = np.tan(bet)
+    xy = np.stack([np.outer(tb, np.cos(phi)).ravel(), np.outer(tb, np.sin(phi)).ravel()])
+    coef = np.concatenate(
+        [np.ones((c.size, 1, xy.shape[1])), c[:, None, None] * xy[None]], axis=1
+    )[:, None].astype(dt)  # (G, 1, 3, B*P)
+    shp = (spec.n_gamma, spec.n_alpha, n * 4, 3)
+    cross = lin_cross.reshape(shp).astype(dt) @ coef
+    px = lin_px.reshape(shp).astype(dt) @ coef
+    py = lin_py.reshape(shp).astype(dt) @ coef
+    np.multiply(cross, cross, out=cross)
+    np.multiply(px, px, out=px)
+    np.multiply(py, py, out=py)
+    np.add(px, py, out=px)
+    px += dt(1e-30)
+    np.divide(cross, px, out=cross)  # sin^2 of the angle error at A
+    r2 = cross.reshape(spec.n_gamma, spec.n_alpha, n, 4, -1)
+    r2 += (r_b * r_b).astype(dt)[..., None]
+    per_frame = np.minimum(
+        np.minimum(r2[:, :, :, 0], r2[:, :, :, 1]), np.minimum(r2[:, :, :, 2], r2[:, :, :, 3])
+    )  # (G, A, N, B*P)
+    trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
+    np.minimum(per_frame, dt(trunc), out=per_frame)
+    cost = np.sum(per_frame, axis=2, dtype=np.float64)  # (G, A, B*P)
+    cost = cost.reshape(spec.n_gamma, spec.n_alpha, spec.n_beta, spec.n_phi)
+    return cost, {"c": c, "alpha": alp, "beta": bet, "phi": phi}
+
+
+def reduced_cost(
+    obs_terms: dict[str, np.ndarray], params: np.ndarray, truncate: float
+) -> np.ndarray:
+    """Robust cost of shapes given as (M, 4) (gamma, alpha, beta, phi); c = max(c') / cos(gamma).
+
+    The poses are eliminated exactly: per frame the best of the four solutions of (10); the
+    per-frame misfit is the squared sine of the tangent-angle error at A plus (where (10) has no
+    solution) the misfit at B, truncated at ``truncate``.  Returns (M,).
+    """
+    cp, ua, ub = obs_terms["cp"], obs_terms["ua"], obs_terms["ub"]
+    c = np.max(cp) / np.cos(params[:, 0])
+    tb = np.tan(params[:, 2])
+    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, c, np.tan(params[:, 1]))  # (M, N, 4)
+    x = (c * tb * np.cos(params[:, 3]))[:, None, None]
+    y = (c * tb * np.sin(params[:, 3]))[:, None, None]
+    px = cp[:, None] + s * (x * sin_d + y * cos_d)
+    py = x * cos_d - y * sin_d
+    cross = px * ua[:, 1][:, None] - py * ua[:, 0][:, None]
+    r2 = cross * cross / (px * px + py * py + 1e-300) + r_b * r_b
+    return np.sum(np.minimum(np.min(r2, axis=2), truncate), axis=1)
+
+
+def pattern_search(
+    obs_terms: dict[str, np.ndarray],
+    params: np.ndarray,
+    steps: np.ndarray,
+    truncate: float,
+    n_iter: int = 30,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Vectorised compass search of :func:`reduced_cost` from M starts; returns (params, costs)."""
+    x = np.array(params, dtype=float)
+    h = np.broadcast_to(np.asarray(steps, float), x.shape).copy()
+    lo = np.array([0.0, 1e-4, 1e-4, -np.pi])
+    hi = np.array([np.radians(87.0), np.pi / 2 - 1e-4, np.pi / 2 - 1e-4, 2 * np.pi])
+    f = reduced_cost(obs_terms, x, truncate)
+    m = x.shape[0]
+    dirs = np.concatenate([np.eye(4), -np.eye(4)])  # (8, 4)
+    for _ in range(n_iter):
+        trial = x[:, None, :] + dirs[None] * h[:, None, :]
+        trial = np.clip(trial, lo, hi)
+        ft = reduced_cost(obs_terms, trial.reshape(-1, 4), truncate).reshape(m, 8)
+        j = np.argmin(ft, axis=1)
+        better = ft[np.arange(m), j] < f
+        x = np.where(better[:, None], trial[np.arange(m), j], x)
+        f = np.where(better, ft[np.arange(m), j], f)
+        h = np.where(better[:, None], h, h * 0.5)
+    return x, f
+
+
+def poses_from_branches(obs: Observations, shape: np.ndarray) -> np.ndarray:
+    """(N, 5) poses for a shape: per frame the candidate of (10) that best fits the tangent at A."""
+    c, alpha, beta, phi = (float(v) for v in shape)
+    t = _frame_terms(obs)
+    cp, ua, ub = t["cp"], t["ua"], t["ub"]
+    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, np.array(c), np.array(np.tan(alpha)))
+    x, y = c * np.tan(beta) * np.cos(phi), c * np.tan(beta) * np.sin(phi)
+    vx, vy = ua[:, 0][:, None], ua[:, 1][:, None]
+    r_a = cp[:, None] * vy + x * (s * sin_d * vy - cos_d * vx) + y * (s * cos_d * vy + sin_d * vx)
+    r_a = r_a / (c * np.sqrt(1 + np.tan(beta) ** 2))
+    k = np.argmin(r_a**2 + r_b**2, axis=1)
+    rows = np.arange(cp.size)
+    delta = np.arctan2(sin_d[rows, k], cos_d[rows, k])
+    tau = np.arcsin(np.clip(s[rows, k], -1.0, 1.0))
+    return np.column_stack([delta, tau, obs.theta, obs.a[:, 0], obs.a[:, 1]])
+
+
+def switch_branches(obs: Observations, shape: np.ndarray, poses: np.ndarray, w8: np.ndarray) -> np.ndarray:
+    """Per frame, the best of the current pose and the four branches of (10), shape fixed.
+
+    Each alternative is polished by a few pose-only Gauss-Newton steps before the comparison.
+    Returns the new (N, 5) poses (identical to ``poses`` where nothing fits better).
+    """
+    c, alpha = float(shape[0]), float(shape[1])
+    t = _frame_terms(obs)
+    cos_d, sin_d, s, _ = branch_candidates(t["cp"], t["ub"], np.array(c), np.array(np.tan(alpha)))
+    n = obs.n_frames
+    sets = [poses]
+    for k in range(4):
+        alt = np.array(poses)
+        alt[:, 0] = np.arctan2(sin_d[:, k], cos_d[:, k])
+        alt[:, 1] = np.arcsin(np.clip(s[:, k], -1.0, 1.0))
+        sets.append(alt)
+    allp = np.concatenate(sets)
+    meas = np.tile(obs.measurements(), (len(sets), 1))
+    allp, res = _pose_iterations(shape, allp, meas, w8, 6)
+    f = np.sum(res * res, axis=1).reshape(len(sets), n)
+    best = np.argmin(f, axis=0)
+    best = np.where(f[best, np.arange(n)] < f[0] - 1e-9 * (1.0 + f[0]), best, 0)
+    return allp.reshape(len(sets), n, 5)[best, np.arange(n)]
+
+
+def _local_minima(cost: np.ndarray, n_best: int) -> list[tuple[int, ...]]:
+    filt = ndimage.minimum_filter(cost, size=3, mode="nearest")
+    idx = np.argwhere(cost <= filt)
+    vals = cost[tuple(idx.T)]
+    order = np.argsort(vals, kind="stable")
+    return [tuple(int(v) for v in idx[i]) for i in order[:n_best]]
+
+
+def robust_cost(frame_chi2: np.ndarray, truncate: float = 25.0) -> float:
+    """Sum of per-frame chi2 truncated at ``truncate`` (outlier frames count at most that)."""
+    return float(np.sum(np.minimum(frame_chi2, truncate)))
+
+
+def robust_start(
+    obs: Observations,
+    point_sigma: float = 1.0,
+    tangent_sigma: float = np.radians(1.0),
+    n_candidates: int | None = None,
+    n_final: int = 4,
+    spec: GridSpec | None = None,
+    extra_shapes: list[np.ndarray] | None = None,
+    n_restarts: int | None = None,
+) -> list[Candidate]:
+    """Refined candidates from the global grid search, best (lowest robust cost) first.
+
+    The ``n_candidates`` best grid minima (plus ``extra_shapes``) get a short ML refinement,
+    all at once (``refine.refine_batch``); the ``n_final`` best distinct ones are refined to
+    convergence.
+
+    Args:
+        obs: observations (at least 4 frames).
+        point_sigma, tangent_sigma: noise (input units; radians) used by the ML refinement.
+        n_candidates: number of grid minima refined briefly.
+        n_final: number of distinct candidates refined to convergence.
+        spec: grid resolution.
+        extra_shapes: further start shapes (e.g. from the linearisation).
+    Returns:
+        Candidates sorted by robust cost; each ``result.shape`` normalised (alpha, beta in
+        [0, pi/2], phi in [0, pi]); ``result.covariance`` is None.
+    """
+    n = obs.n_frames
+    few = n < 12
+    if n_candidates is None:
+        n_candidates = 48 if few else 16
+    spec = spec or GridSpec.for_frames(n)
+    cost, axes = grid_costs(obs, spec)
+    # Grid minima -> local compass search of the same (pose-free) cost -> best distinct ones.
+    n_search = 4 * n_candidates
+    cells = _local_minima(cost, n_search)
+    gam = np.arccos(np.clip(np.max(obs.cp) / axes["c"], 0.0, 1.0))
+    x0 = np.array(
+        [[gam[ig], axes["alpha"][ia], axes["beta"][ib], axes["phi"][ip]] for ig, ia, ib, ip in cells]
+    )
+    steps = np.array([
+        np.radians(spec.gamma_max_deg) / max(spec.n_gamma - 1, 1),
+        axes["alpha"][1] - axes["alpha"][0],
+        axes["beta"][1] - axes["beta"][0],
+        axes["phi"][1] - axes["phi"][0],
+    ]) * 0.5
+    trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
+    terms = _frame_terms(obs)
+    xs, fs = pattern_search(terms, x0, steps, trunc)
+    order = np.argsort(fs, kind="stable")
+    starts, grid_cost = [], []
+    kept: list[np.ndarray] = []
+    for i in order:
+        if len(starts) >= n_candidates:
+            break
+        if any(np.max(np.abs(xs[i] - k)) < 1e-3 for k in kept):
+            continue
+        kept.append(xs[i])
+        gm, al, be, ph = xs[i]
+        starts.append(np.array([np.max(obs.cp) / np.cos(gm), al, be, ph]))
+        grid_cost.append(float(fs[i]))
+    shapes = np.array(starts)
+    poses = np.array([poses_from_branches(obs, s) for s in shapes])
+    meas = obs.measurements()
+    g, p, r, chi2, _, _ = refine_batch(
+        meas, shapes, poses, point_sigma, tangent_sigma, max_iter=15, drop_factor=3.0
+    )
+    fchi2 = np.sum(r * r, axis=2)
+    rc = np.array([robust_cost(f) for f in fchi2])
+    order = np.argsort(rc, kind="stable")
+    chosen: list[int] = []
+    normed = [normalise(g[i], p[i])[0] for i in range(len(g))]
+    for i in order:
+        if len(chosen) >= n_final:
+            break
+        if all(shape_distance(normed[i], normed[j]) > 1e-3 for j in chosen):
+            chosen.append(int(i))
+    g, p, r, chi2, iters, conv = refine_batch(
+        meas, g[chosen], p[chosen], point_sigma, tangent_sigma, max_iter=40, drop_factor=3.0
+    )
+    # Branch switching: a frame may sit on the wrong solution of (10) (sign of tau, root);
+    # try every branch per frame with the shape fixed and refit where that helps.
+    w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / tangent_sigma] * 2)
+    p_sw = np.array([switch_branches(obs, g[k], p[k], w8) for k in range(len(g))])
+    changed = np.any(p_sw != p, axis=(1, 2))
+    if changed.any():
+        g2, p2, r2, chi22, it2, conv2 = refine_batch(
+            meas, g[changed], p_sw[changed], point_sigma, tangent_sigma, max_iter=40,
+            drop_factor=3.0,
+        )
+        better = chi22 < chi2[changed]
+        idx = np.flatnonzero(changed)[better]
+        g[idx], p[idx], r[idx], chi2[idx] = g2[better], p2[better], r2[better], chi22[better]
+        iters[idx] += it2[better]
+        conv[idx] = conv2[better]
+    # Local restarts around the best candidates (few frames: many shallow minima nearby).
+    dof = max(n - 4, 1)
+    implausible = np.min(chi2) > dof + 5.0 * np.sqrt(2.0 * dof) + 10.0
+    if n_restarts is None:
+        n_restarts = 24 if (few or implausible) else 0
+    if n_restarts > 0:
+        rng = np.random.default_rng(12345)
+        top = np.argsort(chi2)[:2]
+        starts = []
+        for k in top:
+            pert = g[k] + rng.normal(size=(n_restarts, 4)) * np.array(
+                [0.04 * g[k][0], 0.06, 0.06, 0.1]
+            )
+            pert[:, 0] = np.abs(pert[:, 0])
+            starts.append(pert)
+        starts = np.concatenate(starts)
+        sp = np.array([poses_from_branches(obs, st) for st in starts])
+        g3, p3, r3, chi23, it3, conv3 = refine_batch(
+            meas, starts, sp, point_sigma, tangent_sigma, max_iter=40, drop_factor=3.0
+        )
+        j = int(np.argmin(chi23))
+        k_worst = int(np.argmax(chi2))
+        if chi23[j] < np.min(chi2) - 1e-9 * (1 + np.min(chi2)):
+            g[k_worst], p[k_worst], r[k_worst], chi2[k_worst] = g3[j], p3[j], r3[j], chi23[j]
+            iters[k_worst], conv[k_worst] = it3[j], conv3[j]
+    out = []
+    for k, i in enumerate(chosen):
+        shape_n, poses_n = normalise(g[k], p[k])
+        fc = np.sum(r[k] * r[k], axis=1)
+        res = RefineResult(shape_n, poses_n, float(chi2[k]), fc, r[k], None, int(iters[k]), bool(conv[k]))
+        out.append(Candidate(res, robust_cost(fc), grid_cost[i]))
+    out.sort(key=lambda cand: cand.robust_cost)
+    return out
+
+
+def shape_distance(a: np.ndarray, b: np.ndarray) -> float:
+    """Distance between normalised shapes: relative c difference and angle differences (rad)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    d = np.abs(wrap_angle(a[1:] - b[1:]))
+    return float(max(abs(a[0] - b[0]) / max(a[0], b[0]), np.max(d)))

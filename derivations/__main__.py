@@ -1,0 +1,193 @@
+"""Regenerate ``generated/`` and the derivation reports (``make derive``).
+
+Usage::
+
+    python -m derivations [--out DIR] [--docs DIR] [--check]
+
+* ``--out``: where the NumPy modules go (default ``generated/`` of the repository).
+* ``--docs``: where ``derivations.report.write_reports`` writes (default ``docs/``).
+* ``--check``: regenerate into a temporary folder and compare with ``--out``/``--docs``; print a
+  unified diff and exit 1 if anything is stale, write nothing.
+
+The output is deterministic (byte-for-byte the same on every run and machine with the pinned
+SymPy/ruff); the elapsed time is printed to stdout only.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+from derivations.codegen.generate import (
+    REPO_ROOT,
+    compare_or_update,
+    render_init,
+    render_module,
+)
+
+STALE_MESSAGE = "generated/ is stale: run `make derive` (or pytest --update-generated)"
+DRIVER = "derivations/__main__.py"
+
+
+def _optional(module: str, attribute: str) -> Callable[..., object] | None:
+    """``module.attribute`` if the derivation module already provides it, else None (warned)."""
+    try:
+        mod = importlib.import_module(module)
+    except ModuleNotFoundError as exc:
+        if exc.name != module:
+            raise
+        print(f"derive: skipping, {module} does not exist yet", file=sys.stderr)
+        return None
+    function = getattr(mod, attribute, None)
+    if function is None:
+        print(f"derive: skipping, {module}.{attribute} does not exist yet", file=sys.stderr)
+    return function
+
+
+def _function_module(module: str, filename: str) -> str | None:
+    """Render a module of FunctionSpecs from ``module.generated_functions()``."""
+    functions = _optional(module, "generated_functions")
+    if functions is None:
+        return None
+    mod = sys.modules[module]
+    constants = getattr(mod, "module_constants", dict)()
+    doc = getattr(mod, "MODULE_DOC", None) or (mod.__doc__ or module).strip().split("\n\n")[0]
+    return render_module(
+        source=module.replace(".", "/") + ".py",
+        doc=doc,
+        functions=functions(),
+        constants=constants,
+        filename=f"generated/{filename}",
+    )
+
+
+def _polynomial_module(module: str, filename: str) -> str | None:
+    """Render a PolynomialColumns module from ``module.grouped_columns()``."""
+    grouped = _optional(module, "grouped_columns")
+    if grouped is None:
+        return None
+    record = grouped()
+    return render_module(
+        source=module.replace(".", "/") + ".py",
+        doc=record.doc,
+        polynomial=record,
+        filename=f"generated/{filename}",
+    )
+
+
+#: (file name, one-line summary, builder) in the order they are generated.
+TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
+    (
+        "measurement_model.py",
+        "maximum-likelihood measurement model and its Jacobians (derivations/measurement.py)",
+        lambda: _function_module("derivations.measurement", "measurement_model.py"),
+    ),
+    (
+        "frame_equations.py",
+        "section 3 per-frame equations (10), (11), (12) (derivations/section3.py)",
+        lambda: _function_module("derivations.section3", "frame_equations.py"),
+    ),
+    (
+        "lean_polynomial.py",
+        "single-squaring elimination, grouped by observable monomial (derivations/lean.py)",
+        lambda: _polynomial_module("derivations.lean", "lean_polynomial.py"),
+    ),
+    (
+        "polynomial_12p.py",
+        "the paper's (12'), grouped by observable monomial (derivations/squaring.py)",
+        lambda: _polynomial_module("derivations.squaring", "polynomial_12p.py"),
+    ),
+)
+
+
+def generate(out_dir: Path, docs_dir: Path | None, *, verbose: bool = True) -> list[Path]:
+    """Write every generated module into ``out_dir`` and the reports into ``docs_dir``.
+
+    Returns the paths written, generated modules first.  Targets whose derivation module does not
+    exist yet are skipped with a warning on stderr.
+    """
+    out_dir.mkdir(parents=True, exist_ok=True)
+    written: list[Path] = []
+    listed: list[tuple[str, str]] = []
+    for filename, summary, build in TARGETS:
+        start = time.perf_counter()
+        text = build()
+        if text is None:
+            continue
+        path = out_dir / filename
+        path.write_text(text)
+        written.append(path)
+        listed.append((filename.removesuffix(".py"), summary))
+        if verbose:
+            print(
+                f"derive: {filename}: {len(text.splitlines())} lines, "
+                f"{time.perf_counter() - start:.1f} s"
+            )
+    init = out_dir / "__init__.py"
+    init.write_text(render_init(listed, DRIVER))
+    written.insert(0, init)
+    if docs_dir is not None:
+        write_reports = _optional("derivations.report", "write_reports")
+        if write_reports is not None:
+            docs_dir.mkdir(parents=True, exist_ok=True)
+            before = {p: p.stat().st_mtime_ns for p in docs_dir.rglob("*") if p.is_file()}
+            start = time.perf_counter()
+            write_reports(docs_dir)
+            written += sorted(
+                p
+                for p in docs_dir.rglob("*")
+                if p.is_file() and before.get(p) != p.stat().st_mtime_ns
+            )
+            if verbose:
+                print(f"derive: reports in {docs_dir.name}/: {time.perf_counter() - start:.1f} s")
+    return written
+
+
+def check(out_dir: Path, docs_dir: Path | None) -> list[str]:
+    """Regenerate into a temporary folder; return one unified diff per stale file."""
+    diffs: list[str] = []
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp_out = Path(tmp) / "generated"
+        tmp_docs = Path(tmp) / "docs" if docs_dir is not None else None
+        for path in generate(tmp_out, tmp_docs, verbose=False):
+            if path.is_relative_to(tmp_out):
+                target = out_dir / path.relative_to(tmp_out)
+            else:
+                assert tmp_docs is not None and docs_dir is not None
+                target = docs_dir / path.relative_to(tmp_docs)
+            diff = compare_or_update(target, path.read_text(), update=False)
+            if diff is not None:
+                diffs.append(diff)
+    return diffs
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="python -m derivations", description=__doc__.split("\n")[0]
+    )
+    parser.add_argument("--out", type=Path, default=REPO_ROOT / "generated")
+    parser.add_argument("--docs", type=Path, default=REPO_ROOT / "docs")
+    parser.add_argument("--check", action="store_true", help="compare only, write nothing")
+    args = parser.parse_args(argv)
+    start = time.perf_counter()
+    if args.check:
+        diffs = check(args.out, args.docs)
+        for diff in diffs:
+            sys.stdout.write(diff)
+        print(f"derive: elapsed {time.perf_counter() - start:.1f} s")
+        if diffs:
+            print(STALE_MESSAGE, file=sys.stderr)
+            return 1
+        return 0
+    written = generate(args.out, args.docs)
+    print(f"derive: wrote {len(written)} files, elapsed {time.perf_counter() - start:.1f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

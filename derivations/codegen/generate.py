@@ -1,0 +1,464 @@
+"""Turn FunctionSpec / PolynomialColumns records into formatted NumPy modules.
+
+The pipeline (after SymForce's ``Codegen``): flatten the outputs of one function, run one
+``sympy.cse`` pass over all of them (temporaries ``_tmp0, _tmp1, ...`` from
+``sympy.numbered_symbols``, canonical order), print every expression with
+:class:`~derivations.codegen.printer.NumPyCodePrinter`, render ``templates/module.py.jinja``,
+and pipe the text through the venv's pinned ``ruff format``.  Polynomials are not printed as
+expressions at all: they become integer tables evaluated by a small vectorised routine.
+
+The output depends only on the inputs: no timestamps, no absolute paths, no set/dict order
+(everything iterated is sorted or comes in a fixed order).
+"""
+
+from __future__ import annotations
+
+import difflib
+import shutil
+import subprocess
+import sys
+import textwrap
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+
+import jinja2
+import sympy as sp
+
+from derivations.codegen.config import TEMPLATE_DIR, NumPyConfig
+from derivations.codegen.printer import NumPyCodePrinter
+from derivations.codegen.spec import FunctionSpec, PolynomialColumns
+
+TEMPLATE_NAME = "module.py.jinja"
+TEMPLATE_PATH = "derivations/codegen/templates/" + TEMPLATE_NAME
+REPO_ROOT = Path(__file__).resolve().parents[2]
+
+
+# ---------------------------------------------------------------------------------------------
+# Functions
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class _Output:
+    """One output of a function: its flat components and the trailing shape they stack into."""
+
+    name: str
+    components: tuple[sp.Expr, ...]
+    shape: tuple[int, ...]  # () scalar, (n,) tuple, (r, k) matrix
+
+
+@dataclass(frozen=True)
+class FunctionCode:
+    """A printed function, ready for the ``function`` macro."""
+
+    name: str
+    args: tuple[str, ...]
+    doc: str
+    temporaries: tuple[tuple[str, str], ...]
+    output_lines: tuple[str, ...]
+    return_expr: str
+    return_annotation: str
+
+
+def _normalise_output(name: str, value: object) -> _Output:
+    """Scalar expr -> shape (); tuple/list -> (n,); Matrix r x k -> (r, k)."""
+    if isinstance(value, sp.MatrixBase):
+        rows, cols = value.shape
+        return _Output(name, tuple(sp.sympify(v) for v in value), (rows, cols))
+    if isinstance(value, (tuple, list)):
+        return _Output(name, tuple(sp.sympify(v) for v in value), (len(value),))
+    return _Output(name, (sp.sympify(value),), ())
+
+
+def print_function(spec: FunctionSpec, config: NumPyConfig) -> FunctionCode:
+    """One CSE pass over all outputs of ``spec`` and print it."""
+    printer = NumPyCodePrinter(config)
+    outputs = [_normalise_output(name, value) for name, value in spec.outputs.items()]
+    flat: list[sp.Expr] = [e for out in outputs for e in out.components]
+    arg_names = tuple(a.name for a in spec.args)
+    free = set().union(*(e.free_symbols for e in flat)) if flat else set()
+    unknown = sorted(s.name for s in free if s.name not in arg_names)
+    if unknown:
+        raise ValueError(f"{spec.name}: outputs use symbols that are not arguments: {unknown}")
+    replacements, reduced = sp.cse(
+        flat,
+        symbols=sp.numbered_symbols("_tmp"),
+        optimizations=config.cse_optimizations,
+        order="canonical",
+    )
+    temporaries = tuple((sym.name, printer.doprint(expr)) for sym, expr in replacements)
+    lines: list[str] = []
+    position = 0
+    for out in outputs:
+        parts = [printer.doprint(e) for e in reduced[position : position + len(out.components)]]
+        position += len(out.components)
+        if out.shape == ():
+            lines.append(f"{out.name} = _full({parts[0]}, _shape)")
+        else:
+            stacked = f"_stack(({', '.join(parts)},), _shape)"
+            if len(out.shape) == 2:
+                rows, cols = out.shape
+                stacked += f".reshape((*_shape, {rows}, {cols}))"
+            lines.append(f"{out.name} = {stacked}")
+    names = [out.name for out in outputs]
+    if len(names) == 1:
+        return_expr, annotation = names[0], "np.ndarray"
+    else:
+        return_expr = ", ".join(names)
+        annotation = "tuple[" + ", ".join(["np.ndarray"] * len(names)) + "]"
+    return FunctionCode(
+        name=spec.name,
+        args=arg_names,
+        doc=wrap_doc(spec.doc, config.line_length - 8),
+        temporaries=temporaries,
+        output_lines=tuple(lines),
+        return_expr=return_expr,
+        return_annotation=annotation,
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# Polynomials
+# ---------------------------------------------------------------------------------------------
+
+
+def _coefficient(value: object) -> int | Fraction:
+    """A ring/SymPy coefficient as an exact Python int or Fraction."""
+    if isinstance(value, int):
+        return value
+    if isinstance(value, sp.Rational):
+        return Fraction(int(value.p), int(value.q))
+    numerator = getattr(value, "numerator", None)
+    denominator = getattr(value, "denominator", None)
+    if numerator is not None and denominator is not None:
+        # gmpy2 mpz/mpq, PythonMPQ and Fraction all expose these (as attributes or methods).
+        num = numerator() if callable(numerator) else numerator
+        den = denominator() if callable(denominator) else denominator
+        return Fraction(int(num), int(den))
+    return Fraction(sp.Rational(sp.sympify(value)).p, sp.Rational(sp.sympify(value)).q)
+
+
+def polynomial_terms(
+    u: object, unknowns: Sequence[sp.Symbol]
+) -> list[tuple[tuple[int, ...], int | Fraction]]:
+    """Terms (exponents in ``unknowns`` order, exact coefficient) of u, sorted by exponents.
+
+    ``u`` may be a SymPy expression, a ``Poly`` or a ``sympy.polys.rings.PolyElement`` (the
+    latter is much faster for the 50,000-term (12') and is used when the derivation hands it
+    over).  Generators of a ring that are not among ``unknowns`` must not occur.
+    """
+    names = [s.name for s in unknowns]
+    if hasattr(u, "ring") and hasattr(u, "terms"):
+        gens = [str(g) for g in u.ring.symbols]
+        index = []
+        for g in gens:
+            index.append(names.index(g) if g in names else None)
+        result: dict[tuple[int, ...], int | Fraction] = {}
+        for monom, coeff in u.terms():
+            exps = [0] * len(names)
+            for g, e in enumerate(monom):
+                if e:
+                    if index[g] is None:
+                        raise ValueError(f"generator {gens[g]} is not an unknown")
+                    exps[index[g]] = int(e)
+            result[tuple(exps)] = _coefficient(coeff)
+        items = result.items()
+    elif isinstance(u, sp.Poly):
+        poly = u if [str(g) for g in u.gens] == names else sp.Poly(u.as_expr(), *unknowns)
+        items = ((tuple(int(e) for e in m), _coefficient(cf)) for m, cf in poly.terms())
+    else:
+        items = _expanded_terms(sp.sympify(u), unknowns).items()
+    return sorted(((m, c) for m, c in items if c != 0), key=lambda t: t[0])
+
+
+def _expanded_terms(
+    expr: sp.Expr, unknowns: Sequence[sp.Symbol]
+) -> dict[tuple[int, ...], int | Fraction]:
+    """Terms of an expanded polynomial expression, read off its Add/Mul/Pow tree directly.
+
+    ``sympy.Poly(expr)`` takes tens of seconds on the 50,000 terms of (12'); this walk is linear.
+    Expressions that are not already expanded sums of monomials fall back to ``sympy.Poly``.
+    """
+    position = {s: i for i, s in enumerate(unknowns)}
+    result: dict[tuple[int, ...], int | Fraction] = {}
+    for term in sp.Add.make_args(expr):
+        coeff, rest = term.as_coeff_Mul()
+        exps = [0] * len(unknowns)
+        for factor in sp.Mul.make_args(rest):
+            if factor == 1:
+                continue
+            base, e = factor.as_base_exp()
+            if base not in position or not (e.is_Integer and e >= 0):
+                poly = sp.Poly(expr, *unknowns)
+                return {tuple(int(x) for x in m): _coefficient(cf) for m, cf in poly.terms()}
+            exps[position[base]] += int(e)
+        key = tuple(exps)
+        result[key] = result.get(key, 0) + _coefficient(coeff)
+    return result
+
+
+def _literal(value: int | Fraction, config: NumPyConfig) -> str:
+    if isinstance(value, Fraction) and value.denominator != 1:
+        return config.format_float(float(value))
+    return str(int(value))
+
+
+def _pack(items: Iterable[str], width: int) -> list[str]:
+    """Greedy packing of ``item,`` tokens into lines of at most ``width`` characters.
+
+    An item may be a group (``"0, 2, 6, 8"``, one monomial); groups are never split across lines.
+    """
+    lines: list[str] = []
+    current = ""
+    for item in items:
+        token = item + ","
+        if current and len(current) + 1 + len(token) > width:
+            lines.append(current)
+            current = token
+        else:
+            current = f"{current} {token}" if current else token
+    if current:
+        lines.append(current)
+    return lines
+
+
+@dataclass(frozen=True)
+class PolynomialCode:
+    """A PolynomialColumns record as tables, ready for ``polynomial.py.jinja``."""
+
+    unknowns: tuple[str, ...]
+    observables: tuple[str, ...]
+    unknowns_repr: str
+    observables_repr: str
+    facts_repr: str
+    observable_exponents: tuple[str, ...]
+    monomial_columns: tuple[str, ...]
+    n_columns: int
+    n_monomials: int
+    n_terms: int
+    length_degree: int | None  # total degree in (c, observables) if homogeneous, else None
+    unknown_degrees: str
+    observable_degrees: str
+    monomial_rows: tuple[str, ...]
+    term_rows: tuple[str, ...]
+    coefficient_rows: tuple[str, ...]
+
+
+def _plain_literal(value: object) -> str:
+    """A deterministic Python literal of plain data (dicts with sorted keys, tuples, scalars)."""
+    if isinstance(value, (bool, int, str)) or value is None:
+        return repr(value)
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, Fraction):
+        return repr(float(value)) if value.denominator != 1 else repr(int(value))
+    if isinstance(value, (tuple, list)):
+        items = [_plain_literal(v) for v in value]
+        return "(" + ", ".join(items) + ("," if len(items) == 1 else "") + ")"
+    if isinstance(value, dict):
+        keys = sorted(value, key=str)
+        return (
+            "{" + ", ".join(f"{_plain_literal(k)}: {_plain_literal(value[k])}" for k in keys) + "}"
+        )
+    if isinstance(value, sp.Integer):
+        return repr(int(value))
+    return repr(str(value))
+
+
+def _repr_facts(facts: dict[str, object]) -> str:
+    """A deterministic literal of the derivation's facts (sorted keys, plain values only)."""
+    return _plain_literal(dict(facts))
+
+
+def wrap_doc(text: str, width: int) -> str:
+    """Re-wrap only the lines of ``text`` longer than ``width`` (lists and layout are kept)."""
+    lines: list[str] = []
+    for line in text.strip().split("\n"):
+        if len(line) <= width:
+            lines.append(line.rstrip())
+            continue
+        indent = line[: len(line) - len(line.lstrip())]
+        lines += textwrap.wrap(
+            line.strip(),
+            width=width,
+            initial_indent=indent,
+            subsequent_indent=indent,
+            break_on_hyphens=False,
+        )
+    return "\n".join(lines)
+
+
+def print_polynomial(record: PolynomialColumns, config: NumPyConfig) -> PolynomialCode:
+    """Tables of a grouped polynomial: distinct unknown monomials, terms, coefficients."""
+    unknowns = tuple(s.name for s in record.unknowns)
+    observables = tuple(s.name for s in record.observables)
+    if len(observables) != 3:
+        raise ValueError("PolynomialColumns expects three observables (cp, dp, ep)")
+    column_terms = [polynomial_terms(u, record.unknowns) for _, u in record.columns]
+    monomials = sorted({m for terms in column_terms for m, _ in terms})
+    monomial_index = {m: i for i, m in enumerate(monomials)}
+    term_items: list[str] = []
+    coefficient_items: list[str] = []
+    monomial_columns: list[str] = []
+    for k, terms in enumerate(column_terms):
+        for m, coeff in terms:
+            term_items.append(f"{k}, {monomial_index[m]}")
+            coefficient_items.append(_literal(coeff, config))
+        if len(terms) == 1:
+            m, coeff = terms[0]
+            monomial_columns.append(f"({k}, {_literal(coeff, config)}, {tuple(m)!r})")
+    width = config.line_length - len(config.indent) - 4
+    # Homogeneity in the lengths: the unknown "c" and the three observables carry a length.
+    c_index = unknowns.index("c") if "c" in unknowns else None
+    length_degrees = {
+        sum(int(x) for x in e) + (m[c_index] if c_index is not None else 0)
+        for (e, _), terms in zip(record.columns, column_terms, strict=True)
+        for m, _ in terms
+    }
+    n_u = len(unknowns)
+    unknown_degrees = tuple(max((m[v] for m in monomials), default=0) for v in range(n_u))
+    observable_degrees = tuple(
+        max((int(e[v]) for e, _ in record.columns), default=0) for v in range(3)
+    )
+    return PolynomialCode(
+        unknowns=unknowns,
+        observables=observables,
+        unknowns_repr=repr(unknowns),
+        observables_repr=repr(observables),
+        facts_repr=_repr_facts(dict(record.facts)),
+        observable_exponents=tuple(repr(tuple(int(x) for x in e)) for e, _ in record.columns),
+        monomial_columns=tuple(monomial_columns),
+        n_columns=len(record.columns),
+        n_monomials=len(monomials),
+        n_terms=len(coefficient_items),
+        length_degree=next(iter(length_degrees)) if len(length_degrees) == 1 else None,
+        unknown_degrees=repr(unknown_degrees),
+        observable_degrees=repr(observable_degrees),
+        monomial_rows=tuple(_pack((", ".join(map(str, m)) for m in monomials), width)),
+        term_rows=tuple(_pack(term_items, width)),
+        coefficient_rows=tuple(_pack(coefficient_items, width)),
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# Rendering and formatting
+# ---------------------------------------------------------------------------------------------
+
+
+def _environment() -> jinja2.Environment:
+    return jinja2.Environment(
+        loader=jinja2.FileSystemLoader(str(TEMPLATE_DIR)),
+        trim_blocks=True,
+        lstrip_blocks=True,
+        keep_trailing_newline=True,
+        undefined=jinja2.StrictUndefined,
+        autoescape=False,
+    )
+
+
+def ruff_executable() -> str:
+    """The pinned ruff next to the running interpreter (the venv), else the one on PATH."""
+    candidate = Path(sys.executable).parent / "ruff"
+    if candidate.exists():
+        return str(candidate)
+    found = shutil.which("ruff")
+    if found is None:
+        raise RuntimeError("ruff not found: install the dev extras (make setup)")
+    return found
+
+
+def format_python(text: str, filename: str = "generated/module.py") -> str:
+    """Format ``text`` with ``ruff format`` using the repository configuration."""
+    result = subprocess.run(
+        [ruff_executable(), "format", "--stdin-filename", filename, "-"],
+        input=text,
+        capture_output=True,
+        text=True,
+        cwd=REPO_ROOT,
+        check=False,
+    )
+    if result.returncode != 0:
+        raise RuntimeError(f"ruff format failed on {filename}:\n{result.stderr}")
+    return result.stdout
+
+
+def render_module(
+    *,
+    source: str,
+    doc: str,
+    functions: Sequence[FunctionSpec] = (),
+    constants: dict[str, object] | None = None,
+    polynomial: PolynomialColumns | None = None,
+    filename: str = "generated/module.py",
+    config: NumPyConfig | None = None,
+) -> str:
+    """The formatted text of one generated module.
+
+    ``source`` is the repository-relative path of the derivation script named in the preamble.
+    """
+    config = config or NumPyConfig()
+    template = _environment().get_template(TEMPLATE_NAME)
+    text = template.render(
+        source=source,
+        template=TEMPLATE_PATH,
+        sympy_version=sp.__version__,
+        doc=wrap_doc(doc, config.line_length - 4),
+        dtype=config.dtype,
+        constants=[(k, repr(v)) for k, v in (constants or {}).items()],
+        functions=[print_function(f, config) for f in functions],
+        polynomial=polynomial is not None,
+        poly=print_polynomial(polynomial, config) if polynomial is not None else None,
+    )
+    if config.run_ruff_format:
+        text = format_python(text, filename)
+    return text
+
+
+def render_init(modules: Sequence[tuple[str, str]], source: str) -> str:
+    """generated/__init__.py: the preamble and a docstring listing the generated modules."""
+    lines = [
+        "# " + "-" * 97,
+        "# Generated, do not edit / do not modify: change derivations/ and run `make derive`.",
+        "#",
+        f"# Derivation: {source}",
+        f"# SymPy:      {sp.__version__}",
+        "# " + "-" * 97,
+        '"""Code generated from derivations/ (NumPy only; imported as curverecon.generated).',
+        "",
+    ]
+    for name, summary in modules:
+        lines += textwrap.wrap(f"- ``{name}``: {summary}", width=100, subsequent_indent="  ")
+    lines += ['"""', "", "__all__ = " + repr(tuple(name for name, _ in modules)), ""]
+    return format_python("\n".join(lines), "generated/__init__.py")
+
+
+# ---------------------------------------------------------------------------------------------
+# Writing (SymForce's compare_or_update)
+# ---------------------------------------------------------------------------------------------
+
+
+def unified_diff(old: str, new: str, path: str) -> str:
+    """A unified diff of the committed text ``old`` against the regenerated ``new``."""
+    return "".join(
+        difflib.unified_diff(
+            old.splitlines(keepends=True),
+            new.splitlines(keepends=True),
+            fromfile=f"{path} (committed)",
+            tofile=f"{path} (regenerated)",
+            n=2,
+        )
+    )
+
+
+def compare_or_update(path: Path, text: str, update: bool) -> str | None:
+    """Write ``text`` to ``path`` if ``update``, else return a diff (None if they agree)."""
+    old = path.read_text() if path.exists() else ""
+    if old == text:
+        return None
+    if update:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+        return None
+    return unified_diff(old, text, str(path)) or f"{path}: differs\n"

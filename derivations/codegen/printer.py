@@ -1,0 +1,72 @@
+"""A NumPy printer for generated modules (SymForce's ``PythonCodePrinter`` pattern).
+
+Differences from ``sympy.printing.numpy.NumPyPrinter``:
+
+* functions and constants carry the ``np.`` prefix (the generated module does
+  ``import numpy as np``) instead of ``numpy.``;
+* small integer powers are printed as repeated products (``x**2`` -> ``x*x``,
+  ``x**-2`` -> ``1/(x*x)``), larger ones as ``x**n``; ``x**(1/2)`` is ``np.sqrt(x)``;
+* float constants are printed with ``repr`` (shortest round-trip form); rationals stay ``p/q``
+  (true division in Python 3).
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+from sympy.printing.numpy import NumPyPrinter
+from sympy.printing.precedence import PRECEDENCE, precedence
+
+from derivations.codegen.config import NumPyConfig
+
+
+class NumPyCodePrinter(NumPyPrinter):
+    """Print SymPy expressions as NumPy code that broadcasts over frame arrays."""
+
+    def __init__(self, config: NumPyConfig | None = None) -> None:
+        super().__init__({"fully_qualified_modules": True, "allow_unknown_functions": False})
+        self.config = config or NumPyConfig()
+
+    # ``numpy.sin`` -> ``np.sin``; ``math.pi`` never appears (constants go through _kc).
+    def _module_format(self, fqn: str, register: bool = True) -> str:
+        if fqn.startswith("numpy."):
+            fqn = "np." + fqn[len("numpy.") :]
+        elif fqn.startswith("math."):
+            fqn = "np." + fqn[len("math.") :]
+        return fqn
+
+    def _print_Float(self, expr: sp.Float) -> str:
+        return self.config.format_float(float(expr))
+
+    def _print_Integer(self, expr: sp.Integer) -> str:
+        return str(int(expr))
+
+    def _print_Pow(self, expr: sp.Pow, rational: bool = False) -> str:
+        base, exp = expr.base, expr.exp
+        prec = precedence(expr)
+        if exp.is_Integer:
+            n = int(exp)
+            limit = self.config.power_by_multiplication
+            if n == 1:
+                return self._print(base)
+            if 2 <= n <= limit:
+                b = self.parenthesize(base, PRECEDENCE["Mul"], strict=False)
+                return "*".join([b] * n)
+            if -limit <= n <= -1:
+                if n == -1:
+                    b = self.parenthesize(base, PRECEDENCE["Mul"], strict=True)
+                    return f"1/{b}"
+                b = self.parenthesize(base, PRECEDENCE["Mul"], strict=False)
+                return "1/(" + "*".join([b] * (-n)) + ")"
+            b = self.parenthesize(base, PRECEDENCE["Pow"], strict=True)
+            return f"{b}**{n}" if n > 0 else f"{b}**({n})"
+        if exp == sp.S.Half:
+            return f"np.sqrt({self._print(base)})"
+        if exp == -sp.S.Half:
+            return f"1/np.sqrt({self._print(base)})"
+        b = self.parenthesize(base, PRECEDENCE["Pow"], strict=True)
+        e = self.parenthesize(exp, prec, strict=False)
+        return f"{b}**{e}"
+
+    def _print_atan2(self, expr: sp.atan2) -> str:
+        y, x = expr.args
+        return f"np.arctan2({self._print(y)}, {self._print(x)})"

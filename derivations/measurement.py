@@ -1,0 +1,271 @@
+"""The maximum-likelihood measurement model, derived symbolically (PX4 ``ekf_derivation`` style).
+
+Each quantity is a small typed function of SymPy symbols, built step by step from the geometry in
+``docs/CONVENTIONS.md``; ``generated_functions()`` hands the finished expressions (and their
+analytic Jacobians) to ``derivations.codegen``, which writes ``generated/measurement_model.py``.
+
+Conventions (``docs/CONVENTIONS.md``, "Geometry"):
+
+* Curve frame ("canonical"): A = (0, 0, 0), B = (c, 0, 0);
+  tangent at B ``t_B = (-cos(alpha), sin(alpha), 0)``;
+  tangent at A ``t_A = (cos(beta), sin(beta) cos(phi), sin(beta) sin(phi))``.
+* Pose of one frame: ``X_cam = R X_curve + t`` with
+  ``R = R_z(theta) @ R_y(tau) @ R_x(delta)`` (standard right-handed rotations) and
+  ``t = (tx, ty, 0)``: depth is unobservable under orthographic projection, so A is put at z = 0.
+* Orthographic projection keeps (x, y).  The observations of one frame are the image points
+  A' = (ax, ay), B' = (bx, by) (input length units, e.g. pixels) and the image directions
+  psi_a, psi_b (radians) of the projected tangents at A and B, ``psi = atan2(dy, dx)``.
+  A tangent is a line, so the runtime wraps angle residuals to (-pi/2, pi/2].
+
+Parameters: 4 global shape parameters (c, alpha, beta, phi) shared by all frames, 5 local pose
+parameters (delta, tau, theta, tx, ty) per frame.  Angles in radians, lengths in input units.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from derivations.codegen.spec import FunctionSpec
+
+# ---------------------------------------------------------------------------------------------
+# Symbols.  Names are the generated functions' argument names; all are real.
+# ---------------------------------------------------------------------------------------------
+
+c, alpha, beta, phi = sp.symbols("c alpha beta phi", real=True)
+delta, tau, theta, tx, ty = sp.symbols("delta tau theta tx ty", real=True)
+
+GLOBAL_PARAMETERS: tuple[sp.Symbol, ...] = (c, alpha, beta, phi)
+LOCAL_PARAMETERS: tuple[sp.Symbol, ...] = (delta, tau, theta, tx, ty)
+PREDICTIONS: tuple[str, ...] = ("ax", "ay", "bx", "by", "psi_a", "psi_b")
+
+#: The argument list of predict / predict_with_jacobians / points_3d: globals first, then locals.
+ALL_PARAMETERS: tuple[sp.Symbol, ...] = GLOBAL_PARAMETERS + LOCAL_PARAMETERS
+
+
+# ---------------------------------------------------------------------------------------------
+# Rotation.  Standard right-handed elementary rotations (active, column vectors).
+# ---------------------------------------------------------------------------------------------
+
+
+def rot_x(angle: sp.Expr) -> sp.Matrix:
+    """R_x(angle): rotation about +x by ``angle`` radians (counter-clockwise seen from +x)."""
+    ca, sa = sp.cos(angle), sp.sin(angle)
+    return sp.Matrix([[1, 0, 0], [0, ca, -sa], [0, sa, ca]])
+
+
+def rot_y(angle: sp.Expr) -> sp.Matrix:
+    """R_y(angle) = [[cos, 0, sin], [0, 1, 0], [-sin, 0, cos]] (CONVENTIONS.md)."""
+    ca, sa = sp.cos(angle), sp.sin(angle)
+    return sp.Matrix([[ca, 0, sa], [0, 1, 0], [-sa, 0, ca]])
+
+
+def rot_z(angle: sp.Expr) -> sp.Matrix:
+    """R_z(angle): rotation about +z (the camera's depth axis) by ``angle`` radians."""
+    ca, sa = sp.cos(angle), sp.sin(angle)
+    return sp.Matrix([[ca, -sa, 0], [sa, ca, 0], [0, 0, 1]])
+
+
+def rotation(delta_: sp.Expr, tau_: sp.Expr, theta_: sp.Expr) -> sp.Matrix:
+    """Curve-to-camera rotation ``R = R_z(theta) R_y(tau) R_x(delta)``.
+
+    delta turns the curve about its chord AB (the x axis of the curve frame), tau tilts the chord
+    out of the image plane (B_z = -c sin(tau)), theta is the image direction of A'B'.
+    """
+    return rot_z(theta_) * rot_y(tau_) * rot_x(delta_)
+
+
+# ---------------------------------------------------------------------------------------------
+# The curve in its canonical frame.
+# ---------------------------------------------------------------------------------------------
+
+
+def canonical_points(c_: sp.Expr) -> tuple[sp.Matrix, sp.Matrix]:
+    """A = (0, 0, 0) and B = (c, 0, 0) in the curve frame (c: chord length, input units)."""
+    return sp.Matrix([0, 0, 0]), sp.Matrix([c_, 0, 0])
+
+
+def tangent_b(alpha_: sp.Expr) -> sp.Matrix:
+    """Unit tangent direction at B, t_B = (-cos(alpha), sin(alpha), 0).
+
+    The tangent line at B meets the plane through A perpendicular to AB at S = (0, c tan(alpha), 0).
+    """
+    return sp.Matrix([-sp.cos(alpha_), sp.sin(alpha_), 0])
+
+
+def tangent_a(beta_: sp.Expr, phi_: sp.Expr) -> sp.Matrix:
+    """Unit tangent direction at A, t_A = (cos(beta), sin(beta) cos(phi), sin(beta) sin(phi)).
+
+    phi is the signed angle, about +x, from AS to BT (T = the tangent line at A met with the plane
+    through B perpendicular to AB).
+    """
+    return sp.Matrix([sp.cos(beta_), sp.sin(beta_) * sp.cos(phi_), sp.sin(beta_) * sp.sin(phi_)])
+
+
+# ---------------------------------------------------------------------------------------------
+# One frame: pose, 3-D points, projection.
+# ---------------------------------------------------------------------------------------------
+
+
+def translation(tx_: sp.Expr, ty_: sp.Expr) -> sp.Matrix:
+    """t = (tx, ty, 0): orthographic depth is unobservable, A is placed at z = 0."""
+    return sp.Matrix([tx_, ty_, 0])
+
+
+def camera_points(
+    params: tuple[sp.Expr, ...] = ALL_PARAMETERS,
+) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix, sp.Matrix]:
+    """A, B and the tangent directions at A, B in camera coordinates.
+
+    Points transform as X_cam = R X + t, directions as R t (no translation).
+    Returns (A3, B3, tangent_A3, tangent_B3), 3-vectors; A3 = (tx, ty, 0).
+    """
+    c_, alpha_, beta_, phi_, delta_, tau_, theta_, tx_, ty_ = params
+    rot = rotation(delta_, tau_, theta_)
+    trans = translation(tx_, ty_)
+    a0, b0 = canonical_points(c_)
+    a3 = rot * a0 + trans
+    b3 = rot * b0 + trans
+    ta3 = rot * tangent_a(beta_, phi_)
+    tb3 = rot * tangent_b(alpha_)
+    return a3, b3, ta3, tb3
+
+
+def project(v: sp.Matrix) -> tuple[sp.Expr, sp.Expr]:
+    """Orthographic projection onto the image: keep (x, y), drop depth z."""
+    return v[0], v[1]
+
+
+def image_angle(direction: sp.Matrix) -> sp.Expr:
+    """psi = atan2(dy, dx) of a projected direction (radians, in (-pi, pi])."""
+    dx, dy = project(direction)
+    return sp.atan2(dy, dx)
+
+
+def predictions(params: tuple[sp.Expr, ...] = ALL_PARAMETERS) -> list[sp.Expr]:
+    """The six predicted observables (ax, ay, bx, by, psi_a, psi_b) of one frame."""
+    a3, b3, ta3, tb3 = camera_points(params)
+    ax, ay = project(a3)
+    bx, by = project(b3)
+    return [ax, ay, bx, by, image_angle(ta3), image_angle(tb3)]
+
+
+# ---------------------------------------------------------------------------------------------
+# Jacobians.  Points are differentiated directly; angles through
+#   d atan2(dy, dx) = (dx * d(dy) - dy * d(dx)) / (dx^2 + dy^2),
+# which keeps the (unsimplified) derivative of atan2 out of the generated code and shares dx, dy
+# and their derivatives with the prediction in the common-subexpression pass.
+# ---------------------------------------------------------------------------------------------
+
+
+def angle_derivative(direction: sp.Matrix, wrt: sp.Symbol) -> sp.Expr:
+    """d psi / d wrt for psi = atan2(dy, dx) of the projected ``direction``."""
+    dx, dy = project(direction)
+    ddx, ddy = sp.diff(dx, wrt), sp.diff(dy, wrt)
+    numerator = dx * ddy - dy * ddx
+    denominator = dx**2 + dy**2
+    # A rotation about the viewing axis (theta) turns every image direction by the same angle:
+    # there the numerator equals the denominator and the derivative is exactly 1.
+    if sp.expand(numerator - denominator) == 0:
+        return sp.Integer(1)
+    return numerator / denominator
+
+
+def jacobian(wrt: tuple[sp.Symbol, ...], params: tuple[sp.Expr, ...] = ALL_PARAMETERS) -> sp.Matrix:
+    """6 x len(wrt) matrix d(prediction)/d(wrt), rows in PREDICTIONS order."""
+    a3, b3, ta3, tb3 = camera_points(params)
+    rows: list[list[sp.Expr]] = []
+    for point in (a3, b3):
+        x, y = project(point)
+        rows.append([sp.diff(x, s) for s in wrt])
+        rows.append([sp.diff(y, s) for s in wrt])
+    for direction in (ta3, tb3):
+        rows.append([angle_derivative(direction, s) for s in wrt])
+    return sp.Matrix(rows)
+
+
+# ---------------------------------------------------------------------------------------------
+# What code generation sees.
+# ---------------------------------------------------------------------------------------------
+
+MODULE_DOC = """The maximum-likelihood measurement model of one frame (generated).
+
+Curve frame: A = (0, 0, 0), B = (c, 0, 0), t_B = (-cos(alpha), sin(alpha), 0),
+t_A = (cos(beta), sin(beta) cos(phi), sin(beta) sin(phi)).  Pose: X_cam = R X + t with
+R = R_z(theta) R_y(tau) R_x(delta), t = (tx, ty, 0); orthographic projection keeps (x, y).
+Predictions per frame: (ax, ay, bx, by, psi_a, psi_b), psi = atan2(dy, dx) of the projected
+tangent directions (radians).  See docs/CONVENTIONS.md.
+
+Frame arguments (delta, tau, theta, tx, ty) are 1-D arrays of length N (or scalars); shape
+arguments (c, alpha, beta, phi) are scalars; everything broadcasts.  Angles in radians, lengths in
+input units.
+"""
+
+
+def module_constants() -> dict[str, tuple[str, ...]]:
+    """Module-level constants of generated/measurement_model.py (names in argument order)."""
+    return {
+        "GLOBAL_PARAMETERS": tuple(s.name for s in GLOBAL_PARAMETERS),
+        "LOCAL_PARAMETERS": tuple(s.name for s in LOCAL_PARAMETERS),
+        "PREDICTIONS": PREDICTIONS,
+    }
+
+
+def generated_functions() -> list[FunctionSpec]:
+    """The functions of generated/measurement_model.py.
+
+    Output conventions of the code generator: a scalar expression gives an array of the broadcast
+    frame shape (N,); a tuple of n expressions gives (N, n); an r x k Matrix gives (N, r, k).
+    """
+    rot = rotation(delta, tau, theta)
+    a3, b3, ta3, tb3 = camera_points()
+    pred = tuple(predictions())
+    return [
+        FunctionSpec(
+            name="rotation_matrix",
+            args=(delta, tau, theta),
+            outputs={"rotation": rot},
+            doc=(
+                "Curve-to-camera rotation R = R_z(theta) @ R_y(tau) @ R_x(delta).\n\n"
+                "Shape (N, 3, 3); angles in radians; X_cam = R X_curve + t."
+            ),
+        ),
+        FunctionSpec(
+            name="points_3d",
+            args=ALL_PARAMETERS,
+            outputs={
+                "a3": tuple(a3),
+                "b3": tuple(b3),
+                "tangent_a3": tuple(ta3),
+                "tangent_b3": tuple(tb3),
+            },
+            doc=(
+                "A, B and the unit tangent directions at A and B in camera coordinates.\n\n"
+                "Returns (A3, B3, tangent_A3, tangent_B3), each (N, 3); A3 = (tx, ty, 0) (depth\n"
+                "is unobservable, A is put at z = 0), B3 z = -c sin(tau).  Lengths in input units."
+            ),
+        ),
+        FunctionSpec(
+            name="predict",
+            args=ALL_PARAMETERS,
+            outputs={"prediction": pred},
+            doc=(
+                "Predicted observations (ax, ay, bx, by, psi_a, psi_b) per frame, shape (N, 6).\n\n"
+                "Points in input units, psi = atan2(dy, dx) of the projected tangents in radians."
+            ),
+        ),
+        FunctionSpec(
+            name="predict_with_jacobians",
+            args=ALL_PARAMETERS,
+            outputs={
+                "prediction": pred,
+                "jac_global": jacobian(GLOBAL_PARAMETERS),
+                "jac_local": jacobian(LOCAL_PARAMETERS),
+            },
+            doc=(
+                "Predictions and their analytic Jacobians.\n\n"
+                "Returns (pred (N, 6), jac_global (N, 6, 4), jac_local (N, 6, 5)): derivatives of\n"
+                "(ax, ay, bx, by, psi_a, psi_b) with respect to (c, alpha, beta, phi) and\n"
+                "(delta, tau, theta, tx, ty)."
+            ),
+        ),
+    ]
