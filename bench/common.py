@@ -20,8 +20,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-
 from curverecon.generated import measurement_model
+
 from curverecon.observations import wrap_angle
 from curverecon.pose import normalise
 from curverecon.simulate import Scene, make_scene

@@ -28,10 +28,16 @@ def run_scenes(
     n_frames: int,
     indices: range,
     chord: tuple[float, float],
+    deadline: float = math.inf,
 ) -> list[dict[str, Any]]:
-    """Per-scene records: errors, success, flagged and true outlier frames (a pool task)."""
+    """Per-scene records: errors, success, flagged and true outlier frames (a pool task).
+
+    Scenes are skipped once the wall clock (``time.time()``) is past ``deadline``.
+    """
     out = []
     for i in indices:
+        if time.time() > deadline:
+            break
         scene = make(
             seed,
             "robustness",
@@ -44,7 +50,11 @@ def run_scenes(
         )
         shape, _ = true_poses(scene)
         true_out = ~np.asarray(scene.truth.inliers, bool)
-        rec: dict[str, Any] = {"index": i, "fraction": fraction, "n_true_outliers": int(true_out.sum())}
+        rec: dict[str, Any] = {
+            "index": i,
+            "fraction": fraction,
+            "n_true_outliers": int(true_out.sum()),
+        }
         t0 = time.perf_counter()
         try:
             r = reconstruct(scene.observations, point_sigma=noise, tangent_sigma_deg=noise)

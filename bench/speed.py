@@ -2,8 +2,8 @@
 finite-difference refinement, full reconstruction time against the number of frames.
 
 Everything here runs in the main process while no worker is busy (so the timings see one idle
-core, as far as the shared machine allows).  Timings are wall-clock (``time.perf_counter``); per-call
-times are the best of three repeats, each long enough to be measured well.
+core, as far as the shared machine allows).  Timings are wall-clock (``time.perf_counter``);
+per-call times are the best of three repeats, each long enough to be measured well.
 """
 
 from __future__ import annotations
@@ -130,9 +130,7 @@ def _flatten(outputs: dict[str, Any]) -> tuple[list[Any], list[tuple[int, ...]]]
     return exprs, shapes
 
 
-def _assembler(
-    raw: Callable[..., list[Any]], shapes: list[tuple[int, ...]]
-) -> Callable[..., Any]:
+def _assembler(raw: Callable[..., list[Any]], shapes: list[tuple[int, ...]]) -> Callable[..., Any]:
     """Wrap a lambdified flat function so it returns the generated function's array layout."""
 
     def call(*args: Any) -> Any:
@@ -176,8 +174,8 @@ def kernels(frame_counts: tuple[int, ...], min_seconds: float, seed: int) -> lis
     and the two results are compared.
     """
     import sympy as sp
-
     from curverecon.generated import frame_equations, measurement_model
+
     from derivations import measurement, section3
 
     rows = []
@@ -250,15 +248,17 @@ def _fd_solve(
 
 
 def refinement_vs_fd(
-    frame_counts: tuple[int, ...], n_problems: int, seed: int
+    problems: tuple[tuple[int, tuple[str, ...], int], ...], seed: int
 ) -> list[dict[str, Any]]:
     """Generated-Jacobian refinement (``refine.refine``) against scipy finite differences.
 
-    Same problems (1 px, 1 degree, started at the truth), same residuals; reports the median times,
-    the speedups and the relative difference of the final chi2.
+    ``problems``: (frames, scipy methods, number of problems).  Same problems (1 px, 1 degree,
+    started at the truth), same residual function (``refine.standardised_residuals``); scipy's
+    ``least_squares`` with ``jac="2-point"`` (dense; "trf" with the exact solver, "lm" MINPACK).
+    Reports the times, the speedups and the relative difference of the final chi2.
     """
     rows = []
-    for n in frame_counts:
+    for n, methods, n_problems in problems:
         for k in range(n_problems):
             scene = make(seed, "speed", (1, n, k), n, point_sigma=1.0, tangent_sigma_deg=1.0)
             shape, poses = true_poses(scene)
@@ -266,7 +266,8 @@ def refinement_vs_fd(
             ts = math.radians(1.0)
             refine(obs, shape, poses, 1.0, ts, covariance=False)  # warm-up
             t_gen = per_call_seconds(
-                lambda o=obs, s=shape, p=poses: refine(o, s, p, 1.0, ts, covariance=False), 0.2
+                lambda o=obs, s=shape, p=poses, t=ts: refine(o, s, p, 1.0, t, covariance=False),
+                0.2,
             )
             res = refine(obs, shape, poses, 1.0, ts, covariance=False)
             row: dict[str, Any] = {
@@ -275,10 +276,11 @@ def refinement_vs_fd(
                 "generated_s": t_gen,
                 "generated_chi2": res.chi2,
                 "generated_iterations": res.iterations,
+                "generated_converged": res.converged,
             }
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                for method in ("trf", "lm"):
+                for method in methods:
                     sec, chi2, nfev = _fd_solve(obs, shape, poses, 1.0, ts, method)
                     row[f"fd_{method}_s"] = sec
                     row[f"fd_{method}_chi2"] = chi2
@@ -294,12 +296,19 @@ def reconstruct_times(n_frames: int, repeats: int, seed: int) -> dict[str, Any]:
     """Median wall time of ``reconstruct`` on ``repeats`` scenes (1 px, 1 degree)."""
     times = []
     for k in range(repeats):
-        scene = make(seed, "speed", (2, n_frames, k), n_frames, point_sigma=1.0, tangent_sigma_deg=1.0)
+        scene = make(
+            seed, "speed", (2, n_frames, k), n_frames, point_sigma=1.0, tangent_sigma_deg=1.0
+        )
         start = time.perf_counter()
         reconstruct(scene.observations)
         times.append(time.perf_counter() - start)
-    return {"n_frames": n_frames, "repeats": repeats, "median_s": float(np.median(times)),
-            "min_s": float(np.min(times)), "max_s": float(np.max(times))}
+    return {
+        "n_frames": n_frames,
+        "repeats": repeats,
+        "median_s": float(np.median(times)),
+        "min_s": float(np.min(times)),
+        "max_s": float(np.max(times)),
+    }
 
 
 def refine_times(n_frames: int, repeats: int, seed: int) -> dict[str, Any]:
@@ -313,8 +322,12 @@ def refine_times(n_frames: int, repeats: int, seed: int) -> dict[str, Any]:
         res = refine(scene.observations, shape, poses, 1.0, math.radians(1.0))
         times.append(time.perf_counter() - start)
         iters = res.iterations
-    return {"n_frames": n_frames, "repeats": repeats, "median_s": float(np.median(times)),
-            "iterations": iters}
+    return {
+        "n_frames": n_frames,
+        "repeats": repeats,
+        "median_s": float(np.median(times)),
+        "iterations": iters,
+    }
 
 
 def scaling(frame_counts: tuple[int, ...], budget_s: float, seed: int) -> list[dict[str, Any]]:

@@ -22,11 +22,16 @@ from curverecon.reconstruct import reconstruct
 
 
 def run_scenes(
-    seed: int, n_frames: int, indices: range, chord: tuple[float, float]
+    seed: int, n_frames: int, indices: range, chord: tuple[float, float], deadline: float = math.inf
 ) -> list[dict[str, Any]]:
-    """Default pipeline on noise-free scenes (a pool task)."""
+    """Default pipeline on noise-free scenes (a pool task).
+
+    Scenes are skipped once the wall clock (``time.time()``) is past ``deadline``.
+    """
     out = []
     for i in indices:
+        if time.time() > deadline:
+            break
         scene = make(seed, "stability", (n_frames, i), n_frames, chord=chord)
         shape, _ = true_poses(scene)
         rec: dict[str, Any] = {"index": i, "n_frames": n_frames}
@@ -47,13 +52,18 @@ def run_scenes(
 
 
 def run_linear_scenes(
-    seed: int, n_frames: int, indices: range, chord: tuple[float, float]
+    seed: int, n_frames: int, indices: range, chord: tuple[float, float], deadline: float = math.inf
 ) -> list[dict[str, Any]]:
-    """The linearisation alone on noise-free scenes (a pool task)."""
+    """The linearisation alone on noise-free scenes (a pool task).
+
+    Scenes are skipped once the wall clock (``time.time()``) is past ``deadline``.
+    """
     from curverecon.linear import solve_linear
 
     out = []
     for i in indices:
+        if time.time() > deadline:
+            break
         scene = make(seed, "stability_linear", (n_frames, i), n_frames, chord=chord)
         shape, _ = true_poses(scene)
         rec: dict[str, Any] = {"index": i, "n_frames": n_frames}

@@ -13,7 +13,8 @@ whose unknown parts u_k are a vector with a one-dimensional null space on noise-
    and K = c^8 tan^4 alpha tan^4 beta by ratios, the columns (8,0,4) and (8,4,0)
    (= c^4 tan^4 alpha (1 + tan^2 beta cos^2 phi)^2 and its mirror) give 1/c^2 from a quadratic,
    then a small least-squares fit of u(x) = lambda v (analytic ``unknown_columns_jacobian``)
-   makes the estimate consistent with every column.
+   makes the estimate consistent with every column, and a last least-squares step on the frames'
+   polynomial values (all frames, the same grouped columns) polishes it.
 
 Minimum number of frames: K - 1 = 38.  A one-dimensional null space of an N x K matrix needs rank
 K - 1, so at least K - 1 frames (rows) in general position; with fewer the null space has
@@ -138,6 +139,39 @@ def _fit(v: np.ndarray, col_scale: np.ndarray, x0: np.ndarray) -> tuple[np.ndarr
     return sol.x[:4], float(np.linalg.norm(sol.fun))
 
 
+def _polish(m: np.ndarray, norms: np.ndarray, x0: np.ndarray) -> np.ndarray:
+    """Least squares of the frames' polynomial values M u(x) / |u(x)| (column-scaled) over x.
+
+    The ratio fit uses the null vector only; this last step uses every frame directly, so a
+    poorly separated smallest singular value (near the minimum number of frames) costs nothing
+    on noise-free data.
+    """
+    lean = _lean()
+    ms = m / norms
+
+    def parts(z):
+        u = lean.unknown_columns(*z) * norms
+        return u, np.linalg.norm(u)
+
+    def fun(z):
+        u, nu = parts(z)
+        return ms @ u / nu
+
+    def jac(z):
+        u, nu = parts(z)
+        ju = lean.unknown_columns_jacobian(*z) * norms[:, None]
+        jn = ju / nu - np.outer(u, u @ ju) / nu**3
+        return ms @ jn
+
+    try:
+        sol = least_squares(fun, x0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+    except (ValueError, np.linalg.LinAlgError):
+        return x0
+    if np.all(np.isfinite(sol.x)) and np.linalg.norm(sol.fun) <= np.linalg.norm(fun(x0)):
+        return sol.x
+    return x0
+
+
 def solve_linear(obs: Observations) -> LinearResult:
     """Shape from the paper's linearisation alone (SVD null vector, then ratios).
 
@@ -169,6 +203,7 @@ def solve_linear(obs: Observations) -> LinearResult:
             "(data too noisy or inconsistent for the linear method)"
         )
     x, res = best
+    x = _polish(m, norms, x)
     c = abs(x[0]) * scale
     alpha = float(np.arctan(abs(x[1])))
     beta = float(np.arctan(abs(x[2])))

@@ -36,6 +36,12 @@ ALTERNATIVE_DCHI2 = 4.0
 
 METHODS = ("auto", "linear")
 
+CAUCHY_K = 3.0
+"""Scale (in standard deviations, per frame) of the robust reweighting before the outlier test."""
+
+MEDIAN_CHI2_1 = 0.4549364231195724
+"""Median of chi2 with one degree of freedom."""
+
 
 @dataclass
 class Alternative:
@@ -214,7 +220,7 @@ def _linear_seed(obs: Observations) -> list[np.ndarray]:
 def _threshold(frame_chi2: np.ndarray) -> float:
     """Per-frame chi2 threshold: chi2(1) quantile, scaled up if the noise looks larger."""
     base = float(chi2_dist.isf(OUTLIER_P, 1))
-    scale = max(1.0, float(np.median(frame_chi2)) / float(chi2_dist.median(1)))
+    scale = max(1.0, float(np.median(frame_chi2)) / MEDIAN_CHI2_1)
     return base * scale
 
 
@@ -226,9 +232,15 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
     best = cands[0].result
     warnings: list[str] = []
 
-    # Outlier frames: drop the worst frame above the threshold, refit, repeat.
-    inliers = np.ones(n, dtype=bool)
+    # Robust fit (frame-level Cauchy reweighting) so that outlier frames stand out, then the
+    # outlier test on the unweighted per-frame chi2: drop the worst frame above the threshold,
+    # refit, repeat.
     fit = best
+    for _ in range(3):
+        scale2 = CAUCHY_K**2 * max(1.0, float(np.median(fit.frame_chi2)) / MEDIAN_CHI2_1)
+        weights = 1.0 / (1.0 + fit.frame_chi2 / scale2)
+        fit = refine(obs, fit.shape, fit.poses, ps, ts, covariance=False, frame_weights=weights)
+    inliers = np.ones(n, dtype=bool)
     max_out = max(0, (n - 5) // 2)
     while True:
         idx = np.flatnonzero(inliers)

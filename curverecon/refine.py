@@ -179,6 +179,7 @@ def refine_batch(
     ftol: float = 1e-13,
     drop_factor: float | None = None,
     act_floor: float = 10.0,
+    frame_weights: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Levenberg-Marquardt on K independent starts at once (all vectorised, no loop over frames).
 
@@ -188,12 +189,16 @@ def refine_batch(
         point_sigma (input units), tangent_sigma (radians): noise of the measurements.
         drop_factor: after 8 iterations stop starts whose chi2 exceeds
             drop_factor * (best chi2 + act_floor) (screening many starts); None keeps all.
+        frame_weights: (N,) optional weights of the frames' squared residuals (robust IRLS);
+            residuals and chi2 returned are then weighted too.
     Returns:
         shapes (K, 4), poses (K, N, 5), residuals (K, N, 6) standardised, chi2 (K,),
         iterations (K,), converged (K,) bool.
     """
     meas = _measurements(obs)
     w8 = _weights(point_sigma, tangent_sigma)
+    if frame_weights is not None:
+        w8 = w8[None, :] * np.sqrt(np.asarray(frame_weights, float))[:, None]
     g = np.array(shapes, dtype=float, ndmin=2)
     p = np.array(poses, dtype=float, ndmin=3)
     k = g.shape[0]
@@ -278,6 +283,7 @@ def refine(
     xtol: float = 1e-11,
     ftol: float = 1e-13,
     covariance: bool = True,
+    frame_weights: np.ndarray | None = None,
 ) -> RefineResult:
     """Maximum-likelihood fit of the shape and all poses (Levenberg-Marquardt, Schur complement).
 
@@ -291,16 +297,20 @@ def refine(
         xtol: stop when every relative parameter step is below this.
         ftol: stop when the decrease of chi2 the linear model predicts is below ftol * chi2.
         covariance: compute the shape covariance (inverse Schur-reduced normal matrix).
+        frame_weights: optional (N,) weights of the frames (robust reweighting); the
+            returned residuals and chi2 are unweighted.
     """
     meas = _measurements(obs)
     g, p, r, chi2, iters, conv = refine_batch(
         meas, np.asarray(shape, float)[None], np.asarray(poses, float)[None],
-        point_sigma, tangent_sigma, max_iter, xtol, ftol,
+        point_sigma, tangent_sigma, max_iter, xtol, ftol, frame_weights=frame_weights,
     )
-    g, p, r = g[0], p[0], r[0]
+    g, p = g[0], p[0]
+    w8 = _weights(point_sigma, tangent_sigma)
+    r = standardised_residuals(g, p, meas, w8)
+    chi2 = np.array([np.sum(r * r)])
     cov = None
     if covariance:
-        w8 = _weights(point_sigma, tangent_sigma)
         _, jg, jl = _linearise(g, p, meas, w8)
         cov = schur_covariance(jg, jl)
     frame_chi2 = np.sum(r * r, axis=1)

@@ -50,10 +50,10 @@ class GridSpec:
     def for_frames(cls, n_frames: int) -> GridSpec:
         """A grid whose size (cells x frames) stays about constant: finer for few frames."""
         if n_frames <= 8:
-            return cls(16, 22, 22, 25)
+            return cls(12, 22, 22, 25)
         if n_frames <= 30:
-            return cls(10, 15, 15, 16)
-        return cls(8, 12, 12, 13)
+            return cls(6, 20, 20, 21)
+        return cls(5, 16, 16, 17)
 
 
 @dataclass
@@ -296,7 +296,7 @@ def robust_start(
     spec = spec or GridSpec.for_frames(n)
     cost, axes = grid_costs(obs, spec)
     # Grid minima -> local compass search of the same (pose-free) cost -> best distinct ones.
-    n_search = 4 * n_candidates
+    n_search = (2 if few else 2) * n_candidates
     cells = _local_minima(cost, n_search)
     gam = np.arccos(np.clip(np.max(obs.cp) / axes["c"], 0.0, 1.0))
     x0 = np.array(
@@ -310,7 +310,7 @@ def robust_start(
     ]) * 0.5
     trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
     terms = _frame_terms(obs)
-    xs, fs = pattern_search(terms, x0, steps, trunc)
+    xs, fs = pattern_search(terms, x0, steps, trunc, n_iter=20)
     order = np.argsort(fs, kind="stable")
     starts, grid_cost = [], []
     kept: list[np.ndarray] = []

@@ -163,6 +163,9 @@ def check(out_dir: Path, docs_dir: Path | None) -> list[str]:
             diff = compare_or_update(target, path.read_text(), update=False)
             if diff is not None:
                 diffs.append(diff)
+        produced = {p.name for p in tmp_out.glob("*.py")}
+        for leftover in sorted(p for p in out_dir.glob("*.py") if p.name not in produced):
+            diffs.append(f"{leftover}: not produced by derivations/ (delete it)\n")
     return diffs
 
 

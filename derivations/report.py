@@ -160,7 +160,7 @@ def _polynomial_section() -> list[str]:
     w(f"- relation: {sf['relation_to_lean']}.")
     w(f"- (12') reduced: per-variable degrees {sf['degrees']}; {sf['columns']} columns, at most "
       f"{sf['max_terms_per_column']} terms per column.\n")  # fmt: skip
-    w("### Vanishing on true frames (exact arithmetic)\n")
+    w("### Vanishing on true frames (exact or modular arithmetic)\n")
     ex = lf["exact_checks"]
     w(
         f"- lean, {ex['frames']} rational noise-free frames (both signs of tau): zero at the "  # type: ignore[index]
@@ -170,7 +170,8 @@ def _polynomial_section() -> list[str]:
     )
     ex2 = sf["exact_checks"]
     w(
-        f"- (12'), {ex2['frames']} rational frames: reduced zero at the true shape on "  # type: ignore[index]
+        f"- (12'), {ex2['frames']} rational frames, modulo 2^61 - 1: reduced zero at the true "
+        "shape on "  # type: ignore[index]
         f"{ex2['reduced_zero_at_truth']}; nonzero for c + 1 on "  # type: ignore[index]
         f"{ex2['reduced_nonzero_c_plus_1']}.\n"  # type: ignore[index]
     )

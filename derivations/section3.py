@@ -185,9 +185,11 @@ def eq_6() -> Equation:
 def eq_7() -> Equation:
     """(7) AD' / D'S' = -AB' / S'S'': similar triangles D'AB' and D'S'S''.
 
-    AB' and S'S'' are parallel (both perpendicular to l1 in the frame plane).  With signed lengths
-    and R = R_y(tau) R_x(delta), S'' lies on the other side of l1 than B' when D' lies between A
-    and S', hence the minus sign; the paper's unsigned (7) is this equation's absolute value.
+    AB' and S'S'' are parallel (both perpendicular to l1 in the frame plane), so the triangles
+    D'AB' and D'S'S'' are related by a homothety centred at D': B' - D' = k (S'' - D') gives
+    k = AB'/S'S'' (x components) and k = -AD'/D'S' (y components, A and S' on l1, lengths signed
+    in the same direction along l1).  Hence the minus sign; the paper's (7) with unsigned
+    lengths is this equation's absolute value.
     """
     return Equation(
         "7",

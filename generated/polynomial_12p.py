@@ -254,7 +254,7 @@ FACTS = {
     "degree_in_observables": 32,
     "degree_in_unknowns": 40,
     "degrees": {"c": 16, "cp": 16, "dp": 8, "ep": 8, "tan_alpha": 8, "tan_beta": 8, "tan_phi": 8},
-    "exact_checks": {"frames": 4, "reduced_nonzero_c_plus_1": 4, "reduced_zero_at_truth": 4},
+    "exact_checks": {"frames": 6, "reduced_nonzero_c_plus_1": 6, "reduced_zero_at_truth": 6},
     "extraneous_factors": (
         ("c**2*cp**2 + c**2*dp**2 - cp**2*dp**2", 4),
         ("c**2*cp**2 + c**2*ep**2 - cp**2*ep**2", 4),

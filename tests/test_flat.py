@@ -190,16 +190,22 @@ def test_tangents_optional_and_curve_direction():
     assert np.median(np.hypot(*(m - q1).T)) < 2.0
 
 
-def test_noisy_views_still_close():
+@pytest.mark.parametrize("projection", ["perspective", "orthographic"])
+def test_noisy_views_still_close(projection):
+    # 0.5 px noise on both polylines (A, B, C, tangents exact). Measured on these 10 scenes:
+    # median 0.22 px, max 17 / 20 px (perspective / orthographic; grazing lines D''Y'' near
+    # A and B). Without the continuity path (curve order only) the max was 54 / 29 px.
     rng = np.random.default_rng(9)
     errs = []
-    for seed in range(5):
-        views, q0, q1 = make_flat(seed, "perspective")
+    for seed in range(10):
+        views, q0, q1 = make_flat(seed, projection)
         for v in views:
             v["curve"] = v["curve"] + rng.normal(0, 0.5, v["curve"].shape)
-        m = match_flat(views, "perspective", q0)
-        errs += [np.hypot(*(mi - t)) for mi, t in zip(m, q1, strict=True) if mi is not None]
-    assert np.median(errs) < 2.0
+        m = match_flat(views, projection, q0)
+        assert all(mi is not None for mi in m)
+        errs += [np.hypot(*(mi - t)) for mi, t in zip(m, q1, strict=True)]
+    assert np.median(errs) < 0.5
+    assert np.max(errs) < 25.0
 
 
 def test_off_curve_query_is_none():

@@ -312,3 +312,24 @@ def test_generated_modules_import_without_sympy() -> None:
     )
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip().endswith("generated/measurement_model.py")
+
+
+# ---------------------------------------------------------------------------------------------
+# The printer
+# ---------------------------------------------------------------------------------------------
+
+
+def test_printer_style() -> None:
+    """Small integer powers as products, ``np.`` prefix, sqrt and atan2 spelled for NumPy."""
+    from derivations.codegen.printer import NumPyCodePrinter
+
+    x, y = sp.symbols("x y")
+    printer = NumPyCodePrinter()
+    assert printer.doprint(x**2) == "x*x"
+    assert printer.doprint((x + y) ** 3) == "(x + y)*(x + y)*(x + y)"
+    assert printer.doprint(1 / x**2) == "1/(x*x)"
+    assert printer.doprint(x**7) == "x**7"
+    assert printer.doprint(sp.sqrt(x)) == "np.sqrt(x)"
+    assert printer.doprint(sp.sin(x) * sp.cos(y)) == "np.sin(x)*np.cos(y)"
+    assert printer.doprint(sp.atan2(y, x)) == "np.arctan2(y, x)"
+    assert printer.doprint(sp.Float(0.1) * x) == "0.1*x"

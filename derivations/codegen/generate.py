@@ -82,6 +82,11 @@ def print_function(spec: FunctionSpec, config: NumPyConfig) -> FunctionCode:
     unknown = sorted(s.name for s in free if s.name not in arg_names)
     if unknown:
         raise ValueError(f"{spec.name}: outputs use symbols that are not arguments: {unknown}")
+    clashes = sorted(
+        n for n in spec.outputs if n in arg_names or n.startswith("_") or not n.isidentifier()
+    )
+    if clashes:
+        raise ValueError(f"{spec.name}: output names must be new identifiers: {clashes}")
     replacements, reduced = sp.cse(
         flat,
         symbols=sp.numbered_symbols("_tmp"),
@@ -137,7 +142,8 @@ def _coefficient(value: object) -> int | Fraction:
         num = numerator() if callable(numerator) else numerator
         den = denominator() if callable(denominator) else denominator
         return Fraction(int(num), int(den))
-    return Fraction(sp.Rational(sp.sympify(value)).p, sp.Rational(sp.sympify(value)).q)
+    rational = sp.Rational(sp.sympify(value))
+    return Fraction(int(rational.p), int(rational.q))
 
 
 def polynomial_terms(

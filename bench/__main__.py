@@ -1,0 +1,176 @@
+"""``python -m bench`` (``make bench``): accuracy, robustness, stability and speed in one run.
+
+Usage::
+
+    python -m bench [--quick] [--out DIR] [--workers N] [--budget SECONDS] [--full-counts]
+
+Writes ``REPORT.md``, ``report.json`` and PNG plots into ``--out`` (default ``bench/``).  The
+speed section runs first in this process (no worker busy), then a short pilot measures the
+per-scene cost of the default pipeline, the plan sizes the counts to the budget (15 minutes on
+2 cores by default) and the scene experiments run on ``--workers`` processes, every scene seeded
+by its own SeedSequence spawn key.  Progress goes to stderr.
+"""
+
+from __future__ import annotations
+
+import os
+
+# One BLAS thread per process: the pool already uses every core, and timings stay comparable.
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from datetime import datetime, timezone  # noqa: E402
+from itertools import zip_longest  # noqa: E402
+from pathlib import Path  # noqa: E402
+from typing import Any  # noqa: E402
+
+from bench import accuracy, plan, report, robustness, speed, stability  # noqa: E402
+from bench.common import Task, chunks, machine_info, run_tasks  # noqa: E402
+from bench.config import Config, full, quick  # noqa: E402
+
+REPORT_RESERVE_S = 15.0
+"""Wall time kept back for the summaries, the plots and writing the report."""
+
+
+def _log(msg: str) -> None:
+    print(f"bench: {msg}", file=sys.stderr, flush=True)
+
+
+def run_speed(cfg: Config) -> dict[str, Any]:
+    """The speed section (main process)."""
+    out: dict[str, Any] = {}
+    if cfg.derive:
+        _log("timing the derivation (python -m derivations into a temporary folder)")
+        out["derive"] = speed.derive_seconds()
+    _log("generated functions against sympy.lambdify")
+    out["kernels"] = speed.kernels(cfg.kernel_frames, cfg.kernel_min_seconds, cfg.seed)
+    _log("refinement: generated Jacobian against scipy finite differences")
+    out["refine_vs_fd"] = speed.refinement_vs_fd(cfg.fd_problems, cfg.seed)
+    _log("reconstruction of 20 frames, refinement of 1000 frames")
+    out["reconstruct_20"] = speed.reconstruct_times(20, cfg.reconstruct_20_repeats, cfg.seed)
+    out["refine_1000"] = speed.refine_times(1000, cfg.refine_1000_repeats, cfg.seed)
+    _log("reconstruction time against the number of frames")
+    out["scaling"] = speed.scaling(cfg.scaling_frames, cfg.scaling_budget_s, cfg.seed)
+    return out
+
+
+def run_pilot(cfg: Config, progress: bool) -> dict[int, list[dict[str, Any]]]:
+    """A few default-pipeline scenes per frame count (separate seeds) to measure the cost."""
+    frames = sorted({*cfg.frame_counts, *cfg.stability_frames, cfg.headline_frames})
+    k = 1 if cfg.name == "quick" else 2
+    tasks = [
+        Task(
+            accuracy.run_scenes,
+            (cfg.seed, n, 1.0, n, range(k), k, cfg.chord, float("inf"), "pilot"),
+            k,
+            str(n),
+        )
+        for n in sorted(frames, reverse=True)
+    ]
+    res = run_tasks(tasks, cfg.workers, "pilot", progress)
+    return {int(key): recs for key, recs in res.items()}
+
+
+def build_tasks(cfg: Config, pl: plan.Plan, deadline: float) -> list[Task]:
+    """Every pool task, cheap and high-priority work first, the rest interleaved by group."""
+    seed, chord = cfg.seed, cfg.chord
+    cheap: list[Task] = []
+    tier1: list[Task] = []
+    tier2_groups: list[list[Task]] = []
+    for cell_id, (noise, n) in enumerate(
+        (s, n) for s in cfg.noise_levels for n in cfg.frame_counts
+    ):
+        nd = pl.accuracy_default[(noise, n)]
+        label = f"acc|{noise}|{n}"
+        group: list[Task] = []
+        for r in chunks(cfg.accuracy_scenes, cfg.chunk):
+            args = (seed, cell_id, noise, n, r, nd, chord, deadline)
+            task = Task(accuracy.run_scenes, args, len(r), label)
+            (group if r.start < nd else cheap).append(task)
+        if (noise, n) == (cfg.headline_noise, cfg.headline_frames):
+            tier1 += group
+        else:
+            tier2_groups.append(group)
+    for fid, frac in enumerate(cfg.outlier_fractions):
+        for r in chunks(pl.robustness[frac], cfg.chunk):
+            args = (seed, fid, frac, cfg.headline_noise, cfg.headline_frames, r, chord, deadline)
+            tier1.append(Task(robustness.run_scenes, args, len(r), f"rob|{frac}"))
+    for n, k in pl.stability.items():
+        tier2_groups.append(
+            [
+                Task(stability.run_scenes, (seed, n, r, chord, deadline), len(r), f"stab|{n}")
+                for r in chunks(k, cfg.chunk)
+            ]
+        )
+    for n, k in pl.stability_linear.items():
+        tier2_groups.append(
+            [
+                Task(stability.run_linear_scenes, (seed, n, r, chord, deadline), len(r),
+                     f"lin|{n}")
+                for r in chunks(k, 4 * cfg.chunk)
+            ]
+        )
+    tier2 = [t for row in zip_longest(*tier2_groups) for t in row if t is not None]
+    return cheap + tier1 + tier2
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m bench", description=__doc__.split("\n")[0])
+    parser.add_argument("--quick", action="store_true", help="tiny configuration (seconds)")
+    parser.add_argument("--out", type=Path, default=Path(__file__).resolve().parent)
+    parser.add_argument("--workers", type=int, default=None)
+    parser.add_argument("--budget", type=float, default=None, help="wall-clock budget (s)")
+    parser.add_argument("--seed", type=int, default=None)
+    parser.add_argument(
+        "--full-counts", action="store_true", help="run the required counts whatever the budget"
+    )
+    parser.add_argument("--no-progress", action="store_true")
+    args = parser.parse_args(argv)
+    cfg = quick() if args.quick else full()
+    if args.workers is not None:
+        cfg.workers = args.workers
+    if args.budget is not None:
+        cfg.budget_s = args.budget
+    if args.seed is not None:
+        cfg.seed = args.seed
+    progress = not args.no_progress
+    t_start = time.time()
+    started = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    command = "python -m bench" + (" --quick" if args.quick else "")
+    _log(f"configuration {cfg.name}, budget {cfg.budget_s:.0f} s, {cfg.workers} workers")
+
+    sections: dict[str, Any] = {"machine": machine_info()}
+    sections["speed"] = run_speed(cfg)
+    t_speed = time.time() - t_start
+    _log(f"speed section took {t_speed:.0f} s; pilot")
+    pilot = run_pilot(cfg, progress)
+    costs = plan.per_scene_costs(pilot)
+    deadline = t_start + cfg.budget_s - REPORT_RESERVE_S
+    available = max(0.0, deadline - time.time()) * cfg.workers * cfg.safety
+    pl = plan.make_plan(cfg, costs, available, args.full_counts)
+    if args.full_counts:
+        deadline = float("inf")
+    for note in pl.notes:
+        _log(note)
+    _log(
+        f"plan: about {pl.estimate_cpu_s:.0f} CPU-s of {pl.available_cpu_s:.0f} available; "
+        "running the scene experiments"
+    )
+    t_exp = time.time()
+    results = run_tasks(build_tasks(cfg, pl, deadline), cfg.workers, "scenes", progress)
+    t_exp = time.time() - t_exp
+    _log(f"scene experiments took {t_exp:.0f} s; writing the report")
+    sections.update(
+        report.summarise(cfg, results, pilot, pl, t_speed=t_speed, t_experiments=t_exp)
+    )
+    sections["wall_seconds"] = time.time() - t_start
+    paths = report.write(args.out, cfg, sections, command=command, started=started)
+    _log(f"wrote {', '.join(str(p) for p in paths)} in {time.time() - t_start:.0f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

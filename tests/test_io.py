@@ -1,0 +1,100 @@
+"""JSON input/output: contract keys, round trips and one-line errors."""
+
+from __future__ import annotations
+
+import json
+import sys
+import types
+
+import numpy as np
+import pytest
+
+from curverecon.errors import CurveReconError
+from curverecon.io import (
+    load_observations,
+    observations_from_dict,
+    observations_to_dict,
+    read_json,
+    write_json,
+)
+from curverecon.simulate import make_scene
+
+
+def _doc(n=5, seed=0):
+    return observations_to_dict(make_scene(np.random.default_rng(seed), n).observations)
+
+
+def test_round_trip(tmp_path):
+    sc = make_scene(np.random.default_rng(1), 6, 1.0, 1.0, with_curve=True)
+    path = tmp_path / "obs.json"
+    write_json(path, observations_to_dict(sc.observations))
+    obs = load_observations(path)
+    assert np.allclose(obs.a, sc.observations.a) and np.allclose(obs.tangent_b, sc.observations.tangent_b)
+    assert obs.curves is not None and len(obs.curves) == 6
+    assert json.loads(path.read_text())["format"] == "curverecon.observations/1"
+
+
+@pytest.mark.parametrize(
+    "mutate,needle",
+    [
+        (lambda d: d.update(format="curverecon.reconstruction/1"), "wrong format tag"),
+        (lambda d: d.pop("format"), 'missing key "format"'),
+        (lambda d: d.pop("frames"), 'missing key "frames"'),
+        (lambda d: d["frames"][1].pop("B"), 'missing key "B"'),
+        (lambda d: d["frames"][2].pop("tangent_A"), 'missing key "tangent_A"'),
+        (lambda d: d["frames"][0].update(A=[1.0]), "frame 0: A must be [x, y]"),
+        (lambda d: d["frames"][0].update(A=["x", 2]), "frame 0: A must be [x, y]"),
+        (lambda d: d.update(projection="perspective"), "not supported"),
+        (lambda d: d.update(frames={}), "must be a list"),
+    ],
+)
+def test_bad_documents(mutate, needle):
+    doc = _doc()
+    mutate(doc)
+    with pytest.raises(CurveReconError) as err:
+        observations_from_dict(doc)
+    assert needle in str(err.value) and "\n" not in str(err.value)
+
+
+def test_malformed_and_non_finite_json(tmp_path):
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"format": "curverecon.observations/1", "frames": [')
+    with pytest.raises(CurveReconError, match="malformed JSON"):
+        read_json(bad)
+    nan = tmp_path / "nan.json"
+    nan.write_text(json.dumps(_doc()).replace('"A": [', '"A": [NaN, ', 1))
+    with pytest.raises(CurveReconError, match="non-finite"):
+        load_observations(nan)
+    inf = tmp_path / "inf.json"
+    inf.write_text(json.dumps(_doc()).replace('"B": [', '"B": [1e999, 0.0, ', 1))
+    with pytest.raises(CurveReconError):
+        load_observations(inf)
+    with pytest.raises(CurveReconError, match="cannot read"):
+        read_json(tmp_path / "missing.json")
+
+
+def test_curve_without_tangents_uses_polyline_hook(monkeypatch):
+    sc = make_scene(np.random.default_rng(2), 5, with_curve=True)
+    doc = observations_to_dict(sc.observations)
+    for f in doc["frames"]:
+        del f["tangent_A"], f["tangent_B"], f["A"], f["B"]
+    fake = types.ModuleType("curverecon.polyline")
+    calls = []
+
+    def end_tangents(points):
+        calls.append(len(points))
+        p = np.asarray(points)
+        return p[1] - p[0], p[-2] - p[-1]
+
+    fake.end_tangents = end_tangents
+    monkeypatch.setitem(sys.modules, "curverecon.polyline", fake)
+    obs = observations_from_dict(doc)
+    assert len(calls) == 5
+    assert np.allclose(obs.a, [c[0] for c in sc.observations.curves])
+    assert np.allclose(obs.b, [c[-1] for c in sc.observations.curves])
+
+
+def test_write_json_replaces_non_finite(tmp_path):
+    path = tmp_path / "sub" / "x.json"
+    write_json(path, {"a": float("nan"), "b": np.array([1.0, np.inf]), "c": np.bool_(True)})
+    assert json.loads(path.read_text()) == {"a": None, "b": [1.0, None], "c": True}

@@ -1,0 +1,85 @@
+"""Maximum-likelihood refinement (Schur-complement LM) and the Cramer-Rao bound."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from test_conventions import canonical_parameters
+
+from curverecon.generated import measurement_model
+from curverecon.refine import crlb, crlb_covariance, refine, refine_batch
+from curverecon.simulate import make_scene
+
+
+def _perturb(shape, poses, rng, scale=1.0):
+    s = shape + scale * np.array([0.03 * shape[0], 0.05, 0.05, 0.05]) * rng.normal(size=4)
+    p = poses + scale * np.array([0.05, 0.03, 0.01, 1.0, 1.0]) * rng.normal(size=poses.shape)
+    return s, p
+
+
+def test_refinement_recovers_noise_free_truth_from_a_perturbed_start():
+    sc = make_scene(np.random.default_rng(41), 10)
+    shape, poses = canonical_parameters(sc.truth)
+    s0, p0 = _perturb(shape, poses, np.random.default_rng(0))
+    res = refine(sc.observations, s0, p0)
+    assert res.converged
+    assert res.chi2 < 1e-16
+    assert np.allclose(res.shape, shape, rtol=1e-10, atol=1e-10)
+    start_err = np.max(np.abs(s0 - shape) / [shape[0], 1, 1, 1])
+    assert start_err > 1e-3  # the start really was off
+
+
+def test_refinement_improves_a_noisy_start():
+    sc = make_scene(np.random.default_rng(42), 20, 1.0, 1.0)
+    shape, poses = canonical_parameters(sc.truth)
+    s0, p0 = _perturb(shape, poses, np.random.default_rng(1))
+    res = refine(sc.observations, s0, p0, 1.0, np.radians(1.0))
+    from curverecon.refine import standardised_residuals
+
+    w8 = np.array([1.0] * 4 + [1 / np.radians(1.0)] * 2)
+    chi2_start = np.sum(standardised_residuals(s0, p0, sc.observations.measurements(), w8) ** 2)
+    assert res.chi2 < 0.1 * chi2_start
+    assert res.std is not None
+    err = np.abs(res.shape - shape)
+    assert np.all(err < 5 * res.std + 1e-9), (err, res.std)
+    assert np.all(res.frame_chi2 >= 0) and np.isclose(res.frame_chi2.sum(), res.chi2)
+
+
+def test_batch_equals_single():
+    sc = make_scene(np.random.default_rng(43), 8, 0.5, 0.5)
+    shape, poses = canonical_parameters(sc.truth)
+    rng = np.random.default_rng(2)
+    starts = [_perturb(shape, poses, rng, 0.3) for _ in range(3)]
+    g, p, r, chi2, _, _ = refine_batch(
+        sc.observations, np.array([s for s, _ in starts]), np.array([q for _, q in starts])
+    )
+    for k, (s0, p0) in enumerate(starts):
+        single = refine(sc.observations, s0, p0, covariance=False)
+        assert np.allclose(single.shape, g[k]) and np.isclose(single.chi2, chi2[k])
+
+
+def test_schur_covariance_equals_dense_inverse():
+    sc = make_scene(np.random.default_rng(44), 7)
+    shape, poses = canonical_parameters(sc.truth)
+    ps, ts = 0.7, np.radians(2.0)
+    _, jg, jl = measurement_model.predict_with_jacobians(*shape, *poses.T)
+    w = np.array([1 / ps] * 4 + [1 / ts] * 2)
+    n = len(poses)
+    dense = np.zeros((6 * n, 4 + 5 * n))
+    for i in range(n):
+        dense[6 * i : 6 * i + 6, :4] = jg[i] * w[:, None]
+        dense[6 * i : 6 * i + 6, 4 + 5 * i : 9 + 5 * i] = jl[i] * w[:, None]
+    cov = np.linalg.inv(dense.T @ dense)[:4, :4]
+    assert np.allclose(crlb_covariance(shape, poses, ps, ts), cov, rtol=1e-6)
+    assert np.allclose(crlb(shape, poses, ps, ts), np.sqrt(np.diag(cov)), rtol=1e-6)
+
+
+@pytest.mark.parametrize("n", [20, 60])
+def test_crlb_shrinks_with_frames(n):
+    sc = make_scene(np.random.default_rng(45), n)
+    shape, poses = canonical_parameters(sc.truth)
+    b = crlb(shape, poses, 1.0, np.radians(1.0))
+    assert np.all(np.isfinite(b)) and np.all(b > 0)
+    if n == 60:
+        b20 = crlb(shape, poses[:20], 1.0, np.radians(1.0))
+        assert np.all(b < b20)
