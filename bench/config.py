@@ -44,6 +44,9 @@ class Config:
     stability_frames: tuple[int, ...] = (4, 5, 6)
     stability_scenes: int = 10000
     """Required noise-free scenes for the default pipeline, split over stability_frames."""
+    stability_target_frames: int = 6
+    stability_target_scenes: int = 1000
+    """Noise-free scenes at the target's frame count that the plan gives priority."""
     stability_linear_frames: tuple[int, ...] = (38, 39, 40)
     stability_linear_scenes: int = 3000
     """Noise-free scenes for the linearisation at its minimal frame counts (extra)."""
@@ -52,7 +55,7 @@ class Config:
     # speed
     derive: bool = True
     kernel_frames: tuple[int, ...] = (20, 10000)
-    kernel_min_seconds: float = 0.3
+    kernel_min_seconds: float = 0.1
     """Timing of each generated/lambdified function runs at least this long."""
     fd_problems: tuple[tuple[int, tuple[str, ...], int], ...] = (
         (20, ("lm", "trf"), 3),
@@ -63,7 +66,7 @@ class Config:
     reconstruct_20_repeats: int = 7
     refine_1000_repeats: int = 3
     scaling_frames: tuple[int, ...] = (10, 22, 46, 100, 215, 464, 1000, 2154, 4642, 10000)
-    scaling_budget_s: float = 150.0
+    scaling_budget_s: float = 90.0
     """Reconstructions for the scaling plot stop before one is predicted to exceed this total."""
 
     extra: dict[str, Any] = field(default_factory=dict)
@@ -91,6 +94,7 @@ def quick() -> Config:
         robustness_scenes=2,
         stability_frames=(4, 6),
         stability_scenes=4,
+        stability_target_scenes=2,
         stability_linear_frames=(38,),
         stability_linear_scenes=2,
         derive=False,

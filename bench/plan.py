@@ -6,8 +6,9 @@ and the planned count and why; the report prints both.
 
 Priority (what is kept first):
 0. the cheap parts of every accuracy scene (CRLB, refinement from the truth, linearisation);
-1. the default pipeline at the headline cell and the robustness runs;
-2. the default pipeline at the other cells, the noise-free stability runs (uniformly scaled).
+1. the default pipeline at the headline cell;
+2. the robustness runs and the first noise-free scenes at the target's frame count (6);
+3. the default pipeline at the other cells, the rest of the noise-free stability runs.
 Floors keep every table non-empty.  During the run a deadline stops the default pipeline (and
 stability/robustness scenes) once the budget is used up, so the wall time stays bounded even
 when the estimate was too low; the report counts what actually ran.
@@ -44,8 +45,8 @@ class Plan:
     stability_linear: dict[int, int]
     estimate_cpu_s: float
     available_cpu_s: float
-    scale_tier1: float
-    scale_tier2: float
+    scales: list[float]
+    stability_first: dict[int, int]
     per_scene_s: dict[str, float] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
 
@@ -56,12 +57,16 @@ class Plan:
         return {
             "available_cpu_seconds": self.available_cpu_s,
             "estimated_cpu_seconds": self.estimate_cpu_s,
-            "scale_tier1": self.scale_tier1,
-            "scale_tier2": self.scale_tier2,
+            "scales": self.scales,
+            "stability_first": self.stability_first,
             "per_scene_seconds": self.per_scene_s,
             "accuracy_default": [
-                {"noise": k[0], "n_frames": k[1], "required": cfg.accuracy_default_scenes,
-                 "planned": v}
+                {
+                    "noise": k[0],
+                    "n_frames": k[1],
+                    "required": cfg.accuracy_default_scenes,
+                    "planned": v,
+                }
                 for k, v in sorted(self.accuracy_default.items())
             ],
             "robustness": [
@@ -112,7 +117,13 @@ def _interp(table: dict[int, float], n: int) -> float:
 
 
 def make_plan(cfg: Config, costs: dict[str, Any], available_cpu_s: float, full: bool) -> Plan:
-    """Counts that fit ``available_cpu_s`` CPU-seconds (all required counts when ``full``)."""
+    """Counts that fit ``available_cpu_s`` CPU-seconds (all required counts when ``full``).
+
+    Tiers, each scaled uniformly to what the tiers before it left: (1) the headline cell's default
+    pipeline; (2) robustness and the first ``stability_target_scenes`` noise-free scenes at the
+    target's frame count; (3) the other cells, the rest of the stability runs, the linearisation's
+    stability.
+    """
     t_def = {n: _interp(costs["default"], n) for n in {*cfg.frame_counts, *cfg.stability_frames}}
     t_cheap = {n: _interp(costs["cheap"], n) for n in cfg.frame_counts}
     t_lin = costs["linear"]
@@ -120,55 +131,65 @@ def make_plan(cfg: Config, costs: dict[str, Any], available_cpu_s: float, full: 
     cells = [(s, n) for s in cfg.noise_levels for n in cfg.frame_counts]
     req_stab = split(cfg.stability_scenes, cfg.stability_frames)
     req_lin = split(cfg.stability_linear_scenes, cfg.stability_linear_frames)
+    nt = cfg.stability_target_frames
+    first = min(req_stab.get(nt, 0), cfg.stability_target_scenes)
 
     cost0 = sum(cfg.accuracy_scenes * t_cheap[n] for _, n in cells)
-    tier1 = {("acc", hn, hf): (cfg.accuracy_default_scenes, t_def[hf], FLOOR_HEADLINE)}
+    tiers: list[dict[tuple, tuple[int, float, int]]] = [
+        {("acc", hn, hf): (cfg.accuracy_default_scenes, t_def[hf], FLOOR_HEADLINE)},
+        {},
+        {},
+    ]
     for f in cfg.outlier_fractions:
-        tier1[("rob", f)] = (cfg.robustness_scenes, ROBUSTNESS_COST_FACTOR * t_def[hf],
-                             FLOOR_ROBUSTNESS)
-    tier2: dict[tuple, tuple[int, float, int]] = {}
+        tiers[1][("rob", f)] = (
+            cfg.robustness_scenes,
+            ROBUSTNESS_COST_FACTOR * t_def[hf],
+            FLOOR_ROBUSTNESS,
+        )
+    if first:
+        tiers[1][("stab1", nt)] = (first, NOISE_FREE_COST_FACTOR * t_def[nt], FLOOR_STABILITY)
     for s, n in cells:
         if (s, n) != (hn, hf):
-            tier2[("acc", s, n)] = (cfg.accuracy_default_scenes, t_def[n], FLOOR_DEFAULT_CELL)
+            tiers[2][("acc", s, n)] = (cfg.accuracy_default_scenes, t_def[n], FLOOR_DEFAULT_CELL)
     for n, k in req_stab.items():
-        tier2[("stab", n)] = (k, NOISE_FREE_COST_FACTOR * t_def[n], FLOOR_STABILITY)
+        rest = k - (first if n == nt else 0)
+        floor = 0 if n == nt else FLOOR_STABILITY
+        tiers[2][("stab", n)] = (rest, NOISE_FREE_COST_FACTOR * t_def[n], floor)
     for n, k in req_lin.items():
-        tier2[("lin", n)] = (k, t_lin, FLOOR_STABILITY_LINEAR)
+        tiers[2][("lin", n)] = (k, t_lin, FLOOR_STABILITY_LINEAR)
 
-    def cost(tier: dict, scale: float) -> float:
-        return sum(_count(req, scale, floor) * t for req, t, floor in tier.values())
-
+    scales = []
+    left = available_cpu_s - cost0
+    for tier in tiers:
+        sc = 1.0 if full else _solve_scale(tier, left)
+        scales.append(sc)
+        left -= _tier_cost(tier, sc)
+    counts: dict[tuple, int] = {}
+    for tier, sc in zip(tiers, scales, strict=True):
+        counts.update({key: _count(req, sc, floor) for key, (req, _, floor) in tier.items()})
+    estimate = cost0 + sum(_tier_cost(t, sc) for t, sc in zip(tiers, scales, strict=True))
     notes = []
-    if full:
-        s1 = s2 = 1.0
-    else:
-        left = available_cpu_s - cost0
-        full1 = cost(tier1, 1.0)
-        if left >= full1:
-            s1 = 1.0
-            s2 = _solve_scale(tier2, left - full1)
-        else:
-            s1 = _solve_scale(tier1, left)
-            s2 = 0.0
-    counts = {key: _count(req, s1, floor) for key, (req, _, floor) in tier1.items()}
-    counts.update({key: _count(req, s2, floor) for key, (req, _, floor) in tier2.items()})
-    estimate = cost0 + cost(tier1, s1) + cost(tier2, s2)
-    if s1 < 1.0 or s2 < 1.0:
-        need = cost0 + cost(tier1, 1.0) + cost(tier2, 1.0)
+    if min(scales) < 1.0:
+        need = cost0 + sum(_tier_cost(t, 1.0) for t in tiers)
         notes.append(
             f"the required counts need about {need:.0f} CPU-s by the pilot's per-scene times, "
-            f"{available_cpu_s:.0f} CPU-s are available: default-pipeline counts scaled by "
-            f"{s1:.2f} (headline cell, robustness) and {s2:.2f} (other cells, stability)"
+            f"{available_cpu_s:.0f} CPU-s were available: default-pipeline counts scaled by "
+            f"{scales[0]:.2f} (headline cell), {scales[1]:.2f} (robustness, first "
+            f"{first} noise-free {nt}-frame scenes) and {scales[2]:.2f} (other cells, the rest "
+            "of the stability runs)"
         )
-    plan = Plan(
+    stab = {n: counts[("stab", n)] for n in cfg.stability_frames}
+    if first:
+        stab[nt] += counts[("stab1", nt)]
+    return Plan(
         accuracy_default={(s, n): counts[("acc", s, n)] for s, n in cells},
         robustness={f: counts[("rob", f)] for f in cfg.outlier_fractions},
-        stability={n: counts[("stab", n)] for n in cfg.stability_frames},
+        stability=stab,
         stability_linear={n: counts[("lin", n)] for n in cfg.stability_linear_frames},
         estimate_cpu_s=estimate,
         available_cpu_s=available_cpu_s,
-        scale_tier1=s1,
-        scale_tier2=s2,
+        scales=scales,
+        stability_first={nt: counts[("stab1", nt)]} if first else {},
         per_scene_s={
             **{f"default_{n}_frames": v for n, v in sorted(t_def.items())},
             **{f"cheap_parts_{n}_frames": v for n, v in sorted(t_cheap.items())},
@@ -176,7 +197,10 @@ def make_plan(cfg: Config, costs: dict[str, Any], available_cpu_s: float, full: 
         },
         notes=notes,
     )
-    return plan
+
+
+def _tier_cost(tier: dict, scale: float) -> float:
+    return sum(_count(req, scale, floor) * t for req, t, floor in tier.values())
 
 
 def _count(required: int, scale: float, floor: int) -> int:
@@ -186,15 +210,12 @@ def _count(required: int, scale: float, floor: int) -> int:
 def _solve_scale(tier: dict, budget: float) -> float:
     """Largest scale in [0, 1] whose tier cost (with floors) fits ``budget`` (bisection)."""
 
-    def cost(scale: float) -> float:
-        return sum(_count(req, scale, floor) * t for req, t, floor in tier.values())
-
-    if cost(1.0) <= budget:
+    if _tier_cost(tier, 1.0) <= budget:
         return 1.0
     lo, hi = 0.0, 1.0
     for _ in range(40):
         mid = 0.5 * (lo + hi)
-        if cost(mid) <= budget:
+        if _tier_cost(tier, mid) <= budget:
             lo = mid
         else:
             hi = mid

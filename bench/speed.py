@@ -322,11 +322,13 @@ def refine_times(n_frames: int, repeats: int, seed: int) -> dict[str, Any]:
         res = refine(scene.observations, shape, poses, 1.0, math.radians(1.0))
         times.append(time.perf_counter() - start)
         iters = res.iterations
+        converged = res.converged
     return {
         "n_frames": n_frames,
         "repeats": repeats,
         "median_s": float(np.median(times)),
         "iterations": iters,
+        "converged": converged,
     }
 
 

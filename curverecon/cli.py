@@ -95,9 +95,7 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
         except ImportError:
             _warn("curverecon.plot is not available: no plot drawn")
         else:
-            plot_reconstruction(
-                args.plot, obs.curves, curve3d, rec.rotations(), rec.translations()
-            )
+            plot_reconstruction(args.plot, obs.curves, curve3d, rec.rotations(), rec.translations())
     return 0
 
 

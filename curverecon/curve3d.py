@@ -247,10 +247,19 @@ def reconstruct_curve(
     # Endpoint A: depth 0 exactly (translations put A at z = 0).
     zs[0] = np.array([0.0])
     us[0] = np.array([0.0])
-    # Endpoint B: triangulated from the last points of every polyline.
-    b_curve = triangulate_point(np.array([p[-1] for p in polys]), rot, tr)
-    b_cam0 = rot[0] @ b_curve + tr[0]
-    zs[-1] = np.array([b_cam0[2]])
+    # Endpoint B: on frame 0's line of sight through its last point; each informative frame
+    # gives the depth whose image is nearest its own last point. Weighted median (weights
+    # |r_xy|^2) so that a frame with a wrong pose cannot drag it.
+    z_b = []
+    w_b = []
+    for i in informative:
+        origin_b = m[i] @ np.array([xy[-1, 0], xy[-1, 1], 0.0]) + b[i]
+        rxy = r[i, :2]
+        z_b.append(float((polys[i][-1] - origin_b[:2]) @ rxy / (rxy @ rxy)))
+        w_b.append(float(rxy @ rxy))
+    zb = _weighted_median(np.asarray(z_b), np.asarray(w_b))
+    b_cam0 = np.array([xy[-1, 0], xy[-1, 1], zb])
+    zs[-1] = np.array([zb])
     us[-1] = np.array([0.0])
 
     big = 1e300
@@ -383,6 +392,12 @@ def reconstruct_curve(
         coplanarity=cop,
         frame_residual=frame_residual,
     )
+
+
+def _weighted_median(values: np.ndarray, weights: np.ndarray) -> float:
+    order = np.argsort(values)
+    cw = np.cumsum(weights[order])
+    return float(values[order][np.searchsorted(cw, 0.5 * cw[-1])])
 
 
 def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:

@@ -9,11 +9,18 @@ Orthographic, two traceable points (section 2's table, first row, after Lee): D 
 Y' = A'B' x D'X' as above, and Y'' divides A''B'' in the same ratio as Y' divides A'B' (Thales:
 parallel projection keeps ratios along a line); X'' is where D''Y'' meets view 1's curve.
 
-Ambiguity (the line D''Y'' may meet the curve several times) is resolved by continuity: the line
-DX meets the planar curve in the same points in both views and the curve's order from A to B is
-kept, so X' is the j-th crossing (in curve order) of D'X' with view 0's curve and X'' the j-th of
-D''Y'' with view 1's curve; if the crossing counts differ (noise, grazing), the crossing nearest
-in relative arc length is taken.
+Ambiguity (the line D''Y'' may meet the curve several times) is resolved by continuity: the map
+from view 0's curve to view 1's curve keeps the order from A to B, so the correspondence of
+relative arc positions is monotone. It is traced at samples along view 0's curve (every crossing
+of D''Y'' a candidate) by dynamic programming (monotone, least jumping, from A to B), and each
+query takes the crossing of its own line D''Y'' nearest to that path. Without a path, the j-th
+crossing (in curve order) of D'X' in view 0 maps to the j-th of D''Y'' in view 1.
+
+Noisy polylines (estimated noise > 0.05 px) are smoothed before intersecting; crossings are
+refined on the local cubic through the neighbouring vertices. The construction is inherently
+ill-conditioned near A and B, where D'X' is nearly the tangent and meets the curve at a grazing
+angle (noise-free this costs nothing measurable; with 0.5 px noise the error there reaches tens of
+pixels while the median stays ~0.3 px).
 
 Coordinates are image pixels; points are handled in homogeneous form so points at infinity (E or
 Y when lines are parallel in the image) need no special case.
@@ -131,11 +138,6 @@ def _h(p: np.ndarray) -> np.ndarray:
 def _line(p: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Homogeneous line through two homogeneous points."""
     return np.cross(p, q)
-
-
-def _unit_h(v: np.ndarray) -> np.ndarray:
-    n = np.linalg.norm(v)
-    return v / n if n > 0 else v
 
 
 def _sin_between(u: np.ndarray, v: np.ndarray) -> float:

@@ -183,6 +183,11 @@ def solve_linear(obs: Observations) -> LinearResult:
             f"the linearisation needs at least {need} frames ({need + 1} grouped columns with a "
             f"one-dimensional null space), got {obs.n_frames}; use --method auto"
         )
+    with np.errstate(all="ignore"):
+        return _solve_linear(obs)
+
+
+def _solve_linear(obs: Observations) -> LinearResult:
     m, scale = frame_matrix(obs)
     norms = np.linalg.norm(m, axis=0)
     norms = np.where(norms > 0, norms, 1.0)

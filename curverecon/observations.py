@@ -75,7 +75,11 @@ class Observations:
         self.tangent_a = _as_xy("tangent_A", self.tangent_a)
         self.tangent_b = _as_xy("tangent_B", self.tangent_b)
         n = self.a.shape[0]
-        for name, arr in (("B", self.b), ("tangent_A", self.tangent_a), ("tangent_B", self.tangent_b)):
+        for name, arr in (
+            ("B", self.b),
+            ("tangent_A", self.tangent_a),
+            ("tangent_B", self.tangent_b),
+        ):
             if arr.shape[0] != n:
                 raise CurveReconError(f"{name} has {arr.shape[0]} frames, A has {n}")
         if n == 0:
@@ -88,7 +92,9 @@ class Observations:
         ):
             bad = ~np.all(np.isfinite(arr), axis=1)
             if bad.any():
-                raise CurveReconError(f"frame {int(np.argmax(bad))}: {name} is not finite (NaN or inf)")
+                raise CurveReconError(
+                    f"frame {int(np.argmax(bad))}: {name} is not finite (NaN or inf)"
+                )
         chord = self.b - self.a
         length = np.hypot(chord[:, 0], chord[:, 1])
         scale = np.maximum(np.max(np.abs(np.concatenate([self.a, self.b]))), 1.0)

@@ -54,6 +54,7 @@ def plot_reconstruction(
     from matplotlib.figure import Figure
 
     from curverecon.errors import CurveReconError
+    from curverecon.polyline import distance_to_polyline
 
     x = np.asarray(curve3d, dtype=float)
     rot = np.asarray(rotations, dtype=float)
@@ -70,7 +71,8 @@ def plot_reconstruction(
 
     ncols = min(4, len(frames))
     nrows = int(np.ceil(len(frames) / ncols))
-    fig = Figure(figsize=(4.0 + 2.6 * ncols, max(4.0, 2.6 * nrows)), dpi=100)
+    height = max(4.2, 2.6 * nrows + 0.6)
+    fig = Figure(figsize=(4.0 + 2.6 * ncols, height), dpi=100)
     gs = fig.add_gridspec(nrows, ncols + 2, width_ratios=[1.6, 0.1] + [1.0] * ncols)
 
     ax3 = fig.add_subplot(gs[:, 0], projection="3d")
@@ -91,16 +93,19 @@ def plot_reconstruction(
 
     for slot, i in enumerate(frames):
         ax = fig.add_subplot(gs[slot // ncols, 2 + slot % ncols])
+        title = f"frame {i}"
         if polylines is not None:
             p = np.asarray(polylines[i], dtype=float)
-            if p.ndim == 2 and p.shape[1] == 2 and len(p):
+            if p.ndim == 2 and p.shape[1] == 2 and len(p) >= 2 and np.all(np.isfinite(p)):
                 ax.plot(p[:, 0], p[:, 1], color="0.6", lw=3.0, label="observed")
+                resid = np.median(distance_to_polyline(proj[i], p)[0])
+                title += f"  (median off {resid:.1f} px)"
         ax.plot(proj[i, :, 0], proj[i, :, 1], color="C1", lw=1.0, label="reprojected")
         ax.plot(*proj[i, 0], "o", color="C2", ms=3)
         ax.plot(*proj[i, -1], "o", color="C3", ms=3)
         ax.set_aspect("equal", adjustable="datalim")
         ax.invert_yaxis()
-        ax.set_title(f"frame {i}", fontsize=8)
+        ax.set_title(title, fontsize=8)
         ax.tick_params(labelsize=6)
         if slot == 0:
             ax.legend(fontsize=6, loc="best")
@@ -109,7 +114,9 @@ def plot_reconstruction(
         + (f" (showing {len(frames)})" if len(frames) < n else ""),
         fontsize=10,
     )
-    fig.subplots_adjust(left=0.02, right=0.98, top=0.9, bottom=0.06, wspace=0.35, hspace=0.4)
+    fig.subplots_adjust(
+        left=0.02, right=0.98, top=1.0 - 0.75 / height, bottom=0.3 / height, wspace=0.35, hspace=0.4
+    )
     try:
         fig.savefig(path)
     except OSError as exc:

@@ -26,7 +26,7 @@ from curverecon.generated import measurement_model
 from curverecon.observations import Observations, wrap_line_angle
 from curverecon.pose import normalise, poses_from_shape, rotations, translations
 from curverecon.refine import _pose_iterations, refine
-from curverecon.start import robust_start, shape_distance
+from curverecon.start import robust_start, shape_distance, switch_branches
 
 OUTLIER_P = 2e-4
 """False-alarm probability per frame of the outlier test (chi2 with one degree of freedom)."""
@@ -36,7 +36,7 @@ ALTERNATIVE_DCHI2 = 4.0
 
 METHODS = ("auto", "linear")
 
-CAUCHY_K = 3.0
+CAUCHY_K = 4.0
 """Scale (in standard deviations, per frame) of the robust reweighting before the outlier test."""
 
 MEDIAN_CHI2_1 = 0.4549364231195724
@@ -236,10 +236,13 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
     # outlier test on the unweighted per-frame chi2: drop the worst frame above the threshold,
     # refit, repeat.
     fit = best
-    for _ in range(3):
+    w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
+    robust_rounds = 3 if np.max(fit.frame_chi2) > _threshold(fit.frame_chi2) else 0
+    for _ in range(robust_rounds):
         scale2 = CAUCHY_K**2 * max(1.0, float(np.median(fit.frame_chi2)) / MEDIAN_CHI2_1)
         weights = 1.0 / (1.0 + fit.frame_chi2 / scale2)
-        fit = refine(obs, fit.shape, fit.poses, ps, ts, covariance=False, frame_weights=weights)
+        poses_sw = switch_branches(obs, fit.shape, fit.poses, w8)
+        fit = refine(obs, fit.shape, poses_sw, ps, ts, covariance=False, frame_weights=weights)
     inliers = np.ones(n, dtype=bool)
     max_out = max(0, (n - 5) // 2)
     while True:
@@ -258,7 +261,6 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
     poses = np.array(poses_from_shape(obs, final.shape)[0])
     poses[inliers] = final.poses
     meas = obs.measurements()
-    w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
     poses, resid = _pose_iterations(final.shape, poses, meas, w8, 10)
     frame_chi2 = np.sum(resid * resid, axis=1)
     frame_chi2[inliers] = final.frame_chi2

@@ -22,7 +22,6 @@ from curverecon.generated import measurement_model
 from curverecon.observations import Observations, wrap_line_angle
 
 
-
 @dataclass
 class RefineResult:
     """Outcome of :func:`refine`.
@@ -165,7 +164,7 @@ def _lin_batch(g, p, meas, w8):
     r = pred - meas
     r[..., 4:6] = wrap_line_angle(r[..., 4:6])
     r *= w8
-    return r, jg * w8[:, None], jl * w8[:, None]
+    return r, jg * w8[..., None], jl * w8[..., None]
 
 
 def refine_batch(
@@ -219,7 +218,15 @@ def refine_batch(
             done[act[hopeless]] = True
             act = act[~hopeless]
         iters[act] += 1
-        ga, pa, ra, jga, jla, lama, c2 = g[act], p[act], r[act], jg[act], jl[act], lam[act], chi2[act]
+        ga, pa, ra, jga, jla, lama, c2 = (
+            g[act],
+            p[act],
+            r[act],
+            jg[act],
+            jl[act],
+            lam[act],
+            chi2[act],
+        )
         jgt = np.swapaxes(jga, -1, -2)
         jlt = np.swapaxes(jla, -1, -2)
         u = np.sum(jgt @ jga, axis=1)
@@ -302,8 +309,15 @@ def refine(
     """
     meas = _measurements(obs)
     g, p, r, chi2, iters, conv = refine_batch(
-        meas, np.asarray(shape, float)[None], np.asarray(poses, float)[None],
-        point_sigma, tangent_sigma, max_iter, xtol, ftol, frame_weights=frame_weights,
+        meas,
+        np.asarray(shape, float)[None],
+        np.asarray(poses, float)[None],
+        point_sigma,
+        tangent_sigma,
+        max_iter,
+        xtol,
+        ftol,
+        frame_weights=frame_weights,
     )
     g, p = g[0], p[0]
     w8 = _weights(point_sigma, tangent_sigma)

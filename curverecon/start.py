@@ -133,9 +133,9 @@ def grid_costs(obs: Observations, spec: GridSpec | None = None) -> tuple[np.ndar
     lin_py = np.stack([0.0 * ones, cos_d, -sin_d], -1)
     tb = np.tan(bet)
     xy = np.stack([np.outer(tb, np.cos(phi)).ravel(), np.outer(tb, np.sin(phi)).ravel()])
-    coef = np.concatenate(
-        [np.ones((c.size, 1, xy.shape[1])), c[:, None, None] * xy[None]], axis=1
-    )[:, None].astype(dt)  # (G, 1, 3, B*P)
+    coef = np.concatenate([np.ones((c.size, 1, xy.shape[1])), c[:, None, None] * xy[None]], axis=1)[
+        :, None
+    ].astype(dt)  # (G, 1, 3, B*P)
     shp = (spec.n_gamma, spec.n_alpha, n * 4, 3)
     cross = lin_cross.reshape(shp).astype(dt) @ coef
     px = lin_px.reshape(shp).astype(dt) @ coef
@@ -224,7 +224,9 @@ def poses_from_branches(obs: Observations, shape: np.ndarray) -> np.ndarray:
     return np.column_stack([delta, tau, obs.theta, obs.a[:, 0], obs.a[:, 1]])
 
 
-def switch_branches(obs: Observations, shape: np.ndarray, poses: np.ndarray, w8: np.ndarray) -> np.ndarray:
+def switch_branches(
+    obs: Observations, shape: np.ndarray, poses: np.ndarray, w8: np.ndarray
+) -> np.ndarray:
     """Per frame, the best of the current pose and the four branches of (10), shape fixed.
 
     Each alternative is polished by a few pose-only Gauss-Newton steps before the comparison.
@@ -266,6 +268,42 @@ def robust_start(
     obs: Observations,
     point_sigma: float = 1.0,
     tangent_sigma: float = np.radians(1.0),
+    max_frames: int = 40,
+    **kwargs,
+) -> list[Candidate]:
+    """Refined candidates from the global search, best (lowest robust cost) first.
+
+    With more than ``max_frames`` frames the search runs on ``max_frames`` evenly spread frames
+    (its cost grows with the frame count) and its candidates are then refined on all frames.
+    Other keyword arguments go to :func:`search_start`.
+    """
+    n = obs.n_frames
+    if n <= max_frames:
+        return search_start(obs, point_sigma, tangent_sigma, **kwargs)
+    idx = np.unique(np.linspace(0, n - 1, max_frames).round().astype(int))
+    cands = search_start(obs.subset(idx), point_sigma, tangent_sigma, **kwargs)
+    w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / tangent_sigma] * 2)
+    shapes = np.array([c.result.shape for c in cands])
+    poses = np.array([switch_branches(obs, s, poses_from_branches(obs, s), w8) for s in shapes])
+    g, p, r, chi2, iters, conv = refine_batch(
+        obs.measurements(), shapes, poses, point_sigma, tangent_sigma, max_iter=60
+    )
+    out = []
+    for k, cand in enumerate(cands):
+        shape_n, poses_n = normalise(g[k], p[k])
+        fc = np.sum(r[k] * r[k], axis=1)
+        res = RefineResult(
+            shape_n, poses_n, float(chi2[k]), fc, r[k], None, int(iters[k]), bool(conv[k])
+        )
+        out.append(Candidate(res, robust_cost(fc), cand.grid_cost))
+    out.sort(key=lambda cand: cand.robust_cost)
+    return out
+
+
+def search_start(
+    obs: Observations,
+    point_sigma: float = 1.0,
+    tangent_sigma: float = np.radians(1.0),
     n_candidates: int | None = None,
     n_final: int = 4,
     spec: GridSpec | None = None,
@@ -300,14 +338,22 @@ def robust_start(
     cells = _local_minima(cost, n_search)
     gam = np.arccos(np.clip(np.max(obs.cp) / axes["c"], 0.0, 1.0))
     x0 = np.array(
-        [[gam[ig], axes["alpha"][ia], axes["beta"][ib], axes["phi"][ip]] for ig, ia, ib, ip in cells]
+        [
+            [gam[ig], axes["alpha"][ia], axes["beta"][ib], axes["phi"][ip]]
+            for ig, ia, ib, ip in cells
+        ]
     )
-    steps = np.array([
-        np.radians(spec.gamma_max_deg) / max(spec.n_gamma - 1, 1),
-        axes["alpha"][1] - axes["alpha"][0],
-        axes["beta"][1] - axes["beta"][0],
-        axes["phi"][1] - axes["phi"][0],
-    ]) * 0.5
+    steps = (
+        np.array(
+            [
+                np.radians(spec.gamma_max_deg) / max(spec.n_gamma - 1, 1),
+                axes["alpha"][1] - axes["alpha"][0],
+                axes["beta"][1] - axes["beta"][0],
+                axes["phi"][1] - axes["phi"][0],
+            ]
+        )
+        * 0.5
+    )
     trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
     terms = _frame_terms(obs)
     xs, fs = pattern_search(terms, x0, steps, trunc, n_iter=20)
@@ -349,7 +395,12 @@ def robust_start(
     changed = np.any(p_sw != p, axis=(1, 2))
     if changed.any():
         g2, p2, r2, chi22, it2, conv2 = refine_batch(
-            meas, g[changed], p_sw[changed], point_sigma, tangent_sigma, max_iter=40,
+            meas,
+            g[changed],
+            p_sw[changed],
+            point_sigma,
+            tangent_sigma,
+            max_iter=40,
             drop_factor=3.0,
         )
         better = chi22 < chi2[changed]
@@ -386,7 +437,9 @@ def robust_start(
     for k, i in enumerate(chosen):
         shape_n, poses_n = normalise(g[k], p[k])
         fc = np.sum(r[k] * r[k], axis=1)
-        res = RefineResult(shape_n, poses_n, float(chi2[k]), fc, r[k], None, int(iters[k]), bool(conv[k]))
+        res = RefineResult(
+            shape_n, poses_n, float(chi2[k]), fc, r[k], None, int(iters[k]), bool(conv[k])
+        )
         out.append(Candidate(res, robust_cost(fc), grid_cost[i]))
     out.sort(key=lambda cand: cand.robust_cost)
     return out

@@ -142,8 +142,19 @@ def test_linear_with_too_few_frames(tmp_path):
 def test_simulate_then_reconstruct(tmp_path):
     scene, truth, out = tmp_path / "s.json", tmp_path / "t.json", tmp_path / "r.json"
     proc = run(
-        "simulate", "-o", str(scene), "--truth", str(truth), "--frames", "12",
-        "--point-noise", "0.5", "--tangent-noise", "0.5", "--seed", "7",
+        "simulate",
+        "-o",
+        str(scene),
+        "--truth",
+        str(truth),
+        "--frames",
+        "12",
+        "--point-noise",
+        "0.5",
+        "--tangent-noise",
+        "0.5",
+        "--seed",
+        "7",
     )
     assert proc.returncode == 0, proc.stderr
     proc = run("reconstruct", str(scene), "-o", str(out))

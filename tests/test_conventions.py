@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from curverecon.generated import frame_equations, measurement_model
 from scipy.spatial.transform import Rotation
 
-from curverecon.generated import frame_equations, measurement_model
 from curverecon.observations import wrap_line_angle
 from curverecon.simulate import make_scene
 

@@ -29,7 +29,9 @@ def test_round_trip(tmp_path):
     path = tmp_path / "obs.json"
     write_json(path, observations_to_dict(sc.observations))
     obs = load_observations(path)
-    assert np.allclose(obs.a, sc.observations.a) and np.allclose(obs.tangent_b, sc.observations.tangent_b)
+    assert np.allclose(obs.a, sc.observations.a) and np.allclose(
+        obs.tangent_b, sc.observations.tangent_b
+    )
     assert obs.curves is not None and len(obs.curves) == 6
     assert json.loads(path.read_text())["format"] == "curverecon.observations/1"
 

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from curverecon.generated import lean_polynomial
 
 from curverecon.errors import CurveReconError
-from curverecon.generated import lean_polynomial
 from curverecon.linear import frame_matrix, min_frames, n_columns, solve_linear
 from curverecon.simulate import make_scene
 

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from curverecon.generated import measurement_model
 from test_conventions import canonical_parameters
 
-from curverecon.generated import measurement_model
 from curverecon.observations import wrap_angle, wrap_line_angle
 from curverecon.pose import normalise, poses_from_shape, rotations, translations
 from curverecon.simulate import make_scene

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from curverecon.generated import measurement_model
 from test_conventions import canonical_parameters
 
-from curverecon.generated import measurement_model
 from curverecon.refine import crlb, crlb_covariance, refine, refine_batch
 from curverecon.simulate import make_scene
 

@@ -68,7 +68,9 @@ def test_curves_and_outliers():
     assert sc.observations.curves is not None and len(sc.observations.curves) == 10
     for i, cur in enumerate(sc.observations.curves):
         assert 100 <= len(cur) <= 200
-        assert np.allclose(cur[0], sc.observations.a[i]) and np.allclose(cur[-1], sc.observations.b[i])
+        assert np.allclose(cur[0], sc.observations.a[i]) and np.allclose(
+            cur[-1], sc.observations.b[i]
+        )
     assert sc.curve_3d.shape[1] == 3 and np.allclose(sc.curve_3d[0], sc.truth.A3[0])
     assert np.allclose(sc.curve_3d[-1], sc.truth.B3[0])
     assert (~sc.truth.inliers).sum() == 2

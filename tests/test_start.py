@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import numpy as np
+from curverecon.generated import frame_equations
 from test_conventions import canonical_parameters
 
-from curverecon.generated import frame_equations
 from curverecon.simulate import make_scene
 from curverecon.start import (
     _frame_terms,

@@ -1,0 +1,92 @@
+"""The full pipeline against the independent simulator."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from curverecon.errors import CurveReconError
+from curverecon.linear import min_frames
+from curverecon.reconstruct import reconstruct
+from curverecon.simulate import make_scene
+
+
+def _rel_err(shape, truth):
+    return np.max(np.abs(shape - truth) / np.array([truth[0], 1.0, 1.0, 1.0]))
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_noise_free_six_frames_exact(seed):
+    sc = make_scene(np.random.default_rng(seed), 6)
+    rec = reconstruct(sc.observations)
+    assert _rel_err(rec.shape, sc.truth.shape) < 1e-9
+    assert rec.inliers.all() and rec.method == "auto"
+    a3, b3, ta3, tb3 = rec.points_3d()
+    # 3-D points up to the mirror z -> -z (phi folded to [0, 180])
+    rel = b3 - a3
+    true_rel = sc.truth.B3 - sc.truth.A3
+    assert np.allclose(rel[:, :2], true_rel[:, :2], atol=1e-6)
+    assert np.allclose(np.abs(rel[:, 2]), np.abs(true_rel[:, 2]), atol=1e-6)
+    sign = np.sign(np.sum(rel[:, 2] * true_rel[:, 2]))
+    assert np.allclose(rel[:, 2], sign * true_rel[:, 2], atol=1e-6)
+
+
+def test_noisy_twenty_frames_without_truth():
+    sc = make_scene(np.random.default_rng(7), 20, 1.0, 1.0)
+    rec = reconstruct(sc.observations, point_sigma=1.0, tangent_sigma_deg=1.0)
+    err = np.degrees(np.abs(rec.shape[1:] - sc.truth.shape[1:]))
+    assert np.max(err) < 5.0
+    assert abs(rec.c / sc.truth.c - 1) < 0.05
+    assert rec.std is not None and np.all(rec.std > 0)
+    assert np.all(np.abs(rec.shape - sc.truth.shape) < 5 * rec.std)
+
+
+def test_outlier_frames_are_found_and_reported():
+    sc = make_scene(np.random.default_rng(5), 20, 1.0, 1.0, outlier_fraction=0.1)
+    rec = reconstruct(sc.observations)
+    truth_out = set(np.flatnonzero(~sc.truth.inliers).tolist())
+    assert set(rec.outlier_frames()) == truth_out
+    doc = rec.to_json_dict()
+    assert doc["outlier_frames"] == sorted(truth_out)
+    assert [f["inlier"] for f in doc["frames"]] == sc.truth.inliers.tolist()
+    assert any("do not fit" in w for w in rec.warnings)
+    assert np.degrees(np.max(np.abs(rec.shape[1:] - sc.truth.shape[1:]))) < 3.0
+
+
+def test_few_frames_report_alternatives():
+    sc = make_scene(np.random.default_rng(1), 4)
+    rec = reconstruct(sc.observations)
+    shapes = [rec.shape] + [a.shape for a in rec.alternatives]
+    assert len(shapes) >= 2 and any("fit the data about equally well" in w for w in rec.warnings)
+    assert min(_rel_err(s, sc.truth.shape) for s in shapes) < 1e-6
+    doc = rec.to_json_dict()
+    assert len(doc["alternatives"]) == len(rec.alternatives)
+
+
+def test_linear_method_through_reconstruct():
+    sc = make_scene(np.random.default_rng(3), min_frames() + 2)
+    rec = reconstruct(sc.observations, method="linear")
+    assert rec.method == "linear" and rec.std is None
+    assert _rel_err(rec.shape, sc.truth.shape) < 1e-9
+    assert np.all(np.abs(rec.poses[:, 1]) <= np.pi / 2)
+
+
+def test_outputs_and_helpers():
+    sc = make_scene(np.random.default_rng(9), 8, 0.5, 0.5)
+    rec = reconstruct(sc.observations)
+    rot, tr = rec.rotations(), rec.translations()
+    assert rot.shape == (8, 3, 3) and np.allclose(rot @ np.swapaxes(rot, 1, 2), np.eye(3))
+    assert np.allclose(tr[:, 2], 0.0)
+    doc = rec.to_json_dict()
+    assert doc["format"] == "curverecon.reconstruction/1"
+    assert 0 <= doc["alpha_deg"] <= 90 and 0 <= doc["beta_deg"] <= 90 and 0 <= doc["phi_deg"] <= 180
+    for f in doc["frames"]:
+        assert -90 < f["tau_deg"] <= 90 and f["A3"][2] == 0.0
+
+
+def test_bad_arguments():
+    sc = make_scene(np.random.default_rng(9), 6)
+    with pytest.raises(CurveReconError, match="unknown method"):
+        reconstruct(sc.observations, method="magic")
+    with pytest.raises(CurveReconError, match="positive"):
+        reconstruct(sc.observations, point_sigma=0.0)
