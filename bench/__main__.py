@@ -5,10 +5,10 @@ Usage::
     python -m bench [--quick] [--out DIR] [--workers N] [--budget SECONDS] [--full-counts]
 
 Writes ``REPORT.md``, ``report.json`` and PNG plots into ``--out`` (default ``bench/``).  The
-speed section runs first in this process (no worker busy), then a short pilot measures the
-per-scene cost of the default pipeline, the plan sizes the counts to the budget (15 minutes on
-2 cores by default) and the scene experiments run on ``--workers`` processes, every scene seeded
-by its own SeedSequence spawn key.  Progress goes to stderr.
+speed section runs first in this process (no worker busy); then the scene experiments run on
+``--workers`` processes, every scene seeded by its own SeedSequence spawn key, in priority order
+(``bench.plan``) until a deadline keeps the run within the budget (15 minutes by default); the
+report prints required against run counts.  Progress goes to stderr.
 """
 
 from __future__ import annotations
@@ -58,52 +58,35 @@ def run_speed(cfg: Config) -> dict[str, Any]:
     return out
 
 
-def run_pilot(cfg: Config, progress: bool) -> dict[int, list[dict[str, Any]]]:
-    """A few default-pipeline scenes per frame count (separate seeds) to measure the cost."""
-    frames = sorted({*cfg.frame_counts, *cfg.stability_frames, cfg.headline_frames})
-    k = 1 if cfg.name == "quick" else 2
-    tasks = [
-        Task(
-            accuracy.run_scenes,
-            (cfg.seed, n, 1.0, n, range(k), k, cfg.chord, float("inf"), "pilot"),
-            k,
-            str(n),
-        )
-        for n in sorted(frames, reverse=True)
-    ]
-    res = run_tasks(tasks, cfg.workers, "pilot", progress)
-    return {int(key): recs for key, recs in res.items()}
-
-
-def build_tasks(cfg: Config, pl: plan.Plan, deadline: float) -> list[Task]:
-    """Every pool task in priority order (the deadline cuts the tail).
-
-    Cheap accuracy work first, then the headline cell's default pipeline, then robustness and
-    the first noise-free target scenes, then the rest; within a tier the groups are interleaved
-    so a cut at the deadline shortens them alike.
-    """
+def build_tasks(cfg: Config, deadline: float) -> list[Task]:
+    """Every pool task at its required count, in priority order (``bench.plan``)."""
     seed, chord = cfg.seed, cfg.chord
     cheap: list[Task] = []
     head: list[Task] = []
-    tier1: list[list[Task]] = []
     tier2: list[list[Task]] = []
+    tier3: list[list[Task]] = []
     for cell_id, (noise, n) in enumerate(
         (s, n) for s in cfg.noise_levels for n in cfg.frame_counts
     ):
-        nd = pl.accuracy_default[(noise, n)]
-        label = f"acc|{noise}|{n}"
-        group: list[Task] = []
-        for r in chunks(cfg.accuracy_scenes, cfg.chunk):
-            args = (seed, cell_id, noise, n, r, nd, chord, deadline)
-            task = Task(accuracy.run_scenes, args, len(r), label)
-            (group if r.start < nd else cheap).append(task)
+        for r in chunks(cfg.accuracy_scenes, 4 * cfg.chunk):
+            args = (seed, cell_id, noise, n, r, "cheap", chord, deadline)
+            cheap.append(Task(accuracy.run_scenes, args, len(r), f"acc|{noise}|{n}"))
+        group = [
+            Task(
+                accuracy.run_scenes,
+                (seed, cell_id, noise, n, r, "default", chord, deadline),
+                len(r),
+                f"accd|{noise}|{n}",
+            )
+            for r in chunks(cfg.accuracy_default_scenes, cfg.chunk)
+        ]
         if (noise, n) == (cfg.headline_noise, cfg.headline_frames):
             head += group
         else:
-            tier2.append(group)
+            tier3.append(group)
     for fid, frac in enumerate(cfg.outlier_fractions):
         hn, hf = cfg.headline_noise, cfg.headline_frames
-        tier1.append(
+        tier2.append(
             [
                 Task(
                     robustness.run_scenes,
@@ -111,12 +94,13 @@ def build_tasks(cfg: Config, pl: plan.Plan, deadline: float) -> list[Task]:
                     len(r),
                     f"rob|{frac}",
                 )
-                for r in chunks(pl.robustness[frac], cfg.chunk)
+                for r in chunks(cfg.robustness_scenes, cfg.chunk)
             ]
         )
-    for n, k in pl.stability.items():
-        first = pl.stability_first.get(n, 0)
-        for lo, hi, tier in ((0, first, tier1), (first, k, tier2)):
+    required, first = plan.stability_counts(cfg)
+    for n, k in required.items():
+        k1 = first.get(n, 0)
+        for lo, hi, tier in ((0, k1, tier2), (k1, k, tier3)):
             tier.append(
                 [
                     Task(
@@ -128,8 +112,8 @@ def build_tasks(cfg: Config, pl: plan.Plan, deadline: float) -> list[Task]:
                     for r in chunks(hi - lo, cfg.chunk)
                 ]
             )
-    for n, k in pl.stability_linear.items():
-        tier2.append(
+    for n, k in plan.split(cfg.stability_linear_scenes, cfg.stability_linear_frames).items():
+        tier3.append(
             [
                 Task(
                     stability.run_linear_scenes,
@@ -140,7 +124,7 @@ def build_tasks(cfg: Config, pl: plan.Plan, deadline: float) -> list[Task]:
                 for r in chunks(k, 4 * cfg.chunk)
             ]
         )
-    return cheap + head + _interleave(tier1) + _interleave(tier2)
+    return cheap + head + _interleave(tier2) + _interleave(tier3)
 
 
 def _interleave(groups: list[list[Task]]) -> list[Task]:
@@ -178,25 +162,23 @@ def main(argv: list[str] | None = None) -> int:
     sections: dict[str, Any] = {"machine": machine_info()}
     sections["speed"] = run_speed(cfg)
     t_speed = time.time() - t_start
-    _log(f"speed section took {t_speed:.0f} s; pilot")
-    pilot = run_pilot(cfg, progress)
-    costs = plan.per_scene_costs(pilot)
     deadline = t_start + cfg.budget_s - REPORT_RESERVE_S
-    available = max(0.0, deadline - time.time()) * cfg.workers * cfg.safety
-    pl = plan.make_plan(cfg, costs, available, args.full_counts)
     if args.full_counts:
         deadline = float("inf")
-    for note in pl.notes:
-        _log(note)
+    available = max(0.0, deadline - time.time()) * cfg.workers
     _log(
-        f"plan: about {pl.estimate_cpu_s:.0f} CPU-s of {pl.available_cpu_s:.0f} available; "
-        "running the scene experiments"
+        f"speed section took {t_speed:.0f} s; scene experiments until the deadline in "
+        f"{max(0.0, deadline - time.time()):.0f} s"
     )
     t_exp = time.time()
-    results = run_tasks(build_tasks(cfg, pl, deadline), cfg.workers, "scenes", progress)
+    results = run_tasks(build_tasks(cfg, deadline), cfg.workers, "scenes", progress)
     t_exp = time.time() - t_exp
     _log(f"scene experiments took {t_exp:.0f} s; writing the report")
-    sections.update(report.summarise(cfg, results, pilot, pl, t_speed=t_speed, t_experiments=t_exp))
+    sections.update(
+        report.summarise(
+            cfg, results, t_speed=t_speed, t_experiments=t_exp, available_cpu_s=available
+        )
+    )
     paths = report.write(args.out, cfg, sections, command=command, started=started, t_start=t_start)
     _log(f"wrote {', '.join(str(p) for p in paths)} in {time.time() - t_start:.0f} s")
     return 0

@@ -8,8 +8,8 @@ A cell is (noise level, frame count); the noise is ``sigma`` px on each image co
 - ``truth_start``: ``refine.refine`` started at the true shape and poses;
 - ``linear``: the paper's linearisation alone (``linear.solve_linear``), only where it is
   determined (at least ``linear.min_frames()`` frames);
-- ``default``: the default pipeline ``reconstruct.reconstruct`` (no truth), on the first
-  ``n_default`` scenes of the cell (the plan may give it fewer than the others).
+- ``default``: the default pipeline ``reconstruct.reconstruct`` (no truth), on scenes 0, 1, ...
+  of the cell until the required count or the run's deadline (it may get fewer than the others).
 
 Per method and parameter ``ratio = sqrt(mean err^2) / sqrt(mean crlb_var)`` over the scenes the
 method answered; c is taken relative (err / c, var / c^2) so scenes with different chords mix.
@@ -65,24 +65,25 @@ def run_scenes(
     noise: float,
     n_frames: int,
     indices: range,
-    n_default: int,
+    part: str,
     chord: tuple[float, float],
     deadline: float = math.inf,
-    group: str = "accuracy",
 ) -> list[dict[str, Any]]:
     """Per-scene records of one accuracy cell (a pool task).
 
-    The default pipeline runs on scenes with index < ``n_default`` unless the wall clock
-    (``time.time()``) is past ``deadline``; the cheap parts always run.
+    ``part="cheap"``: CRLB, refinement from the truth, linearisation (where determined).
+    ``part="default"``: CRLB and the default pipeline; scenes are skipped once the wall clock
+    (``time.time()``) is past ``deadline``.  Scene ``i`` of a cell is the same scene in both.
     """
     lin_min = linear_min_frames()
     sig_t = math.radians(noise)
     out = []
     for i in indices:
-        t_scene = time.perf_counter()
+        if part == "default" and time.time() > deadline:
+            break
         scene = make(
             seed,
-            group,
+            "accuracy",
             (cell, i),
             n_frames,
             point_sigma=noise,
@@ -100,31 +101,28 @@ def run_scenes(
             var = np.clip(np.diag(cov), 0.0, None) / np.array([shape[0] ** 2, 1.0, 1.0, 1.0])
             rec["crlb_var"] = [float(v) for v in var]
 
-        t0 = time.perf_counter()
-        res = refine(obs, shape, poses, noise, sig_t, covariance=False)
-        est, _ = normalise(res.shape, res.poses)
-        rec["truth_start"] = _errors_list(shape_errors(est, shape))
-        rec["truth_start_converged"] = bool(res.converged)
-        rec["truth_start_s"] = time.perf_counter() - t0
-
-        rec["linear"] = None
-        if n_frames >= lin_min:
-            from curverecon.linear import solve_linear
-
+        if part == "cheap":
             t0 = time.perf_counter()
-            try:
-                with warnings.catch_warnings():
-                    warnings.simplefilter("ignore")
-                    lin = solve_linear(obs)
-                rec["linear"] = _errors_list(shape_errors(lin.shape, shape))
-            except (CurveReconError, ValueError, np.linalg.LinAlgError) as exc:
-                rec["linear_exception"] = str(exc)[:200]
-            rec["linear_s"] = time.perf_counter() - t0
+            res = refine(obs, shape, poses, noise, sig_t, covariance=False)
+            est, _ = normalise(res.shape, res.poses)
+            rec["truth_start"] = _errors_list(shape_errors(est, shape))
+            rec["truth_start_converged"] = bool(res.converged)
+            rec["truth_start_s"] = time.perf_counter() - t0
+            rec["linear"] = None
+            if n_frames >= lin_min:
+                from curverecon.linear import solve_linear
 
-        rec["default"] = None
-        if i < n_default and time.time() > deadline:
-            rec["default_skipped"] = True
-        elif i < n_default:
+                t0 = time.perf_counter()
+                try:
+                    with warnings.catch_warnings():
+                        warnings.simplefilter("ignore")
+                        lin = solve_linear(obs)
+                    rec["linear"] = _errors_list(shape_errors(lin.shape, shape))
+                except (CurveReconError, ValueError, np.linalg.LinAlgError) as exc:
+                    rec["linear_exception"] = str(exc)[:200]
+                rec["linear_s"] = time.perf_counter() - t0
+        else:
+            rec["default"] = None
             t0 = time.perf_counter()
             try:
                 r = reconstruct(obs, point_sigma=noise, tangent_sigma_deg=noise)
@@ -134,7 +132,6 @@ def run_scenes(
             except (CurveReconError, ValueError, np.linalg.LinAlgError) as exc:
                 rec["default_exception"] = str(exc)[:200]
             rec["default_s"] = time.perf_counter() - t0
-        rec["total_s"] = time.perf_counter() - t_scene
         out.append(rec)
     return out
 

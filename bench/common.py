@@ -31,7 +31,6 @@ SUCCESS_DEG = 5.0
 """A reconstruction succeeds when its worst angle error is below this (degrees)."""
 
 GROUPS = {
-    "pilot": 1,
     "accuracy": 2,
     "robustness": 3,
     "stability": 4,

@@ -10,10 +10,9 @@ from typing import Any
 
 import numpy as np
 
-from bench import accuracy, robustness, stability
+from bench import accuracy, plan, robustness, stability
 from bench.common import GROUPS, PARAMETERS, SUCCESS_DEG
 from bench.config import Config
-from bench.plan import Plan
 
 STABILITY_PNG = "stability_histogram.png"
 SCALING_PNG = "scaling.png"
@@ -24,16 +23,17 @@ ACCURACY_PNG = "accuracy_vs_frames.png"
 def summarise(
     cfg: Config,
     results: dict[str, list[dict[str, Any]]],
-    pilot: dict[int, list[dict[str, Any]]],
-    pl: Plan,
     t_speed: float,
     t_experiments: float,
+    available_cpu_s: float,
 ) -> dict[str, Any]:
     """Everything the report needs from the raw per-scene records."""
     cells: dict[tuple[float, int], list[dict[str, Any]]] = {}
     for noise in cfg.noise_levels:
         for n in cfg.frame_counts:
-            cells[(noise, n)] = results.get(f"acc|{noise}|{n}", [])
+            cells[(noise, n)] = results.get(f"acc|{noise}|{n}", []) + results.get(
+                f"accd|{noise}|{n}", []
+            )
     acc_rows = accuracy.summarise(cells)
     head = cells[(cfg.headline_noise, cfg.headline_frames)]
     rob = [robustness.summarise_baseline(head)]
@@ -55,29 +55,47 @@ def summarise(
         hist["linear"][n] = [r["log10_error"] for r in recs]
     all_default = [r for n in cfg.stability_frames for r in results.get(f"stab|{n}", [])]
     stab["default_all"] = stability.summarise_records(all_default, cfg.failure_threshold)
+    req_stab, first = plan.stability_counts(cfg)
+    req_lin = plan.split(cfg.stability_linear_scenes, cfg.stability_linear_frames)
+    per_scene = plan.measured_seconds(results)
     counts = {
-        "accuracy_default_run": {
-            f"{k[0]}|{k[1]}": sum("default_s" in r for r in v) for k, v in cells.items()
+        "accuracy_default": [
+            {
+                "noise": k[0],
+                "n_frames": k[1],
+                "required": cfg.accuracy_default_scenes,
+                "run": sum("default_s" in r for r in v),
+            }
+            for k, v in cells.items()
+        ],
+        "accuracy_cheap_parts": {
+            "required": cfg.accuracy_scenes,
+            "run_min": min(sum("truth_start_s" in r for r in v) for v in cells.values()),
         },
-        "accuracy_default_skipped_deadline": sum(
-            r.get("default_skipped", False) for v in cells.values() for r in v
-        ),
-        "robustness_run": {str(f): len(results.get(f"rob|{f}", [])) for f in cfg.outlier_fractions},
-        "stability_run": {str(n): len(results.get(f"stab|{n}", [])) for n in cfg.stability_frames},
-        "stability_linear_run": {
-            str(n): len(results.get(f"lin|{n}", [])) for n in cfg.stability_linear_frames
-        },
-    }
-    by_frames: dict[int, list[float]] = {}
-    for v in cells.values():
-        for r in v:
-            if "default_s" in r:
-                by_frames.setdefault(r["n_frames"], []).append(r["default_s"])
-    for n in cfg.stability_frames:
-        for r in results.get(f"stab|{n}", []):
-            by_frames.setdefault(n, []).append(r["seconds"])
-    counts["default_seconds_per_scene_measured"] = {
-        str(n): float(np.mean(v)) for n, v in sorted(by_frames.items())
+        "robustness": [
+            {
+                "fraction": f,
+                "required": cfg.robustness_scenes,
+                "run": len(results.get(f"rob|{f}", [])),
+            }
+            for f in cfg.outlier_fractions
+        ],
+        "stability": [
+            {
+                "n_frames": n,
+                "required": req_stab[n],
+                "priority": first.get(n, 0),
+                "run": len(results.get(f"stab|{n}", [])),
+            }
+            for n in cfg.stability_frames
+        ],
+        "stability_linear": [
+            {"n_frames": n, "required": req_lin[n], "run": len(results.get(f"lin|{n}", []))}
+            for n in cfg.stability_linear_frames
+        ],
+        "per_scene_seconds": per_scene,
+        "required_cpu_seconds": plan.required_cpu_seconds(cfg, per_scene),
+        "available_cpu_seconds": available_cpu_s if math.isfinite(available_cpu_s) else None,
     }
     truth_conv = [r.get("truth_start_converged", True) for v in cells.values() for r in v]
     return {
@@ -85,12 +103,8 @@ def summarise(
         "robustness": rob,
         "stability": stab,
         "_histograms": hist,
-        "plan": pl.to_dict(cfg),
         "counts": counts,
         "truth_start_not_converged_rate": float(1.0 - np.mean(truth_conv)) if truth_conv else None,
-        "pilot_seconds": {
-            str(n): [r.get("default_s") for r in recs] for n, recs in sorted(pilot.items())
-        },
         "section_seconds": {"speed": t_speed, "scene_experiments": t_experiments},
     }
 
@@ -122,6 +136,8 @@ def headline(cfg: Config, sections: dict[str, Any]) -> dict[str, Any]:
         "derive_seconds": sp["derive"]["seconds"] if "derive" in sp else None,
         "rmse_over_crlb": ratio,
         "rmse_over_crlb_worst_angle": ratio_angle,
+        "rmse_over_crlb_by_parameter": d["ratio"] if d and d.get("ratio") else None,
+        "headline_scenes": d["n"] if d else 0,
         "success_rate_no_truth": success,
         "noise_free_failure_rate": stab_all.get("failure_rate"),
         "refine_speedup_vs_finite_differences": speedup,
@@ -252,7 +268,13 @@ def _plots(out: Path, cfg: Config, sections: dict[str, Any]) -> list[Path]:
         label="refine from the truth (1000 frames)",
     )
     ax.axhline(0.2, color="tab:red", linestyle="--", linewidth=0.8)
-    ax.text(ax.get_xlim()[0] * 1.1 if sc else 10, 0.21, "0.2 s", color="tab:red", fontsize=8)
+    ax.text(
+        ax.get_xlim()[0] * 1.1 if sc else 10,
+        0.21,
+        "0.2 s (target at 20 frames)",
+        color="tab:red",
+        fontsize=8,
+    )
     ax.yaxis.set_major_formatter(ScalarFormatter())
     ax.yaxis.set_minor_formatter(NullFormatter())
     ax.set_xlabel("frames N")
@@ -279,8 +301,8 @@ def _plots(out: Path, cfg: Config, sections: dict[str, Any]) -> list[Path]:
                     ys.append(m["ratio_worst_angle"])
             if xs:
                 ax.plot(xs, ys, "o-", label=f"{noise:g} px, {noise:g} deg")
-        ax.axhline(1.0, color="0.5", linewidth=0.8)
-        ax.axhline(1.2, color="tab:red", linestyle="--", linewidth=0.8)
+        ax.axhline(1.0, color="0.5", linewidth=0.8, label="the bound")
+        ax.axhline(1.2, color="tab:red", linestyle="--", linewidth=0.8, label="target 1.2 x")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xticks(cfg.frame_counts)
@@ -338,7 +360,8 @@ def _markdown(cfg: Config, sections: dict[str, Any], command: str, started: str)
         "degrees on every tangent angle."
     )
     add("")
-    add(f"- command: `{command}` (`make bench`), configuration `{cfg.name}`, started {started}")
+    make = " (`make bench`)" if cfg.name == "full" else ""
+    add(f"- command: `{command}`{make}, configuration `{cfg.name}`, started {started}")
     add(
         f"- wall time {sections['wall_seconds']:.0f} s (budget {cfg.budget_s:.0f} s) on "
         f"{cfg.workers} worker processes; speed section {sections['section_seconds']['speed']:.0f}"
@@ -587,50 +610,52 @@ def _markdown(cfg: Config, sections: dict[str, Any], command: str, started: str)
             add(f"| {r['n_frames']} | {r['median_s']:.3f} | {r['repeats']} |")
     add("")
 
-    # plan
-    p = sections["plan"]
+    # counts
+    c = sections["counts"]
     add("## Counts: required and run")
     add("")
+    need = c["required_cpu_seconds"]
+    avail = c["available_cpu_seconds"]
     add(
-        f"A pilot measured the default pipeline's per-scene time; the plan had "
-        f"{p['available_cpu_seconds']:.0f} CPU-s for the scene experiments and estimated "
-        f"{p['estimated_cpu_seconds']:.0f}.  Per-scene seconds (pilot): "
-        + ", ".join(
-            f"{k.replace('_', ' ')} {v:.3f}"
-            for k, v in p["per_scene_seconds"].items()
-            if k.startswith("default")
+        "Everything is submitted at its required count in priority order (cheap accuracy parts; "
+        "the headline cell; robustness and the first noise-free 6-frame scenes; the rest, "
+        "interleaved) and a deadline stops starting expensive scenes when the budget is used, so "
+        "the run stays within it; nothing is cut silently.  "
+        + (
+            f"All the required counts would need about {need:.0f} CPU-s "
+            f"({need / cfg.workers / 60:.0f} min on {cfg.workers} cores) at the measured "
+            "per-scene times; "
+            if need
+            else ""
         )
-        + "."
+        + (f"{avail:.0f} CPU-s were available after the speed section." if avail else "")
     )
     add("")
-    c = sections["counts"]
-    add("| experiment | required | planned | run |")
-    add("|---|---|---|---|")
-    for r in p["accuracy_default"]:
-        run = c["accuracy_default_run"][f"{r['noise']}|{r['n_frames']}"]
+    add("| experiment | required | run |")
+    add("|---|---|---|")
+    for r in c["accuracy_default"]:
         add(
             f"| default pipeline, {r['noise']:g} px, {r['n_frames']} frames | {r['required']} | "
-            f"{r['planned']} | {run} |"
+            f"{r['run']} |"
         )
+    ch = c["accuracy_cheap_parts"]
     add(
-        f"| CRLB, refinement from the truth, linearisation: every cell | "
-        f"{cfg.accuracy_scenes} | {cfg.accuracy_scenes} | {cfg.accuracy_scenes} |"
+        "| CRLB, refinement from the truth, linearisation: every cell | "
+        f"{ch['required']} | {ch['run_min']} (fewest of any cell) |"
     )
-    for r in p["robustness"]:
-        add(
-            f"| robustness, {100 * r['fraction']:.0f} % outliers | {r['required']} | "
-            f"{r['planned']} | {c['robustness_run'][str(r['fraction'])]} |"
-        )
-    for r in p["stability"]:
-        add(
-            f"| stability, default, {r['n_frames']} frames | {r['required']} | {r['planned']} | "
-            f"{c['stability_run'][str(r['n_frames'])]} |"
-        )
-    for r in p["stability_linear"]:
-        add(
-            f"| stability, linearisation, {r['n_frames']} frames | {r['required']} | "
-            f"{r['planned']} | {c['stability_linear_run'][str(r['n_frames'])]} |"
-        )
+    for r in c["robustness"]:
+        add(f"| robustness, {100 * r['fraction']:.0f} % outliers | {r['required']} | {r['run']} |")
+    for r in c["stability"]:
+        add(f"| noise-free, default, {r['n_frames']} frames | {r['required']} | {r['run']} |")
+    for r in c["stability_linear"]:
+        add(f"| noise-free, linearisation, {r['n_frames']} frames | {r['required']} | {r['run']} |")
+    add("")
+    add("Measured mean seconds per scene (one worker):")
+    add("")
+    add("| work | s / scene |")
+    add("|---|---|")
+    for k, v in c["per_scene_seconds"].items():
+        add(f"| {k.replace('_', ' ')} | {v:.3f} |")
     add("")
 
     # honest notes
@@ -654,53 +679,50 @@ def honest_notes(cfg: Config, sections: dict[str, Any]) -> list[str]:
     for t in sections["targets"]:
         if t["verdict"] != "PASS":
             notes.append(f"{t['verdict']}: {t['target']} — measured {t['measured'] or 'nothing'}.")
-    p = sections["plan"]
     c = sections["counts"]
-    short = []
-    for r in p["accuracy_default"]:
-        run = c["accuracy_default_run"][f"{r['noise']}|{r['n_frames']}"]
-        if run < r["required"]:
-            short.append(run)
+    per = c["per_scene_seconds"]
+    short = [r["run"] for r in c["accuracy_default"] if r["run"] < r["required"]]
     if short:
-        per = ", ".join(
-            f"{n} frames {v:.2f} s"
-            for n, v in c["default_seconds_per_scene_measured"].items()
-            if int(n) in cfg.frame_counts
+        times = ", ".join(
+            f"{n} frames {per[f'default_{n}_frames']:.2f} s"
+            for n in cfg.frame_counts
+            if f"default_{n}_frames" in per
         )
         notes.append(
             f"The default pipeline ran on fewer than the required {cfg.accuracy_default_scenes} "
-            f"scenes in {len(short)} of {len(p['accuracy_default'])} accuracy cells "
+            f"scenes in {len(short)} of {len(c['accuracy_default'])} accuracy cells "
             f"({min(short)} to {max(short)} scenes; see 'Counts'): at the measured per-scene "
-            f"time ({per}) every cell does not fit the budget."
+            f"time ({times}) not every cell fits the budget."
         )
-    n_stab = sum(int(v) for v in c["stability_run"].values())
+    n_stab = sum(r["run"] for r in c["stability"])
     if n_stab < cfg.stability_scenes:
-        per = ", ".join(
-            f"{k.split('_')[1]} frames {v:.2f} s"
-            for k, v in p["per_scene_seconds"].items()
-            if k.startswith("default_") and int(k.split("_")[1]) in cfg.stability_frames
+        times = ", ".join(
+            f"{n} frames {per[f'noise_free_{n}_frames']:.2f} s"
+            for n in cfg.stability_frames
+            if f"noise_free_{n}_frames" in per
+        )
+        need = sum(
+            r["required"] * per.get(f"noise_free_{r['n_frames']}_frames", math.nan)
+            for r in c["stability"]
         )
         notes.append(
             f"Only {n_stab} of the required {cfg.stability_scenes} noise-free scenes ran through "
-            f"the default pipeline (per-scene time {per}); "
-            f"{cfg.stability_scenes} scenes would need about "
-            f"{cfg.stability_scenes * _mean_stab_time(p, cfg) / cfg.workers / 60:.0f} min on "
-            f"{cfg.workers} cores."
+            f"the default pipeline (per-scene time {times}); all of them would need about "
+            f"{need / cfg.workers / 60:.0f} min on {cfg.workers} cores."
         )
-    for r in p["robustness"]:
-        run = c["robustness_run"][str(r["fraction"])]
-        if run < r["required"]:
+    for r in c["robustness"]:
+        if r["run"] < r["required"]:
             notes.append(
-                f"Robustness with {100 * r['fraction']:.0f} % outliers ran on {run} of the "
+                f"Robustness with {100 * r['fraction']:.0f} % outliers ran on {r['run']} of the "
                 f"required {r['required']} scenes."
             )
-    if c["accuracy_default_skipped_deadline"]:
+    if c["required_cpu_seconds"] and (short or n_stab < cfg.stability_scenes):
         notes.append(
-            f"{c['accuracy_default_skipped_deadline']} planned default-pipeline scenes were "
-            "skipped at the deadline (the pilot underestimated the cost)."
+            f"All the required counts would need about {c['required_cpu_seconds']:.0f} CPU-s "
+            f"({c['required_cpu_seconds'] / cfg.workers / 60:.0f} min on {cfg.workers} cores) "
+            "at the measured per-scene times, against the "
+            f"{cfg.budget_s / 60:.0f}-minute budget."
         )
-    for note in p["notes"]:
-        notes.append("Plan: " + note + ".")
     skipped = [r for r in sections["speed"]["scaling"] if r.get("skipped")]
     if skipped:
         notes.append(
@@ -736,11 +758,6 @@ def honest_notes(cfg: Config, sections: dict[str, Any]) -> list[str]:
     )
     notes.extend(cfg.extra.get("notes", []))
     return notes
-
-
-def _mean_stab_time(p: dict[str, Any], cfg: Config) -> float:
-    ts = [p["per_scene_seconds"].get(f"default_{n}_frames", 1.0) for n in cfg.stability_frames]
-    return float(np.mean(ts))
 
 
 # ------------------------------------------------------------------------------ writing

@@ -73,21 +73,27 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
         raise CurveReconError("--tangent-sigma must be a positive number")
     obs = load_observations(args.input)
     rec = reconstruct(obs, args.method, args.point_sigma, args.tangent_sigma)
-    out = rec.to_json_dict()
-    for w in rec.warnings:
-        _warn(w)
     curve3d = None
+    curve_warnings: list[str] = []
     if obs.curves is not None:
         try:
             from curverecon.curve3d import reconstruct_curve
         except ImportError:
-            _warn("curverecon.curve3d is not available: curve3d not written")
+            curve_warnings.append("curverecon.curve3d is not available: curve3d not written")
         else:
-            res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
+            from curverecon.reconstruct import resolve_branches_with_curves
+
+            if rec.branch_alternatives is not None:
+                rec, res = resolve_branches_with_curves(rec, obs.curves, reconstruct_curve)
+            else:
+                res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
             curve3d = np.asarray(res.points, float)
-            out["curve3d"] = curve3d.tolist()
-            for w in getattr(res, "warnings", []) or []:
-                _warn(w)
+            curve_warnings.extend(getattr(res, "warnings", []) or [])
+    out = rec.to_json_dict()
+    if curve3d is not None:
+        out["curve3d"] = curve3d.tolist()
+    for w in list(rec.warnings) + curve_warnings:
+        _warn(w)
     write_json(args.output, out)
     if args.plot:
         try:
@@ -144,7 +150,6 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser = build_parser()
         args = parser.parse_args(argv)
         if args.command is None:
-            parser.print_help(sys.stderr)
             raise CurveReconError("a command is required: reconstruct, simulate or match-flat")
         handler = {
             "reconstruct": _cmd_reconstruct,

@@ -135,7 +135,9 @@ def _fit(v: np.ndarray, col_scale: np.ndarray, x0: np.ndarray) -> tuple[np.ndarr
 
     u0 = lean.unknown_columns(*x0) * col_scale
     lam0 = float(np.sign(u0 @ vs) or 1.0) / np.linalg.norm(vs)
-    sol = least_squares(fun, np.append(x0, lam0), jac=jac, method="lm", xtol=1e-15, ftol=1e-15)
+    sol = least_squares(
+        fun, np.append(x0, lam0), jac=jac, method="lm", xtol=1e-15, ftol=1e-15, max_nfev=300
+    )
     return sol.x[:4], float(np.linalg.norm(sol.fun))
 
 
@@ -164,7 +166,9 @@ def _polish(m: np.ndarray, norms: np.ndarray, x0: np.ndarray) -> np.ndarray:
         return ms @ jn
 
     try:
-        sol = least_squares(fun, x0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15)
+        sol = least_squares(
+            fun, x0, jac=jac, method="lm", xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=300
+        )
     except (ValueError, np.linalg.LinAlgError):
         return x0
     if np.all(np.isfinite(sol.x)) and np.linalg.norm(sol.fun) <= np.linalg.norm(fun(x0)):

@@ -25,13 +25,24 @@ from curverecon.errors import CurveReconError
 from curverecon.generated import measurement_model
 from curverecon.observations import Observations, wrap_line_angle
 from curverecon.pose import normalise, poses_from_shape, rotations, translations
-from curverecon.refine import _pose_iterations, refine
-from curverecon.start import robust_start, shape_distance, switch_branches
+from curverecon.refine import optimise_poses, refine
+from curverecon.start import (
+    branch_alternatives,
+    robust_start,
+    shape_distance,
+    switch_branches,
+)
 
 OUTLIER_P = 2e-4
 """False-alarm probability per frame of the outlier test (chi2 with one degree of freedom)."""
 
 ALTERNATIVE_DCHI2 = 4.0
+
+LINEAR_SEED_GAP = 1e-3
+"""The linearisation seeds the search only if its two smallest singular values differ this much."""
+
+BRANCH_DCHI2 = 4.0
+"""A frame whose other branch of (10) fits within this chi2 of its pose is reported ambiguous."""
 """Shapes whose chi2 is within this of the best count as fitting equally well."""
 
 METHODS = ("auto", "linear")
@@ -67,6 +78,11 @@ class Reconstruction:
         method: "auto" or "linear".
         chi2: sum of squared standardised residuals over the inlier frames (None for linear).
         frame_chi2: (N,) per-frame chi2 (None for linear).
+        branch_alternatives: (N, 5) per frame the best pose on another branch of (10) (other
+            sign of tau or another delta) for the same shape, or None.
+        branch_alternative_chi2: (N,) its chi2 (inf if none).  Frames where it is within
+            ``BRANCH_DCHI2`` of ``frame_chi2`` are ambiguous from the end points and tangents
+            alone (``ambiguous_frames``); a curve reconstruction may tell them apart.
     """
 
     shape: np.ndarray
@@ -78,6 +94,8 @@ class Reconstruction:
     method: str = "auto"
     chi2: float | None = None
     frame_chi2: np.ndarray | None = None
+    branch_alternatives: np.ndarray | None = None
+    branch_alternative_chi2: np.ndarray | None = None
 
     @property
     def c(self) -> float:
@@ -108,6 +126,13 @@ class Reconstruction:
         out = measurement_model.points_3d(*self.shape, *self.poses.T)
         return tuple(np.asarray(v, float) for v in out)
 
+    def ambiguous_frames(self) -> list[int]:
+        """Frames whose pose another branch of (10) fits about as well (see the attributes)."""
+        if self.branch_alternative_chi2 is None or self.frame_chi2 is None:
+            return []
+        amb = self.branch_alternative_chi2 - self.frame_chi2 < BRANCH_DCHI2
+        return [int(i) for i in np.flatnonzero(amb)]
+
     def outlier_frames(self) -> list[int]:
         return [int(i) for i in np.flatnonzero(~self.inliers)]
 
@@ -131,6 +156,13 @@ class Reconstruction:
             }
             if self.frame_chi2 is not None:
                 frame["chi2"] = float(self.frame_chi2[i])
+            if self.branch_alternatives is not None:
+                ad, at = self.branch_alternatives[i, :2]
+                frame["branch_alternative"] = {
+                    "delta_deg": math.degrees(ad),
+                    "tau_deg": math.degrees(at),
+                    "chi2": float(self.branch_alternative_chi2[i]),
+                }
             frames.append(frame)
         out = {"format": "curverecon.reconstruction/1", **_shape_dict(self.shape)}
         out["frames"] = frames
@@ -138,6 +170,7 @@ class Reconstruction:
         out["std"] = None if self.std is None else _shape_dict(self.std)
         out["chi2"] = self.chi2
         out["outlier_frames"] = self.outlier_frames()
+        out["ambiguous_frames"] = self.ambiguous_frames()
         out["alternatives"] = [
             {
                 **_shape_dict(alt.shape),
@@ -207,9 +240,16 @@ def _reconstruct_linear(obs: Observations) -> Reconstruction:
 def _linear_seed(obs: Observations) -> list[np.ndarray]:
     """The linearisation's shape as an extra start, when it is determined (enough frames)."""
     try:
-        from curverecon.linear import min_frames, solve_linear
+        from curverecon.linear import frame_matrix, min_frames, solve_linear
 
         if obs.n_frames < max(min_frames(), 45):
+            return []
+        # only when the null space is clearly one-dimensional (near noise-free data): at
+        # realistic noise the linearisation is unusable (NOTES item 5) and costs time
+        m, _ = frame_matrix(obs)
+        with np.errstate(all="ignore"):
+            sv = np.linalg.svd(m / np.linalg.norm(m, axis=0), compute_uv=False)
+        if not (np.all(np.isfinite(sv)) and sv[-1] < LINEAR_SEED_GAP * sv[-2]):
             return []
         lin = solve_linear(obs)
     except (ImportError, CurveReconError, ValueError, np.linalg.LinAlgError):
@@ -255,16 +295,20 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
         fit = refine(obs.subset(inliers), fit.shape, fit.poses[keep], ps, ts, covariance=False)
     final = refine(obs.subset(inliers), fit.shape, fit.poses, ps, ts, covariance=True)
     if not final.converged:
-        warnings.append("the maximum-likelihood refinement did not converge within its limit")
+        warnings.append(
+            "the maximum-likelihood refinement stopped at its iteration limit (slow creep along "
+            "c; the answer is near, not exactly at, the optimum)"
+        )
 
     # Poses of outlier frames: best pose for the final shape (shape held fixed).
     poses = np.array(poses_from_shape(obs, final.shape)[0])
     poses[inliers] = final.poses
     meas = obs.measurements()
-    poses, resid = _pose_iterations(final.shape, poses, meas, w8, 10)
+    poses, resid = optimise_poses(final.shape, poses, meas, w8, 10)
     frame_chi2 = np.sum(resid * resid, axis=1)
     frame_chi2[inliers] = final.frame_chi2
     shape, poses = normalise(final.shape, poses)
+    alt_poses, alt_chi2 = branch_alternatives(obs, shape, poses, w8)
     std = final.std
     if std is None or not np.all(np.isfinite(std)):
         std = None
@@ -306,12 +350,88 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
             f"{len(alternatives) + 1} shapes fit the data about equally well (too few frames to "
             "tell them apart); the best is returned, the others are listed in alternatives"
         )
-    return Reconstruction(
-        shape, poses, std, inliers, alternatives, warnings, "auto", final.chi2, frame_chi2
+    rec = Reconstruction(
+        shape,
+        poses,
+        std,
+        inliers,
+        alternatives,
+        warnings,
+        "auto",
+        final.chi2,
+        frame_chi2,
+        alt_poses,
+        alt_chi2,
     )
+    return rec
 
 
 def angle_residuals_deg(rec: Reconstruction, obs: Observations) -> np.ndarray:
     """(N, 2) tangent-angle residuals of a reconstruction (degrees), for diagnostics."""
     pred = measurement_model.predict(*rec.shape, *rec.poses.T)
     return np.degrees(wrap_line_angle(pred[:, 4:6] - obs.measurements()[:, 4:6]))
+
+
+def resolve_branches_with_curves(
+    rec: Reconstruction, curves: list[np.ndarray], reconstruct_curve
+) -> tuple[Reconstruction, object]:
+    """Use the frames' polylines to choose the pose branch of ambiguous frames.
+
+    The end points and tangents alone fit two branches of (10) about equally well in some frames
+    (``Reconstruction.ambiguous_frames``).  The whole curve tells them apart: frames whose
+    polyline the recovered 3-D curve reprojects badly are switched to their alternative branch
+    when that lowers their reprojection distance.  The shape is kept.
+
+    Args:
+        rec: an "auto" reconstruction with branch alternatives.
+        curves: the frames' polylines (A' to B').
+        reconstruct_curve: ``curverecon.curve3d.reconstruct_curve`` (its result has
+            ``frame_residual``, the per-frame median reprojection distance).
+    Returns:
+        (reconstruction, curve result) - the input reconstruction if nothing changed.
+    """
+    res = reconstruct_curve(curves, rec.rotations(), rec.translations())
+    amb = rec.ambiguous_frames()
+    fr = getattr(res, "frame_residual", None)
+    if not amb or fr is None or rec.branch_alternatives is None:
+        return rec, res
+    fr = np.asarray(fr, float)
+    limit = max(4.0, 4.0 * float(np.median(fr)))
+    cand = [i for i in amb if fr[i] > limit]
+    if not cand:
+        return rec, res
+    poses = np.array(rec.poses)
+    poses[cand] = rec.branch_alternatives[cand]
+    trial = translations(poses), rotations(poses)
+    res2 = reconstruct_curve(curves, trial[1], trial[0])
+    fr2 = np.asarray(getattr(res2, "frame_residual", np.full(len(poses), np.inf)), float)
+    take = [i for i in cand if fr2[i] < 0.5 * fr[i]]
+    if not take:
+        return rec, res
+    poses = np.array(rec.poses)
+    poses[take] = rec.branch_alternatives[take]
+    alt = np.array(rec.branch_alternatives)
+    alt[take] = rec.poses[take]
+    fchi2 = np.array(rec.frame_chi2)
+    achi2 = np.array(rec.branch_alternative_chi2)
+    fchi2[take], achi2[take] = rec.branch_alternative_chi2[take], rec.frame_chi2[take]
+    warnings = list(rec.warnings) + [
+        f"frames {take}: pose branch chosen by the curve (their end points and tangents fit "
+        "two branches about equally well)"
+    ]
+    new = Reconstruction(
+        rec.shape,
+        poses,
+        rec.std,
+        rec.inliers,
+        rec.alternatives,
+        warnings,
+        rec.method,
+        rec.chi2,
+        fchi2,
+        alt,
+        achi2,
+    )
+    if take != cand:
+        res2 = reconstruct_curve(curves, new.rotations(), new.translations())
+    return new, res2

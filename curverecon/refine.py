@@ -10,6 +10,11 @@ The normal matrix is block-arrow shaped: a 4x4 shape block U, per-frame 5x5 pose
 4x5 couplings W_i.  Each step eliminates the pose blocks (batched 5x5 inverses, einsum; no Python
 loop over frames) and solves the 4x4 Schur complement S = U - sum W_i V_i^-1 W_i^T.  The shape's
 covariance is S^-1 at the solution (undamped); at the true parameters it is the Cramer-Rao bound.
+``refine_batch`` runs K independent starts at once (the same algebra with a leading axis).
+
+Known slow case: when a frame has c' close to (or, by noise, above) c, the B' prediction
+c cos(tau) is flat in tau and LM creeps along a curved valley (c against that tau); such fits
+stop at ``max_iter`` close to, not at, the optimum (reported as not converged).
 """
 
 from __future__ import annotations
@@ -91,7 +96,7 @@ def _linearise(shape, poses, meas, weights):
     return r, jg, jl
 
 
-def _pose_iterations(
+def optimise_poses(
     g: np.ndarray, p: np.ndarray, meas: np.ndarray, w8: np.ndarray, n_iter: int
 ) -> tuple[np.ndarray, np.ndarray]:
     """A few Gauss-Newton steps on every frame's pose with the shape held fixed (vectorised).
@@ -119,15 +124,6 @@ def _pose_iterations(
         r = np.where(take[:, None], r_try, r)
         f = np.where(take, f_try, f)
     return p, r
-
-
-def _normal_blocks(r, jg, jl):
-    u = np.einsum("nki,nkj->ij", jg, jg)
-    v = np.einsum("nki,nkj->nij", jl, jl)
-    w = np.einsum("nki,nkj->nij", jg, jl)
-    eg = np.einsum("nki,nk->i", jg, r)
-    el = np.einsum("nki,nk->ni", jl, r)
-    return u, v, w, eg, el
 
 
 def _batched_inverse(v: np.ndarray) -> np.ndarray:

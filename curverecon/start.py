@@ -15,9 +15,17 @@ X = c tan(beta) cos(phi), Y = c tan(beta) sin(phi):
 
 (v = the unit tangent at A' in the paper's frame, P t_A the projected unit tangent), so a whole
 grid of (beta, phi) is one matrix product per (c, alpha).  The per-frame misfit is the minimum
-over the four candidates of r_A^2 + r_B^2 (both scaled by cos/c to be sines of angle errors),
-truncated (robust to outlier frames), summed over frames.  The best distinct grid minima are
-then refined with the full maximum-likelihood fit (poses from the grid's branch per frame).
+over the four candidates of sin^2(angle error at A) + r_B^2 (r_B: misfit of (10) where it has no
+real solution), truncated (robust to outlier frames) and summed over frames: a cost of the shape
+alone, the poses eliminated exactly, zero at the truth on noise-free data.
+
+Pipeline (``search_start``): coarse vectorised grid -> its best local minima -> a few compass
+steps and a batched Levenberg-Marquardt on the same pose-free cost (``local_refine``) -> the best
+distinct shapes get a short batched ML refinement (``refine.refine_batch``, poses from the
+grid's branch per frame) -> the best few are refined to convergence -> every frame tries the
+other branches of (10) with the shape fixed (``switch_branches``) -> random restarts around the
+best three (more with few frames or an implausible chi2).  More than 40 frames: the search runs
+on 40 evenly spread frames and the candidates are refined on all (``robust_start``).
 
 Symmetries let the grid cover alpha, beta in (0, 90) degrees and phi in [0, 180] only
 (docs/CONVENTIONS.md); c = max(c') / cos(gamma) with gamma in [0, 80] degrees.
@@ -32,7 +40,7 @@ from scipy import ndimage
 
 from curverecon.observations import Observations, wrap_angle
 from curverecon.pose import normalise
-from curverecon.refine import RefineResult, _pose_iterations, refine_batch
+from curverecon.refine import RefineResult, optimise_poses, refine_batch
 
 
 @dataclass
@@ -180,6 +188,76 @@ def reduced_cost(
     return np.sum(np.minimum(np.min(r2, axis=2), truncate), axis=1)
 
 
+def _branch_residuals(obs_terms: dict[str, np.ndarray], params: np.ndarray) -> np.ndarray:
+    """(M, N, 4, 2) signed residuals (sine of the angle error at A, misfit of (10) at B) of every
+    branch, for shapes (M, 4) given as (gamma, alpha, beta, phi)."""
+    cp, ua, ub = obs_terms["cp"], obs_terms["ua"], obs_terms["ub"]
+    c = np.max(cp) / np.cos(params[:, 0])
+    tb = np.tan(params[:, 2])
+    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, c, np.tan(params[:, 1]))
+    x = (c * tb * np.cos(params[:, 3]))[:, None, None]
+    y = (c * tb * np.sin(params[:, 3]))[:, None, None]
+    px = cp[:, None] + s * (x * sin_d + y * cos_d)
+    py = x * cos_d - y * sin_d
+    cross = px * ua[:, 1][:, None] - py * ua[:, 0][:, None]
+    r_a = cross / np.sqrt(px * px + py * py + 1e-300)
+    return np.stack([r_a, r_b], axis=-1)
+
+
+def local_refine(
+    obs_terms: dict[str, np.ndarray],
+    params: np.ndarray,
+    truncate: float,
+    n_iter: int = 15,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Levenberg-Marquardt on :func:`reduced_cost` from M starts at once (branch per frame fixed
+    at the current point, frames above the truncation left out, forward-difference Jacobian).
+
+    Returns (params (M, 4), reduced costs (M,)).
+    """
+    x = np.array(params, dtype=float)
+    m = x.shape[0]
+    lo = np.array([0.0, 1e-4, 1e-4, -np.pi])
+    hi = np.array([np.radians(87.0), np.pi / 2 - 1e-4, np.pi / 2 - 1e-4, 2 * np.pi])
+    f = reduced_cost(obs_terms, x, truncate)
+    lam = np.full(m, 1e-2)
+    h = 1e-7
+    rows = np.arange(m)[:, None]
+    for _ in range(n_iter):
+        res = _branch_residuals(obs_terms, x)  # (M, N, 4, 2)
+        r2 = np.sum(res * res, axis=-1)
+        k = np.argmin(r2, axis=2)  # (M, N)
+        cols = np.arange(res.shape[1])[None, :]
+        r = res[rows, cols, k]  # (M, N, 2)
+        w = (np.min(r2, axis=2) < truncate)[..., None]
+        xp = (x[:, None, :] + h * np.eye(4)[None]).reshape(-1, 4)
+        resp = _branch_residuals(obs_terms, xp).reshape(m, 4, *res.shape[1:])
+        rp = resp[
+            np.arange(m)[:, None, None],
+            np.arange(4)[None, :, None],
+            cols[:, None, :],
+            k[:, None, :],
+        ]
+        jac = (rp - r[:, None]) / h * w[:, None]  # (M, 4, N, 2)
+        jac = jac.reshape(m, 4, -1)
+        rv = (r * w).reshape(m, -1)
+        jtj = jac @ np.swapaxes(jac, 1, 2)
+        g = np.einsum("mij,mj->mi", jac, rv)
+        d = np.einsum("mii->mi", jtj)
+        a = jtj + lam[:, None, None] * (d[:, :, None] * np.eye(4) + 1e-12 * np.eye(4))
+        try:
+            step = -np.linalg.solve(a, g[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            break
+        xn = np.clip(x + step, lo, hi)
+        fn = reduced_cost(obs_terms, xn, truncate)
+        better = fn < f
+        x = np.where(better[:, None], xn, x)
+        f = np.where(better, fn, f)
+        lam = np.where(better, lam * 0.3, lam * 10.0)
+    return x, f
+
+
 def pattern_search(
     obs_terms: dict[str, np.ndarray],
     params: np.ndarray,
@@ -244,11 +322,41 @@ def switch_branches(
         sets.append(alt)
     allp = np.concatenate(sets)
     meas = np.tile(obs.measurements(), (len(sets), 1))
-    allp, res = _pose_iterations(shape, allp, meas, w8, 6)
+    allp, res = optimise_poses(shape, allp, meas, w8, 6)
     f = np.sum(res * res, axis=1).reshape(len(sets), n)
     best = np.argmin(f, axis=0)
     best = np.where(f[best, np.arange(n)] < f[0] - 1e-9 * (1.0 + f[0]), best, 0)
     return allp.reshape(len(sets), n, 5)[best, np.arange(n)]
+
+
+def branch_alternatives(
+    obs: Observations, shape: np.ndarray, poses: np.ndarray, w8: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Per frame the best pose on a different branch of (10) than ``poses``, shape fixed.
+
+    "Different": the other sign of tau, or delta more than 5 degrees away.  Returns
+    (poses (N, 5), chi2 (N,)); chi2 is inf where no other branch exists.
+    """
+    c, alpha = float(shape[0]), float(shape[1])
+    t = _frame_terms(obs)
+    cos_d, sin_d, s, _ = branch_candidates(t["cp"], t["ub"], np.array(c), np.array(np.tan(alpha)))
+    n = obs.n_frames
+    sets = []
+    for k in range(4):
+        alt = np.array(poses)
+        alt[:, 0] = np.arctan2(sin_d[:, k], cos_d[:, k])
+        alt[:, 1] = np.arcsin(np.clip(s[:, k], -1.0, 1.0))
+        sets.append(alt)
+    allp = np.concatenate(sets)
+    meas = np.tile(obs.measurements(), (4, 1))
+    allp, res = optimise_poses(shape, allp, meas, w8, 8)
+    f = np.sum(res * res, axis=1).reshape(4, n)
+    allp = allp.reshape(4, n, 5)
+    same_sign = np.sign(allp[:, :, 1]) == np.sign(poses[None, :, 1])
+    close = np.abs(wrap_angle(allp[:, :, 0] - poses[None, :, 0])) < np.radians(5.0)
+    f = np.where(same_sign & close, np.inf, f)
+    best = np.argmin(f, axis=0)
+    return allp[best, np.arange(n)], f[best, np.arange(n)]
 
 
 def _local_minima(cost: np.ndarray, n_best: int) -> list[tuple[int, ...]]:
@@ -323,6 +431,8 @@ def search_start(
         n_final: number of distinct candidates refined to convergence.
         spec: grid resolution.
         extra_shapes: further start shapes (e.g. from the linearisation).
+        n_restarts: random restarts around each of the 3 best candidates (default 32; 96
+            with fewer than 12 frames or when the best chi2 is implausibly high).
     Returns:
         Candidates sorted by robust cost; each ``result.shape`` normalised (alpha, beta in
         [0, pi/2], phi in [0, pi]); ``result.covariance`` is None.
@@ -334,7 +444,7 @@ def search_start(
     spec = spec or GridSpec.for_frames(n)
     cost, axes = grid_costs(obs, spec)
     # Grid minima -> local compass search of the same (pose-free) cost -> best distinct ones.
-    n_search = (2 if few else 2) * n_candidates
+    n_search = (4 if few else 2) * n_candidates
     cells = _local_minima(cost, n_search)
     gam = np.arccos(np.clip(np.max(obs.cp) / axes["c"], 0.0, 1.0))
     x0 = np.array(
@@ -356,7 +466,8 @@ def search_start(
     )
     trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
     terms = _frame_terms(obs)
-    xs, fs = pattern_search(terms, x0, steps, trunc, n_iter=20)
+    xs, fs = pattern_search(terms, x0, steps, trunc, n_iter=8)
+    xs, fs = local_refine(terms, xs, trunc, n_iter=12)
     order = np.argsort(fs, kind="stable")
     starts, grid_cost = [], []
     kept: list[np.ndarray] = []
@@ -412,13 +523,14 @@ def search_start(
     dof = max(n - 4, 1)
     implausible = np.min(chi2) > dof + 5.0 * np.sqrt(2.0 * dof) + 10.0
     if n_restarts is None:
-        n_restarts = 24 if (few or implausible) else 0
+        n_restarts = 96 if (few or implausible) else 32
     if n_restarts > 0:
         rng = np.random.default_rng(12345)
-        top = np.argsort(chi2)[:2]
+        top = np.argsort(chi2)[:3]
         starts = []
+        spread = np.where(np.arange(n_restarts) % 2 == 0, 1.0, 2.5)[:, None]
         for k in top:
-            pert = g[k] + rng.normal(size=(n_restarts, 4)) * np.array(
+            pert = g[k] + spread * rng.normal(size=(n_restarts, 4)) * np.array(
                 [0.04 * g[k][0], 0.06, 0.06, 0.1]
             )
             pert[:, 0] = np.abs(pert[:, 0])
@@ -429,6 +541,13 @@ def search_start(
             meas, starts, sp, point_sigma, tangent_sigma, max_iter=40, drop_factor=3.0
         )
         j = int(np.argmin(chi23))
+        p_sw = switch_branches(obs, g3[j], p3[j], w8)
+        if np.any(p_sw != p3[j]):
+            g4, p4, r4, chi24, it4, conv4 = refine_batch(
+                meas, g3[j : j + 1], p_sw[None], point_sigma, tangent_sigma, max_iter=40
+            )
+            if chi24[0] < chi23[j]:
+                g3[j], p3[j], r3[j], chi23[j], conv3[j] = g4[0], p4[0], r4[0], chi24[0], conv4[0]
         k_worst = int(np.argmax(chi2))
         if chi23[j] < np.min(chi2) - 1e-9 * (1 + np.min(chi2)):
             g[k_worst], p[k_worst], r[k_worst], chi2[k_worst] = g3[j], p3[j], r3[j], chi23[j]
