@@ -76,19 +76,15 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
     curve3d = None
     curve_warnings: list[str] = []
     if obs.curves is not None:
-        try:
-            from curverecon.curve3d import reconstruct_curve
-        except ImportError:
-            curve_warnings.append("curverecon.curve3d is not available: curve3d not written")
-        else:
-            from curverecon.reconstruct import resolve_branches_with_curves
+        from curverecon.curve3d import reconstruct_curve
+        from curverecon.reconstruct import resolve_branches_with_curves
 
-            if rec.branch_alternatives is not None:
-                rec, res = resolve_branches_with_curves(rec, obs.curves, reconstruct_curve)
-            else:
-                res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
-            curve3d = np.asarray(res.points, float)
-            curve_warnings.extend(getattr(res, "warnings", []) or [])
+        if rec.branch_alternatives is not None:
+            rec, res = resolve_branches_with_curves(rec, obs.curves, reconstruct_curve)
+        else:
+            res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
+        curve3d = np.asarray(res.points, float)
+        curve_warnings.extend(res.warnings)
     out = rec.to_json_dict()
     if curve3d is not None:
         out["curve3d"] = curve3d.tolist()
@@ -96,12 +92,19 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
         _warn(w)
     write_json(args.output, out)
     if args.plot:
-        try:
-            from curverecon.plot import plot_reconstruction
-        except ImportError:
-            _warn("curverecon.plot is not available: no plot drawn")
-        else:
-            plot_reconstruction(args.plot, obs.curves, curve3d, rec.rotations(), rec.translations())
+        from curverecon.plot import feature_polyline, plot_reconstruction
+
+        features_only = curve3d is None
+        if features_only:  # no polylines: draw what was reconstructed, A, B and the tangents
+            curve3d = feature_polyline(*(v[0] for v in rec.points_3d()))
+        plot_reconstruction(
+            args.plot,
+            obs.curves,
+            curve3d,
+            rec.rotations(),
+            rec.translations(),
+            features_only=features_only,
+        )
     return 0
 
 
@@ -136,10 +139,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 
 def _cmd_match_flat(args: argparse.Namespace) -> int:
-    try:
-        from curverecon.flat import run_match_flat
-    except ImportError as exc:
-        raise CurveReconError("match-flat is not available (curverecon.flat missing)") from exc
+    from curverecon.flat import run_match_flat
+
     run_match_flat(args.input, args.output)
     return 0
 

@@ -26,6 +26,24 @@ def reproject(curve3d: np.ndarray, rotations: np.ndarray, translations: np.ndarr
     return cam[..., :2]
 
 
+def feature_polyline(
+    a3: np.ndarray, b3: np.ndarray, tangent_a3: np.ndarray, tangent_b3: np.ndarray
+) -> np.ndarray:
+    """(4, 3) polyline of one frame's traceable features: tangent stub at A, A, B, stub at B.
+
+    Used to plot a reconstruction whose input has no polylines.  The stubs are a quarter of |AB|
+    long and point into the curve (input units, the frame's camera coordinates).
+    """
+    a3, b3 = np.asarray(a3, float), np.asarray(b3, float)
+    length = 0.25 * float(np.linalg.norm(b3 - a3))
+
+    def stub(t: np.ndarray) -> np.ndarray:
+        t = np.asarray(t, float)
+        return length * t / np.linalg.norm(t)
+
+    return np.array([a3 + stub(tangent_a3), a3, b3, b3 + stub(tangent_b3)])
+
+
 def _panel_frames(n: int) -> list[int]:
     if n <= MAX_PANELS:
         return list(range(n))
@@ -38,11 +56,15 @@ def plot_reconstruction(
     curve3d: np.ndarray,
     rotations: np.ndarray,
     translations: np.ndarray,
+    *,
+    features_only: bool = False,
 ) -> None:
     """Write a PNG: the curve in 3-D (left) and, per frame, its reprojection over the polyline.
 
     path: output PNG file. polylines: the observed (M_i, 2) polylines per frame, or None (then
     only the reprojection is drawn). curve3d: (K, 3) in frame 0's camera coordinates.
+    features_only: ``curve3d`` is not a recovered curve but the traceable features
+    (see :func:`feature_polyline`): A and B are its second and third points, and the panels say so.
     rotations (N, 3, 3), translations (N, 3): poses, ``X_cam = R_i X_curve + t_i``.
     At most ``MAX_PANELS`` frames are drawn. Uses the Agg backend (no display needed).
     Raises ``CurveReconError`` for inconsistent shapes or an unwritable path.
@@ -76,9 +98,10 @@ def plot_reconstruction(
     gs = fig.add_gridspec(nrows, ncols + 2, width_ratios=[1.6, 0.1] + [1.0] * ncols)
 
     ax3 = fig.add_subplot(gs[:, 0], projection="3d")
+    ia, ib = (1, 2) if features_only else (0, len(x) - 1)
     ax3.plot(x[:, 0], x[:, 1], x[:, 2], color="C0", lw=1.8)
-    ax3.scatter(*x[0], color="C2", s=30, label="A")
-    ax3.scatter(*x[-1], color="C3", s=30, label="B")
+    ax3.scatter(*x[ia], color="C2", s=30, label="A")
+    ax3.scatter(*x[ib], color="C3", s=30, label="B")
     span = float(np.ptp(x, axis=0).max()) or 1.0
     centre = 0.5 * (x.min(axis=0) + x.max(axis=0))
     for setlim, c in zip((ax3.set_xlim, ax3.set_ylim, ax3.set_zlim), centre, strict=True):
@@ -87,7 +110,10 @@ def plot_reconstruction(
     ax3.set_xlabel("x")
     ax3.set_ylabel("y")
     ax3.set_zlabel("z (depth)")
-    ax3.set_title("recovered curve\n(frame 0 camera coordinates)", fontsize=9)
+    what = (
+        "A, B and end tangents\n(no polylines in the input)" if features_only else "recovered curve"
+    )
+    ax3.set_title(f"{what}\n(frame 0 camera coordinates)", fontsize=9)
     ax3.legend(loc="upper left", fontsize=7)
     ax3.tick_params(labelsize=6)
 
@@ -101,8 +127,8 @@ def plot_reconstruction(
                 resid = np.median(distance_to_polyline(proj[i], p)[0])
                 title += f"  (median off {resid:.1f} px)"
         ax.plot(proj[i, :, 0], proj[i, :, 1], color="C1", lw=1.0, label="reprojected")
-        ax.plot(*proj[i, 0], "o", color="C2", ms=3)
-        ax.plot(*proj[i, -1], "o", color="C3", ms=3)
+        ax.plot(*proj[i, ia], "o", color="C2", ms=3)
+        ax.plot(*proj[i, ib], "o", color="C3", ms=3)
         ax.set_aspect("equal", adjustable="datalim")
         ax.invert_yaxis()
         ax.set_title(title, fontsize=8)

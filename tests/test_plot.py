@@ -7,7 +7,13 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from curverecon.errors import CurveReconError
-from curverecon.plot import MAX_PANELS, _panel_frames, plot_reconstruction, reproject
+from curverecon.plot import (
+    MAX_PANELS,
+    _panel_frames,
+    feature_polyline,
+    plot_reconstruction,
+    reproject,
+)
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
@@ -61,3 +67,24 @@ def test_bad_input(tmp_path):
         plot_reconstruction(path, polys[:2], curve0, rots, trans)
     with pytest.raises(CurveReconError, match="cannot write"):
         plot_reconstruction(str(tmp_path / "no" / "dir" / "x.png"), polys, curve0, rots, trans)
+
+
+def test_feature_polyline_geometry():
+    a3, b3 = np.array([0.0, 0.0, 0.0]), np.array([30.0, 40.0, 0.0])  # |AB| = 50
+    ta, tb = np.array([0.0, 0.0, 2.0]), np.array([-3.0, 0.0, 0.0])
+    poly = feature_polyline(a3, b3, ta, tb)
+    np.testing.assert_allclose(poly[1], a3)
+    np.testing.assert_allclose(poly[2], b3)
+    np.testing.assert_allclose(poly[0], [0.0, 0.0, 12.5])  # a quarter of |AB| along t_A
+    np.testing.assert_allclose(poly[3], [30.0 - 12.5, 40.0, 0.0])
+
+
+def test_cli_plot_without_polylines(tmp_path):
+    """`reconstruct --plot` on frames without curves draws A, B and the tangents."""
+    from curverecon.cli import main
+
+    scene, out, png = tmp_path / "s.json", tmp_path / "r.json", tmp_path / "r.png"
+    args = ["simulate", "-o", str(scene), "--frames", "8", "--seed", "3"]
+    assert main(args) == 0
+    assert main(["reconstruct", str(scene), "-o", str(out), "--plot", str(png)]) == 0
+    assert png.read_bytes()[:8] == PNG_MAGIC
