@@ -14,21 +14,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from bezier import bezier as _bezier
 from scipy.spatial import cKDTree
 from scipy.spatial.transform import Rotation
 
 from curverecon.curve3d import CurveResult, coplanarity, reconstruct_curve
 from curverecon.errors import CurveReconError
-
-
-def _bezier(ctrl: np.ndarray, u: np.ndarray) -> np.ndarray:
-    u = u[:, None]
-    return (
-        (1 - u) ** 3 * ctrl[0]
-        + 3 * u * (1 - u) ** 2 * ctrl[1]
-        + 3 * u**2 * (1 - u) * ctrl[2]
-        + u**3 * ctrl[3]
-    )
 
 
 def make_scene(seed: int, n_frames: int, noise: float = 0.0, *, ctrl=None, n_points: int = 400):

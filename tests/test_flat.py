@@ -19,22 +19,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from bezier import bezier as _bezier
 from scipy.spatial.transform import Rotation
 
 from curverecon.errors import CurveReconError
 from curverecon.flat import FORMAT_IN, FORMAT_OUT, match_flat, run_match_flat
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-
-
-def _bezier(ctrl: np.ndarray, u: np.ndarray) -> np.ndarray:
-    u = u[:, None]
-    return (
-        (1 - u) ** 3 * ctrl[0]
-        + 3 * u * (1 - u) ** 2 * ctrl[1]
-        + 3 * u**2 * (1 - u) * ctrl[2]
-        + u**3 * ctrl[3]
-    )
 
 
 def make_flat(seed: int, projection: str, *, n_points: int = 600, n_query: int = 40):

@@ -8,19 +8,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from bezier import bezier as _bezier
 
 from curverecon import polyline as pl
 from curverecon.errors import CurveReconError
-
-
-def _bezier(ctrl: np.ndarray, u: np.ndarray) -> np.ndarray:
-    u = u[:, None]
-    return (
-        (1 - u) ** 3 * ctrl[0]
-        + 3 * u * (1 - u) ** 2 * ctrl[1]
-        + 3 * u**2 * (1 - u) * ctrl[2]
-        + u**3 * ctrl[3]
-    )
 
 
 def _random_polylines(seed: int, n: int, sigma: float, density: float = 1.0):
