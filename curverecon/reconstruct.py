@@ -3,7 +3,9 @@
 ``reconstruct(obs, method="auto")``: robust global start (``start.robust_start``; the
 linearisation seeds it too when it is determined) -> ML refinement over all frames -> outlier test
 (standardised per-frame chi2; the worst frame above the threshold is dropped and the fit redone
-until none is left) -> normalised answer (alpha, beta in [0, 90] deg, phi in [0, 180] deg,
+until none is left) -> with few frames, single frames tried on their other branch of (10) with a
+joint refit (``_flip_ambiguous_frames``: nearby local minima with tau near 0 or phi near 0 or 180
+degrees) -> normalised answer (alpha, beta in [0, 90] deg, phi in [0, 180] deg,
 tau in (-90, 90] deg), the shape's standard deviations from the covariance, and every other shape
 that fits about equally well ("alternatives", e.g. with 4-5 frames).
 
@@ -25,7 +27,7 @@ from curverecon.errors import CurveReconError
 from curverecon.generated import measurement_model
 from curverecon.observations import Observations, wrap_line_angle
 from curverecon.pose import normalise, poses_from_shape, rotations, translations
-from curverecon.refine import optimise_poses, refine
+from curverecon.refine import RefineResult, optimise_poses, refine, refine_batch
 from curverecon.start import (
     branch_alternatives,
     robust_start,
@@ -37,13 +39,20 @@ OUTLIER_P = 2e-4
 """False-alarm probability per frame of the outlier test (chi2 with one degree of freedom)."""
 
 ALTERNATIVE_DCHI2 = 4.0
+"""Shapes whose chi2 is within this of the best count as fitting equally well."""
 
 LINEAR_SEED_GAP = 1e-3
 """The linearisation seeds the search only if its two smallest singular values differ this much."""
 
 BRANCH_DCHI2 = 4.0
 """A frame whose other branch of (10) fits within this chi2 of its pose is reported ambiguous."""
-"""Shapes whose chi2 is within this of the best count as fitting equally well."""
+
+FLIP_DCHI2 = 4.0
+"""Frames whose other branch fits within this chi2 (shape fixed) are tried on it (joint refit)."""
+
+FLIP_MAX_FRAMES = 12
+"""... only with at most this many inlier frames (with more, the others pin the shape and the
+per-frame branch switching of the search suffices; the joint refits would cost time)."""
 
 METHODS = ("auto", "linear")
 
@@ -183,6 +192,29 @@ class Reconstruction:
         return out
 
 
+def _alternatives_warning(
+    shape: np.ndarray, std: np.ndarray | None, alternatives: list[Alternative]
+) -> str:
+    """One line saying how many shapes fit about equally well and whether they really differ.
+
+    Alternatives within two standard deviations (of the best fit's covariance) in every parameter
+    are local optima of the same answer; farther ones mean the frames do not determine the shape.
+    """
+    n = len(alternatives) + 1
+    if std is not None and all(
+        np.all(np.abs(alt.shape - shape) <= 2.0 * std) for alt in alternatives
+    ):
+        return (
+            f"{n} local optima fit the data about equally well but agree within two standard "
+            "deviations; the best is returned, the others are listed in alternatives"
+        )
+    return (
+        f"{n} distinct shapes fit the data about equally well (these frames do not determine the "
+        "shape uniquely; more frames or more varied motion would); the best is returned, the "
+        "others are listed in alternatives"
+    )
+
+
 def _shape_dict(shape: np.ndarray) -> dict:
     c, a, b, p = (float(v) for v in shape)
     return {
@@ -264,6 +296,33 @@ def _threshold(frame_chi2: np.ndarray) -> float:
     return base * scale
 
 
+def _flip_ambiguous_frames(
+    obs: Observations, fit: RefineResult, ps: float, ts: float, w8: np.ndarray, rounds: int = 2
+) -> RefineResult:
+    """Refit with single frames moved to their other branch of (10) where that lowers chi2.
+
+    A frame whose other branch (other sign of tau / other delta) fits about as well for the
+    current shape (within ``FLIP_DCHI2``) can hold the joint fit in a nearby local minimum: e.g.
+    a frame with c' close to c (tau near 0), or phi near 0 or 180 degrees where a single frame's
+    mirror image fits almost as well.  Each such frame is switched in turn (one batched
+    refinement, one start per frame) and the best refit is kept if it lowers chi2.
+    """
+    for _ in range(rounds):
+        alt, alt_chi2 = branch_alternatives(obs, fit.shape, fit.poses, w8)
+        frames = np.flatnonzero(alt_chi2 - fit.frame_chi2 < FLIP_DCHI2)
+        if frames.size == 0:
+            return fit
+        poses = np.repeat(fit.poses[None], frames.size, axis=0)
+        poses[np.arange(frames.size), frames] = alt[frames]
+        shapes = np.repeat(fit.shape[None], frames.size, axis=0)
+        g, p, _, chi2, _, _ = refine_batch(obs, shapes, poses, ps, ts, max_iter=60)
+        k = int(np.argmin(chi2))
+        if not chi2[k] < fit.chi2 - 1e-9 * (1.0 + fit.chi2):
+            return fit
+        fit = refine(obs, g[k], p[k], ps, ts, covariance=True)
+    return fit
+
+
 def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction:
     n = obs.n_frames
     cands = robust_start(obs, ps, ts, extra_shapes=_linear_seed(obs))
@@ -294,6 +353,8 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
         keep = np.arange(idx.size) != j
         fit = refine(obs.subset(inliers), fit.shape, fit.poses[keep], ps, ts, covariance=False)
     final = refine(obs.subset(inliers), fit.shape, fit.poses, ps, ts, covariance=True)
+    if inliers.sum() <= FLIP_MAX_FRAMES:
+        final = _flip_ambiguous_frames(obs.subset(inliers), final, ps, ts, w8)
     if not final.converged:
         warnings.append(
             "the maximum-likelihood refinement stopped at its iteration limit (slow creep along "
@@ -346,10 +407,7 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
         alt_poses[inliers] = alt_poses_in
         alternatives.append(Alternative(alt_shape, alt_poses, alt.chi2, alt.std))
     if alternatives:
-        warnings.append(
-            f"{len(alternatives) + 1} shapes fit the data about equally well (too few frames to "
-            "tell them apart); the best is returned, the others are listed in alternatives"
-        )
+        warnings.append(_alternatives_warning(shape, std, alternatives))
     rec = Reconstruction(
         shape,
         poses,

@@ -12,9 +12,11 @@ loop over frames) and solves the 4x4 Schur complement S = U - sum W_i V_i^-1 W_i
 covariance is S^-1 at the solution (undamped); at the true parameters it is the Cramer-Rao bound.
 ``refine_batch`` runs K independent starts at once (the same algebra with a leading axis).
 
-Known slow case: when a frame has c' close to (or, by noise, above) c, the B' prediction
-c cos(tau) is flat in tau and LM creeps along a curved valley (c against that tau); such fits
-stop at ``max_iter`` close to, not at, the optimum (reported as not converged).
+Damping: Nielsen's update (lambda times max(1/3, 1 - (2 rho - 1)^3) after an accepted step,
+times 4 after a rejected one), so lambda shrinks geometrically while the linear model predicts
+well and the iteration becomes Gauss-Newton near the optimum.  (The update once read
+(rho - 1)^3, which never shrinks lambda: ill-conditioned fits, e.g. a frame with c' close to c
+where the B' prediction c cos(tau) is flat in tau, then crept along the valley to ``max_iter``.)
 """
 
 from __future__ import annotations
@@ -103,19 +105,28 @@ def optimise_poses(
 
     "Embedded point iterations": keeping the poses at their optimum for the current shape makes
     the outer iteration follow the curved valley (c against every tau) in a few steps.  A frame
-    keeps a step only if it lowers that frame's chi2.  Returns (poses, standardised residuals).
+    keeps a step only if it lowers that frame's chi2.  ``g`` is one shape (4,) or one per row of
+    ``p`` (N, 4).  Returns (poses, standardised residuals).
     """
-    r = standardised_residuals(g, p, meas, w8)
+    g = np.asarray(g, float)
+    gargs = list(g.T) if g.ndim == 2 else list(g)  # (N, 4): one shape per row
+
+    def resid(poses):
+        r = measurement_model.predict(*gargs, *poses.T) - meas
+        r[:, 4:6] = wrap_line_angle(r[:, 4:6])
+        return r * w8
+
+    r = resid(p)
     f = np.sum(r * r, axis=1)
     for _ in range(n_iter):
-        pred, _, jl = measurement_model.predict_with_jacobians(*g, *p.T)
+        pred, _, jl = measurement_model.predict_with_jacobians(*gargs, *p.T)
         jl = jl * w8[None, :, None]
         v = np.einsum("nki,nkj->nij", jl, jl)
         v = v + 1e-9 * np.einsum("nii->ni", v)[:, :, None] * np.eye(5)
         el = np.einsum("nki,nk->ni", jl, r)
         dl = -np.einsum("nij,nj->ni", _batched_inverse(v), el)
         p_try = p + dl
-        r_try = standardised_residuals(g, p_try, meas, w8)
+        r_try = resid(p_try)
         f_try = np.sum(r_try * r_try, axis=1)
         take = f_try < f
         if not take.any():
@@ -128,9 +139,11 @@ def optimise_poses(
 
 def _batched_inverse(v: np.ndarray) -> np.ndarray:
     """Inverse of each 5x5 block; nearly singular blocks get a tiny relative ridge."""
-    scale = np.maximum(np.einsum("...ii->...", v), 1e-300)
-    ridge = 1e-13 * scale[..., None, None] * np.eye(v.shape[-1])
-    return np.linalg.inv(v + ridge)
+    m = v.shape[-1]
+    vr = np.array(v, dtype=float, copy=True).reshape(*v.shape[:-2], m * m)
+    diag = vr[..., :: m + 1]  # a view: the diagonal of each block
+    diag += 1e-13 * np.maximum(np.sum(diag, axis=-1), 1e-300)[..., None]
+    return np.linalg.inv(vr.reshape(v.shape))
 
 
 def schur_covariance(jg: np.ndarray, jl: np.ndarray) -> np.ndarray | None:
@@ -175,6 +188,7 @@ def refine_batch(
     drop_factor: float | None = None,
     act_floor: float = 10.0,
     frame_weights: np.ndarray | None = None,
+    drop_after: int = 8,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Levenberg-Marquardt on K independent starts at once (all vectorised, no loop over frames).
 
@@ -182,7 +196,7 @@ def refine_batch(
         obs: observations or (N, 6) measurements.
         shapes: (K, 4) start shapes; poses: (K, N, 5) start poses.
         point_sigma (input units), tangent_sigma (radians): noise of the measurements.
-        drop_factor: after 8 iterations stop starts whose chi2 exceeds
+        drop_factor: after ``drop_after`` iterations stop starts whose chi2 exceeds
             drop_factor * (best chi2 + act_floor) (screening many starts); None keeps all.
         frame_weights: (N,) optional weights of the frames' squared residuals (robust IRLS);
             residuals and chi2 returned are then weighted too.
@@ -203,26 +217,29 @@ def refine_batch(
     done = np.zeros(k, dtype=bool)
     converged = np.zeros(k, dtype=bool)
     iters = np.zeros(k, dtype=int)
-    eye4, eye5 = np.eye(4), np.eye(5)
+    eye4 = np.eye(4)
     for it in range(max_iter):
         act = np.flatnonzero(~done)
         if act.size == 0:
             break
-        if it >= 8 and drop_factor is not None and act.size > 1:
+        if it >= drop_after and drop_factor is not None and act.size > 1:
             # give up on starts far worse than the best one (they are not the answer)
             hopeless = chi2[act] > drop_factor * (np.min(chi2) + act_floor)
             done[act[hopeless]] = True
             act = act[~hopeless]
         iters[act] += 1
-        ga, pa, ra, jga, jla, lama, c2 = (
-            g[act],
-            p[act],
-            r[act],
-            jg[act],
-            jl[act],
-            lam[act],
-            chi2[act],
-        )
+        if act.size == k:  # all active: views, no copies
+            ga, pa, ra, jga, jla, lama, c2 = g, p, r, jg, jl, lam.copy(), chi2.copy()
+        else:
+            ga, pa, ra, jga, jla, lama, c2 = (
+                g[act],
+                p[act],
+                r[act],
+                jg[act],
+                jl[act],
+                lam[act],
+                chi2[act],
+            )
         jgt = np.swapaxes(jga, -1, -2)
         jlt = np.swapaxes(jla, -1, -2)
         u = np.sum(jgt @ jga, axis=1)
@@ -232,12 +249,12 @@ def refine_batch(
         el = (jlt @ ra[..., None])[..., 0]
         du = np.einsum("kii->ki", u)
         dv = np.einsum("knii->kni", v)
-        ud = u + lama[:, None, None] * (
-            du[:, :, None] * eye4 + 1e-12 * np.max(du, axis=1)[:, None, None] * eye4
-        )
-        vd = v + lama[:, None, None, None] * (
-            dv[..., None] * eye5 + 1e-12 * np.max(dv, axis=2)[:, :, None, None] * eye5
-        )
+        ud = u.reshape(-1, 16).copy()
+        ud[:, ::5] += lama[:, None] * (du + 1e-12 * np.max(du, axis=1)[:, None])
+        ud = ud.reshape(u.shape)
+        vd = v.reshape(*v.shape[:2], 25).copy()
+        vd[..., ::6] += lama[:, None, None] * (dv + 1e-12 * np.max(dv, axis=2)[..., None])
+        vd = vd.reshape(v.shape)
         vinv = _batched_inverse(vd)
         y = w @ vinv
         sc = ud - np.sum(y @ np.swapaxes(w, -1, -2), axis=1)
@@ -268,8 +285,11 @@ def refine_batch(
         chi2_new = np.einsum("kna,kna->k", r_new, r_new)
         accept = ok & (chi2_new < c2)
         rho = (c2 - chi2_new) / np.maximum(predicted, 1e-300)
-        factor = np.maximum(1.0 / 3.0, 1.0 - (np.clip(rho, 0.0, 1.0) - 1.0) ** 3)
+        factor = np.maximum(1.0 / 3.0, 1.0 - (2.0 * np.clip(rho, 0.0, 1.0) - 1.0) ** 3)
         lam[act] = np.where(accept, np.maximum(lama * factor, 1e-15), lama * 4.0)
+        if act.size == k and accept.all():
+            g, p, r, jg, jl, chi2 = g_new, p_new, r_new, jg_new, jl_new, chi2_new
+            continue
         acc = act[accept]
         g[acc], p[acc], r[acc] = g_new[accept], p_new[accept], r_new[accept]
         jg[acc], jl[acc], chi2[acc] = jg_new[accept], jl_new[accept], chi2_new[accept]

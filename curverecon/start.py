@@ -24,8 +24,9 @@ steps and a batched Levenberg-Marquardt on the same pose-free cost (``local_refi
 distinct shapes get a short batched ML refinement (``refine.refine_batch``, poses from the
 grid's branch per frame) -> the best few are refined to convergence -> every frame tries the
 other branches of (10) with the shape fixed (``switch_branches``) -> random restarts around the
-best three (more with few frames or an implausible chi2).  More than 40 frames: the search runs
-on 40 evenly spread frames and the candidates are refined on all (``robust_start``).
+best two by robust cost (three, and more restarts, with few frames or an implausible chi2).
+More than 40 frames: the search runs on 40 evenly spread frames and the candidates are refined
+on all (``robust_start``).
 
 Symmetries let the grid cover alpha, beta in (0, 90) degrees and phi in [0, 180] only
 (docs/CONVENTIONS.md); c = max(c') / cos(gamma) with gamma in [0, 80] degrees.
@@ -286,20 +287,31 @@ def pattern_search(
 
 
 def poses_from_branches(obs: Observations, shape: np.ndarray) -> np.ndarray:
-    """(N, 5) poses for a shape: per frame the candidate of (10) that best fits the tangent at A."""
-    c, alpha, beta, phi = (float(v) for v in shape)
+    """(N, 5) poses for a shape: per frame the candidate of (10) that best fits the tangent at A.
+
+    ``shape`` may also be (K, 4): then (K, N, 5) poses, one set per shape (vectorised).
+    """
+    shapes = np.asarray(shape, float)
+    single = shapes.ndim == 1
+    shapes = np.atleast_2d(shapes)
+    c, alpha, beta, phi = (shapes[:, i] for i in range(4))
     t = _frame_terms(obs)
     cp, ua, ub = t["cp"], t["ua"], t["ub"]
-    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, np.array(c), np.array(np.tan(alpha)))
-    x, y = c * np.tan(beta) * np.cos(phi), c * np.tan(beta) * np.sin(phi)
+    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, c, np.tan(alpha))  # (K, N, 4)
+    x = (c * np.tan(beta) * np.cos(phi))[:, None, None]
+    y = (c * np.tan(beta) * np.sin(phi))[:, None, None]
     vx, vy = ua[:, 0][:, None], ua[:, 1][:, None]
     r_a = cp[:, None] * vy + x * (s * sin_d * vy - cos_d * vx) + y * (s * cos_d * vy + sin_d * vx)
-    r_a = r_a / (c * np.sqrt(1 + np.tan(beta) ** 2))
-    k = np.argmin(r_a**2 + r_b**2, axis=1)
-    rows = np.arange(cp.size)
-    delta = np.arctan2(sin_d[rows, k], cos_d[rows, k])
-    tau = np.arcsin(np.clip(s[rows, k], -1.0, 1.0))
-    return np.column_stack([delta, tau, obs.theta, obs.a[:, 0], obs.a[:, 1]])
+    r_a = r_a / (c * np.sqrt(1 + np.tan(beta) ** 2))[:, None, None]
+    k = np.argmin(r_a**2 + r_b**2, axis=2)[..., None]  # (K, N, 1)
+    sin_k, cos_k = np.take_along_axis(sin_d, k, axis=2), np.take_along_axis(cos_d, k, axis=2)
+    delta = np.arctan2(sin_k, cos_k)[..., 0]
+    tau = np.arcsin(np.clip(np.take_along_axis(s, k, axis=2)[..., 0], -1.0, 1.0))
+    rest = np.broadcast_to(
+        np.column_stack([obs.theta, obs.a[:, 0], obs.a[:, 1]]), (shapes.shape[0], cp.size, 3)
+    )
+    out = np.concatenate([delta[..., None], tau[..., None], rest], axis=2)
+    return out[0] if single else out
 
 
 def switch_branches(
@@ -308,25 +320,35 @@ def switch_branches(
     """Per frame, the best of the current pose and the four branches of (10), shape fixed.
 
     Each alternative is polished by a few pose-only Gauss-Newton steps before the comparison.
-    Returns the new (N, 5) poses (identical to ``poses`` where nothing fits better).
+    Returns the new (N, 5) poses (identical to ``poses`` where nothing fits better).  Also
+    vectorised over candidates: shapes (K, 4) and poses (K, N, 5) give (K, N, 5).
     """
-    c, alpha = float(shape[0]), float(shape[1])
+    shapes = np.asarray(shape, float)
+    single = shapes.ndim == 1
+    shapes = np.atleast_2d(shapes)  # (K, 4)
+    poses = np.asarray(poses, float).reshape(shapes.shape[0], -1, 5)  # (K, N, 5)
+    kk, n = poses.shape[:2]
     t = _frame_terms(obs)
-    cos_d, sin_d, s, _ = branch_candidates(t["cp"], t["ub"], np.array(c), np.array(np.tan(alpha)))
-    n = obs.n_frames
+    cos_d, sin_d, s, _ = branch_candidates(
+        t["cp"], t["ub"], shapes[:, 0], np.tan(shapes[:, 1])
+    )  # (K, N, 4)
     sets = [poses]
     for k in range(4):
         alt = np.array(poses)
-        alt[:, 0] = np.arctan2(sin_d[:, k], cos_d[:, k])
-        alt[:, 1] = np.arcsin(np.clip(s[:, k], -1.0, 1.0))
+        alt[..., 0] = np.arctan2(sin_d[..., k], cos_d[..., k])
+        alt[..., 1] = np.arcsin(np.clip(s[..., k], -1.0, 1.0))
         sets.append(alt)
-    allp = np.concatenate(sets)
-    meas = np.tile(obs.measurements(), (len(sets), 1))
-    allp, res = optimise_poses(shape, allp, meas, w8, 6)
-    f = np.sum(res * res, axis=1).reshape(len(sets), n)
-    best = np.argmin(f, axis=0)
-    best = np.where(f[best, np.arange(n)] < f[0] - 1e-9 * (1.0 + f[0]), best, 0)
-    return allp.reshape(len(sets), n, 5)[best, np.arange(n)]
+    allp = np.stack(sets, axis=1).reshape(-1, 5)  # (K * 5 * N, 5)
+    meas = np.tile(obs.measurements(), (kk * len(sets), 1))
+    rows_shape = np.repeat(shapes, len(sets) * n, axis=0)
+    allp, res = optimise_poses(rows_shape, allp, meas, w8, 6)
+    f = np.sum(res * res, axis=1).reshape(kk, len(sets), n)
+    allp = allp.reshape(kk, len(sets), n, 5)
+    ki, ni = np.arange(kk)[:, None], np.arange(n)[None, :]
+    best = np.argmin(f, axis=1)  # (K, N)
+    best = np.where(f[ki, best, ni] < f[:, 0] - 1e-9 * (1.0 + f[:, 0]), best, 0)
+    out = allp[ki, best, ni]
+    return out[0] if single else out
 
 
 def branch_alternatives(
@@ -392,7 +414,7 @@ def robust_start(
     cands = search_start(obs.subset(idx), point_sigma, tangent_sigma, **kwargs)
     w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / tangent_sigma] * 2)
     shapes = np.array([c.result.shape for c in cands])
-    poses = np.array([switch_branches(obs, s, poses_from_branches(obs, s), w8) for s in shapes])
+    poses = switch_branches(obs, shapes, poses_from_branches(obs, shapes), w8)
     g, p, r, chi2, iters, conv = refine_batch(
         obs.measurements(), shapes, poses, point_sigma, tangent_sigma, max_iter=60
     )
@@ -417,6 +439,7 @@ def search_start(
     spec: GridSpec | None = None,
     extra_shapes: list[np.ndarray] | None = None,
     n_restarts: int | None = None,
+    n_restart_centres: int | None = None,
 ) -> list[Candidate]:
     """Refined candidates from the global grid search, best (lowest robust cost) first.
 
@@ -431,8 +454,10 @@ def search_start(
         n_final: number of distinct candidates refined to convergence.
         spec: grid resolution.
         extra_shapes: further start shapes (e.g. from the linearisation).
-        n_restarts: random restarts around each of the 3 best candidates (default 32; 96
+        n_restarts: random restarts around each of the best candidates (default 32; 96
             with fewer than 12 frames or when the best chi2 is implausibly high).
+        n_restart_centres: around how many of the best candidates (by robust cost) the random
+            restarts are drawn (default 2; 3 with fewer than 12 frames or an implausible chi2).
     Returns:
         Candidates sorted by robust cost; each ``result.shape`` normalised (alpha, beta in
         [0, pi/2], phi in [0, pi]); ``result.covariance`` is None.
@@ -467,7 +492,7 @@ def search_start(
     trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
     terms = _frame_terms(obs)
     xs, fs = pattern_search(terms, x0, steps, trunc, n_iter=8)
-    xs, fs = local_refine(terms, xs, trunc, n_iter=12)
+    xs, fs = local_refine(terms, xs, trunc, n_iter=12 if few else 8)
     order = np.argsort(fs, kind="stable")
     starts, grid_cost = [], []
     kept: list[np.ndarray] = []
@@ -481,7 +506,7 @@ def search_start(
         starts.append(np.array([np.max(obs.cp) / np.cos(gm), al, be, ph]))
         grid_cost.append(float(fs[i]))
     shapes = np.array(starts)
-    poses = np.array([poses_from_branches(obs, s) for s in shapes])
+    poses = poses_from_branches(obs, shapes)
     meas = obs.measurements()
     g, p, r, chi2, _, _ = refine_batch(
         meas, shapes, poses, point_sigma, tangent_sigma, max_iter=15, drop_factor=3.0
@@ -502,7 +527,7 @@ def search_start(
     # Branch switching: a frame may sit on the wrong solution of (10) (sign of tau, root);
     # try every branch per frame with the shape fixed and refit where that helps.
     w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / tangent_sigma] * 2)
-    p_sw = np.array([switch_branches(obs, g[k], p[k], w8) for k in range(len(g))])
+    p_sw = switch_branches(obs, g, p, w8)
     changed = np.any(p_sw != p, axis=(1, 2))
     if changed.any():
         g2, p2, r2, chi22, it2, conv2 = refine_batch(
@@ -525,8 +550,13 @@ def search_start(
     if n_restarts is None:
         n_restarts = 96 if (few or implausible) else 32
     if n_restarts > 0:
+        # ranked by the robust cost (as the candidates are): with outlier frames the raw chi2
+        # can prefer a wrong shape that spreads the outliers' misfit over all frames
+        rc = np.array([robust_cost(f) for f in np.sum(r * r, axis=2)])
         rng = np.random.default_rng(12345)
-        top = np.argsort(chi2)[:3]
+        if n_restart_centres is None:
+            n_restart_centres = 3 if (few or implausible) else 2
+        top = np.argsort(rc, kind="stable")[:n_restart_centres]
         starts = []
         spread = np.where(np.arange(n_restarts) % 2 == 0, 1.0, 2.5)[:, None]
         for k in top:
@@ -536,20 +566,29 @@ def search_start(
             pert[:, 0] = np.abs(pert[:, 0])
             starts.append(pert)
         starts = np.concatenate(starts)
-        sp = np.array([poses_from_branches(obs, st) for st in starts])
+        sp = poses_from_branches(obs, starts)
         g3, p3, r3, chi23, it3, conv3 = refine_batch(
-            meas, starts, sp, point_sigma, tangent_sigma, max_iter=40, drop_factor=3.0
+            meas,
+            starts,
+            sp,
+            point_sigma,
+            tangent_sigma,
+            max_iter=40,
+            drop_factor=3.0,
         )
-        j = int(np.argmin(chi23))
+        rc3 = np.array([robust_cost(f) for f in np.sum(r3 * r3, axis=2)])
+        j = int(np.argmin(rc3))
         p_sw = switch_branches(obs, g3[j], p3[j], w8)
         if np.any(p_sw != p3[j]):
             g4, p4, r4, chi24, it4, conv4 = refine_batch(
                 meas, g3[j : j + 1], p_sw[None], point_sigma, tangent_sigma, max_iter=40
             )
-            if chi24[0] < chi23[j]:
+            rc4 = robust_cost(np.sum(r4[0] * r4[0], axis=1))
+            if rc4 < rc3[j]:
                 g3[j], p3[j], r3[j], chi23[j], conv3[j] = g4[0], p4[0], r4[0], chi24[0], conv4[0]
-        k_worst = int(np.argmax(chi2))
-        if chi23[j] < np.min(chi2) - 1e-9 * (1 + np.min(chi2)):
+                rc3[j] = rc4
+        k_worst = int(np.argmax(rc))
+        if rc3[j] < np.min(rc) - 1e-9 * (1 + np.min(rc)):
             g[k_worst], p[k_worst], r[k_worst], chi2[k_worst] = g3[j], p3[j], r3[j], chi23[j]
             iters[k_worst], conv[k_worst] = it3[j], conv3[j]
     out = []

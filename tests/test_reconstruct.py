@@ -31,6 +31,23 @@ def test_noise_free_six_frames_exact(seed):
     assert np.allclose(rel[:, 2], sign * true_rel[:, 2], atol=1e-6)
 
 
+@pytest.mark.parametrize(
+    "seed",
+    [
+        1086,  # a frame with c'/c = 0.992 (tau ~ 7 deg): the fit used to creep along c
+        1160,  # ill-conditioned: used to stop at the iteration limit (chi2 ~ 6e-12)
+        1117,  # phi ~ 0.6 deg: one frame's mirror pose is a nearby local minimum
+        1165,  # phi ~ 179.4 deg, several frames with tau near 0 (wrong sign of tau in one)
+    ],
+)
+def test_noise_free_ill_conditioned_scenes_are_exact(seed):
+    sc = make_scene(np.random.default_rng(seed), 6)
+    rec = reconstruct(sc.observations)
+    assert _rel_err(rec.shape, sc.truth.shape) < 1e-9
+    assert rec.chi2 < 1e-16
+    assert not any("iteration limit" in w for w in rec.warnings)
+
+
 def test_noisy_twenty_frames_without_truth():
     sc = make_scene(np.random.default_rng(7), 20, 1.0, 1.0)
     rec = reconstruct(sc.observations, point_sigma=1.0, tangent_sigma_deg=1.0)
@@ -128,3 +145,16 @@ def test_curves_choose_the_branch_of_ambiguous_frames():
     assert np.array_equal(changed, switchable)
     assert np.all(res.frame_residual[switchable] == 1)
     assert np.array_equal(new.shape, rec.shape)
+
+
+def test_alternatives_warning_says_whether_they_differ():
+    """Alternatives within 2 std are 'local optima of the same answer'; farther ones are not."""
+    from curverecon.reconstruct import Alternative, _alternatives_warning
+
+    best = np.array([200.0, 0.5, 0.7, 1.0])
+    std = np.array([2.0, 0.01, 0.01, 0.01])
+    near = Alternative(best + np.array([3.0, 0.015, -0.01, 0.0]), np.zeros((4, 5)), 5.0, std)
+    far = Alternative(best + np.array([0.0, 0.3, 0.0, 0.0]), np.zeros((4, 5)), 5.0, std)
+    assert "agree within two standard deviations" in _alternatives_warning(best, std, [near])
+    assert "distinct shapes" in _alternatives_warning(best, std, [near, far])
+    assert "distinct shapes" in _alternatives_warning(best, None, [near])

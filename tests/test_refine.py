@@ -83,3 +83,16 @@ def test_crlb_shrinks_with_frames(n):
     if n == 60:
         b20 = crlb(shape, poses[:20], 1.0, np.radians(1.0))
         assert np.all(b < b20)
+
+
+def test_damping_decreases_on_good_steps_near_degenerate_frame():
+    """Noise-free, a frame with c' close to c (tau ~ 7 deg, B'x flat in tau): LM must shrink its
+    damping after successful steps and converge quadratically, not creep to the iteration limit."""
+    sc = make_scene(np.random.default_rng(1086), 6)
+    shape, poses = canonical_parameters(sc.truth)
+    assert np.max(sc.observations.cp / shape[0]) > 0.99
+    s0, p0 = _perturb(shape, poses, np.random.default_rng(3), 0.2)
+    res = refine(sc.observations, s0, p0)
+    assert res.converged and res.iterations < 60
+    assert res.chi2 < 1e-18
+    assert np.allclose(res.shape, shape, rtol=1e-10, atol=1e-10)
