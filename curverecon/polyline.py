@@ -65,9 +65,15 @@ def resample(points: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
     return np.column_stack([np.interp(t, s, points[:, 0]), np.interp(t, s, points[:, 1])]), t
 
 
-def _end_fit(points: np.ndarray, s: np.ndarray, fit_length: float, degree: int) -> np.ndarray:
-    """Unit tangent at points[0], pointing into the curve: derivative at s = 0 of a polynomial fit
-    of x(s), y(s) against chord arc length over the stretch s <= fit_length."""
+def _end_fit(
+    points: np.ndarray, s: np.ndarray, fit_length: float, degree: int
+) -> tuple[np.ndarray, float]:
+    """Tangent at points[0], pointing into the curve, from a polynomial fit of x(s), y(s) against
+    chord arc length over the stretch s <= fit_length.
+
+    Returns ``(unit tangent, angle standard deviation per pixel of noise)`` (radians / pixel): the
+    least-squares slope variance, sigma^2 [(V^T V)^-1]_11, over the slope's length.
+    """
     n_min = degree + 3
     n = max(int(np.searchsorted(s, fit_length, side="right")), n_min)
     n = min(n, len(points))
@@ -81,21 +87,55 @@ def _end_fit(points: np.ndarray, s: np.ndarray, fit_length: float, degree: int) 
     if not norm > 0:
         d = points[n - 1] - points[0]
         norm = float(np.hypot(*d))
-    return d / norm
+    sd_per_px = float(np.sqrt(np.linalg.inv(v.T @ v)[1, 1]) / norm) if deg >= 1 else np.inf
+    return d / norm, sd_per_px
 
 
-def default_fit_length(points: np.ndarray) -> float:
-    """Fit length (pixels) used by :func:`end_tangents` when none is given.
+#: Confidence-interval half-width (in standard deviations) of the adaptive fit length.
+ICI_GAMMA = 2.0
+#: Noise floor (pixels) of the adaptive fit length: float rounding and sub-pixel tracing.
+ICI_NOISE_FLOOR = 0.001
+#: Longest stretch the adaptive fit may use, as a fraction of the arc length.
+ICI_MAX_FRACTION = 0.35
 
-    A fraction of the arc length that grows with the estimated pixel noise (:func:`noise_level`):
-    ``f = clip(0.12 + 0.2 * sigma, 0.12, 0.35)``. Short stretches keep the curvature bias small on
-    clean polylines; noisier polylines need longer stretches to average the noise (the measured
-    optimum moves from ~10 % of the length at 0 px to ~25 % at 0.5 px and ~40 % at 1 px).
+
+def _end_fit_adaptive(points: np.ndarray, s: np.ndarray, sigma: float, degree: int) -> np.ndarray:
+    """Tangent at points[0] with the fit length chosen by intersection of confidence intervals.
+
+    Windows grow geometrically (x1.2) from the fewest points a fit needs up to
+    ``ICI_MAX_FRACTION`` of the arc length.  Each window's tangent angle gets the interval
+    angle +- ICI_GAMMA * sd (sd from the fit, for the pixel noise ``sigma``); the longest window
+    whose interval still meets all shorter windows' intervals is used.  Longer windows average
+    the noise; a window that reaches into curvature the quadratic cannot follow moves the angle
+    out of the shorter windows' intervals and stops the growth (the bias-variance balance of
+    Goldenshluger and Nemirovski's ICI rule).  This matters at foreshortened ends: where the 3-D
+    tangent points nearly along the view, the projected curve turns sharply right at its end,
+    and any fixed fraction of the length is biased by degrees there.
     """
-    total = float(arc_length(points)[-1])
-    sigma = noise_level(points)
-    frac = float(np.clip(0.12 + 0.2 * sigma, 0.12, 0.35))
-    return frac * total
+    n_min = degree + 3
+    h_max = ICI_MAX_FRACTION * float(s[-1])
+    h = float(s[min(n_min, len(s)) - 1])
+    lo, hi = -np.inf, np.inf
+    best: np.ndarray | None = None
+    ref: float | None = None
+    last_n = 0
+    while True:
+        n = min(max(int(np.searchsorted(s, h, side="right")), n_min), len(points))
+        if n != last_n:
+            t, sd_per_px = _end_fit(points, s, float(s[n - 1]), degree)
+            angle = float(np.arctan2(t[1], t[0]))
+            ref = angle if ref is None else ref
+            a = (angle - ref + np.pi) % (2 * np.pi) - np.pi
+            half = ICI_GAMMA * sigma * sd_per_px
+            lo, hi = max(lo, a - half), min(hi, a + half)
+            if lo > hi:
+                break
+            best, last_n = t, n
+        if h >= h_max or n >= len(points):
+            break
+        h = min(1.2 * h, h_max)
+    assert best is not None  # the first window always fits
+    return best
 
 
 def end_tangents(
@@ -111,23 +151,23 @@ def end_tangents(
     length s over the first (last) ``fit_length`` pixels of the curve, and the derivative at the
     end is returned. A quadratic absorbs the curvature at the end (bias grows with the curvature's
     derivative times fit_length squared) while a stretch of many points averages pixel noise (the
-    slope's variance falls like sigma^2 / (L^3 density)). ``fit_length`` defaults to
-    :func:`default_fit_length`: 12 % of the curve's arc length on clean polylines, growing with
-    the estimated pixel noise (22 % at 0.5 px, 32 % at 1 px), and never fewer than ``degree + 3``
-    points. ``python tests/test_polyline.py`` prints the angle error against the fit length: the
-    adaptive default tracks the best fixed fraction at 0, 0.25, 0.5 and 1 px noise.
+    slope's variance falls like sigma^2 / (L^3 density)).  Without ``fit_length`` the length is
+    chosen per end by intersection of confidence intervals (:func:`_end_fit_adaptive`) for the
+    pixel noise estimated from the polyline (:func:`noise_level`, at least ``ICI_NOISE_FLOOR``).
 
     Raises ``CurveReconError`` for fewer than 5 distinct points, NaN, or a degenerate polyline.
     """
     pts = as_polyline(points, name="curve")
-    s = arc_length(pts)
-    if fit_length is None:
-        fit_length = default_fit_length(pts)
-    elif not (np.isfinite(fit_length) and fit_length > 0):
-        raise _error(f"fit_length must be a positive number, got {fit_length!r}")
-    t_a = _end_fit(pts, s, float(fit_length), degree)
     rev = pts[::-1]
-    t_b = _end_fit(rev, arc_length(rev), float(fit_length), degree)
+    if fit_length is None:
+        sigma = max(noise_level(pts), ICI_NOISE_FLOOR)
+        t_a = _end_fit_adaptive(pts, arc_length(pts), sigma, degree)
+        t_b = _end_fit_adaptive(rev, arc_length(rev), sigma, degree)
+        return t_a, t_b
+    if not (np.isfinite(fit_length) and fit_length > 0):
+        raise _error(f"fit_length must be a positive number, got {fit_length!r}")
+    t_a, _ = _end_fit(pts, arc_length(pts), float(fit_length), degree)
+    t_b, _ = _end_fit(rev, arc_length(rev), float(fit_length), degree)
     return t_a, t_b
 
 
