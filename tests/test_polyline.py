@@ -162,3 +162,18 @@ def _study() -> None:  # pragma: no cover - documentation of the fit-length choi
 
 if __name__ == "__main__":  # pragma: no cover
     _study()
+
+
+def test_end_tangent_at_a_sharply_curved_end():
+    """A tight end (20 px radius quarter circle, then 300 px straight): the adaptive fit length
+    must stay on the arc where a fixed 12 % stretch reaches into the straight part (measured:
+    0.1 deg against 11 deg)."""
+    t = np.linspace(0.0, np.pi / 2, 40)
+    arc = 20.0 * np.column_stack([np.sin(t), 1.0 - np.cos(t)])  # leaves A along +x
+    line = arc[-1] + np.column_stack([np.zeros(300), np.linspace(1.0, 300.0, 300)])
+    pts = np.vstack([arc, line])
+    length = float(np.hypot(*np.diff(pts, axis=0).T).sum())
+    fixed, _ = pl.end_tangents(pts, fit_length=0.12 * length)
+    adaptive, _ = pl.end_tangents(pts)
+    assert _angle_deg(fixed, np.array([1.0, 0.0])) > 5.0
+    assert _angle_deg(adaptive, np.array([1.0, 0.0])) < 0.5
