@@ -77,10 +77,19 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
     curve_warnings: list[str] = []
     if obs.curves is not None:
         from curverecon.curve3d import reconstruct_curve
-        from curverecon.reconstruct import resolve_branches_with_curves
+        from curverecon.reconstruct import (
+            refit_branches_with_curves,
+            resolve_branches_with_curves,
+        )
 
         if rec.branch_alternatives is not None:
+            # fixed-shape branch switches first, then the other equally good optima (alternative
+            # shapes, joint refits from the other sign of tau); each change is kept only if the
+            # recovered curve reprojects clearly better (reconstruct.py)
             rec, res = resolve_branches_with_curves(rec, obs.curves, reconstruct_curve)
+            rec, res = refit_branches_with_curves(
+                rec, obs, reconstruct_curve, args.point_sigma, args.tangent_sigma, curve=res
+            )
         else:
             res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
         curve3d = np.asarray(res.points, float)

@@ -207,6 +207,8 @@ def reconstruct_curve(
         kk, u, sn = kk[ok], u[ok], sn[ok]
         order = np.lexsort((u, kk))
         kk, u, sn = kk[order], u[order], sn[order]
+        if kk.size == 0:  # no usable crossing in this frame
+            continue
         # Merge the crossings that pixel noise splits into a tight cluster (wiggles of a noisy
         # polyline near one true crossing): image distance along the line below 4 sigma.
         gap_px = np.diff(u) * view_sin[i]

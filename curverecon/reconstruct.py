@@ -430,15 +430,36 @@ def angle_residuals_deg(rec: Reconstruction, obs: Observations) -> np.ndarray:
     return np.degrees(wrap_line_angle(pred[:, 4:6] - obs.measurements()[:, 4:6]))
 
 
+CURVE_FLIP_DCHI2 = 4.0
+"""Frames whose other branch of (10) fits within this chi2 of their pose are tried on it by the
+curve (``resolve_branches_with_curves``); farther branches are excluded by the end points and
+tangents alone."""
+
+CURVE_FLIP_GAIN = 0.03
+"""A branch switch is kept only if it lowers the total curve reprojection by this fraction."""
+
+CURVE_FLIP_MAX_SWITCHES = 6
+"""At most this many single-frame switches (greedy rounds) per reconstruction."""
+
+
 def resolve_branches_with_curves(
     rec: Reconstruction, curves: list[np.ndarray], reconstruct_curve
 ) -> tuple[Reconstruction, object]:
     """Use the frames' polylines to choose the pose branch of ambiguous frames.
 
     The end points and tangents alone fit two branches of (10) about equally well in some frames
-    (``Reconstruction.ambiguous_frames``).  The whole curve tells them apart: frames whose
-    polyline the recovered 3-D curve reprojects badly are switched to their alternative branch
-    when that lowers their reprojection distance.  The shape is kept.
+    (other branch within ``CURVE_FLIP_DCHI2``, ``Reconstruction.ambiguous_frames``).  The whole
+    curve tells them apart: a frame on the wrong branch makes the recovered 3-D curve reproject
+    badly onto the polylines.  Greedy search: in each round every ambiguous frame is tried on
+    its other branch and the single switch that lowers the total reprojection distance (sum of
+    ``frame_residual`` over the inlier frames) most is kept, if it lowers it by at least
+    ``CURVE_FLIP_GAIN``; repeat until no switch helps.
+
+    The total is used, not the switched frame's own residual, because the curve is built along
+    frame 0's lines of sight: frame 0 always reprojects well, and when frame 0 itself is on the
+    wrong branch it is the *other* frames that reproject badly (switching frame 0 repairs them).
+    The curve stays in frame 0's camera coordinates (with frame 0's chosen pose).  The shape is
+    kept.
 
     Args:
         rec: an "auto" reconstruction with branch alternatives.
@@ -449,21 +470,44 @@ def resolve_branches_with_curves(
         (reconstruction, curve result) - the input reconstruction if nothing changed.
     """
     res = reconstruct_curve(curves, rec.rotations(), rec.translations())
-    amb = rec.ambiguous_frames()
     fr = getattr(res, "frame_residual", None)
-    if not amb or fr is None or rec.branch_alternatives is None:
+    if (
+        fr is None
+        or rec.branch_alternatives is None
+        or rec.branch_alternative_chi2 is None
+        or rec.frame_chi2 is None
+    ):
         return rec, res
-    fr = np.asarray(fr, float)
-    limit = max(4.0, 4.0 * float(np.median(fr)))
-    cand = [i for i in amb if fr[i] > limit]
+    dchi2 = rec.branch_alternative_chi2 - rec.frame_chi2
+    cand = [int(i) for i in np.flatnonzero(np.isfinite(dchi2) & (dchi2 < CURVE_FLIP_DCHI2))]
     if not cand:
         return rec, res
-    poses = np.array(rec.poses)
-    poses[cand] = rec.branch_alternatives[cand]
-    trial = translations(poses), rotations(poses)
-    res2 = reconstruct_curve(curves, trial[1], trial[0])
-    fr2 = np.asarray(getattr(res2, "frame_residual", np.full(len(poses), np.inf)), float)
-    take = [i for i in cand if fr2[i] < 0.5 * fr[i]]
+    inl = np.asarray(rec.inliers, bool)
+
+    def total(r) -> float:
+        f = np.asarray(getattr(r, "frame_residual", None), float)
+        return float(np.sum(f[inl])) if f.shape == inl.shape else np.inf
+
+    search = _coarse(reconstruct_curve)
+    switched = np.zeros(len(rec.poses), bool)
+    best_total = (
+        total(res) if search is reconstruct_curve else total(search(curves, *_rt(rec.poses)))
+    )
+    for _ in range(CURVE_FLIP_MAX_SWITCHES):
+        round_best = None
+        for i in cand:
+            trial = switched.copy()
+            trial[i] = ~trial[i]
+            poses = np.where(trial[:, None], rec.branch_alternatives, rec.poses)
+            t = total(search(curves, *_rt(poses)))
+            if round_best is None or t < round_best[0]:
+                round_best = (t, i)
+        t, i = round_best
+        if not t < (1.0 - CURVE_FLIP_GAIN) * best_total:
+            break
+        switched[i] = ~switched[i]
+        best_total = t
+    take = [int(i) for i in np.flatnonzero(switched)]
     if not take:
         return rec, res
     poses = np.array(rec.poses)
@@ -490,6 +534,165 @@ def resolve_branches_with_curves(
         alt,
         achi2,
     )
-    if take != cand:
-        res2 = reconstruct_curve(curves, new.rotations(), new.translations())
-    return new, res2
+    return new, reconstruct_curve(curves, new.rotations(), new.translations())
+
+
+CURVE_SEARCH_SAMPLES = 60
+"""Curve samples per trial reconstruction during the branch search (the final curve uses the
+default sampling)."""
+
+
+def _rt(poses: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return rotations(poses), translations(poses)
+
+
+def _coarse(reconstruct_curve):
+    """A cheaper variant of ``reconstruct_curve`` for the branch search (fewer samples, no
+    smoothing, fixed dummy end tangents so that the coplanarity check - irrelevant to
+    ``frame_residual`` - does not estimate them from every polyline) when it accepts those
+    keywords; otherwise the callable itself."""
+    import functools
+    import inspect
+
+    try:
+        params = inspect.signature(reconstruct_curve).parameters
+    except (TypeError, ValueError):
+        return reconstruct_curve
+    if {"n_samples", "smooth", "tangents"} <= set(params):
+        dummy = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+        return functools.partial(
+            reconstruct_curve, n_samples=CURVE_SEARCH_SAMPLES, smooth=False, tangents=dummy
+        )
+    return reconstruct_curve
+
+
+CURVE_REFIT_DCHI2 = 4.0
+"""A joint refit with one frame started on its mirrored branch (other sign of tau) is a
+candidate for ``refit_branches_with_curves`` if its chi2 is within this of the answer's."""
+
+CURVE_REFIT_GAIN = 0.2
+"""... and kept only if it lowers the total curve reprojection by this fraction (a larger margin
+than ``CURVE_FLIP_GAIN``: the refit moves the maximum-likelihood answer itself, and small gains
+in the curve's consistency did not mean a better curve in the seeded studies)."""
+
+CURVE_REFIT_ROUNDS = 1
+"""At most this many accepted refits (greedy rounds; a second round changed nothing in the
+seeded studies and costs a batched refinement)."""
+
+
+def refit_branches_with_curves(
+    rec: Reconstruction,
+    obs: Observations,
+    reconstruct_curve,
+    point_sigma: float = 1.0,
+    tangent_sigma_deg: float = 1.0,
+    curve=None,
+) -> tuple[Reconstruction, object]:
+    """Among about equally good maximum-likelihood optima, take the one the curve fits best.
+
+    First the other shapes that fit about equally well (``rec.alternatives``; they usually
+    differ from the answer in the pose branch of several frames at once): if one makes the
+    recovered curve reproject much better (total ``frame_residual`` lower by
+    ``CURVE_REFIT_GAIN``), it is refitted and becomes the answer (the old answer becomes an
+    alternative).  Then joint refits with single frames started on the other sign of tau:
+
+    ``resolve_branches_with_curves`` switches frames with the shape held fixed.  With noisy end
+    points and tangents the maximum-likelihood fit can also have a nearby local optimum in which
+    one frame (often frame 0, whose pose fixes the coordinates of ``curve3d``) has the other sign
+    of tau and the shape and the other poses move a little: its chi2 is about as low, but with the
+    shape held fixed that branch fits badly, so it is not among the branch alternatives.  Here
+    every frame in turn is started on the other sign of tau (delta from (10) and (11) for the
+    current shape) and the shape and all poses are refitted jointly (one batched refinement);
+    refits whose chi2 is within ``CURVE_REFIT_DCHI2`` of the answer's are scored by the total
+    curve reprojection distance (sum of ``frame_residual``), and the best is kept if it lowers
+    that total by at least ``CURVE_REFIT_GAIN``.  Up to ``CURVE_REFIT_ROUNDS`` rounds.
+
+    Only for "auto" reconstructions without outlier frames (otherwise returned unchanged).
+    ``curve``: the curve result for ``rec`` if already computed (saves one reconstruction).
+
+    Returns:
+        (reconstruction, curve result) - the input reconstruction if nothing changed.
+    """
+    from curverecon.generated import frame_equations
+
+    res = curve
+    if res is None:
+        res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
+    if rec.method != "auto" or rec.chi2 is None or not np.all(rec.inliers):
+        return rec, res
+    ps, ts = float(point_sigma), math.radians(tangent_sigma_deg)
+    w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
+    search = _coarse(reconstruct_curve)
+    n = obs.n_frames
+
+    def total(poses: np.ndarray) -> float:
+        f = np.asarray(getattr(search(obs.curves, *_rt(poses)), "frame_residual", None), float)
+        return float(np.sum(f)) if f.shape == (n,) else np.inf
+
+    shape, poses = rec.shape, np.array(rec.poses)
+    best_total = total(poses)
+    fit = None
+    alternatives = list(rec.alternatives)
+    # The other shapes that fit about equally well (``rec.alternatives``, each with its own pose
+    # branches in many frames at once - out of reach of single-frame switches): the curve picks.
+    scored_alts = [(total(a.poses), j) for j, a in enumerate(alternatives)]
+    if scored_alts and min(scored_alts)[0] < (1.0 - CURVE_REFIT_GAIN) * best_total:
+        j = min(scored_alts)[1]
+        trial = refine(obs, alternatives[j].shape, alternatives[j].poses, ps, ts, covariance=True)
+        trial_shape, trial_poses = normalise(trial.shape, trial.poses)
+        t = total(trial_poses)
+        if t < (1.0 - CURVE_REFIT_GAIN) * best_total:
+            alternatives[j] = Alternative(rec.shape, rec.poses, float(rec.chi2), rec.std)
+            fit, shape, poses, best_total = trial, trial_shape, trial_poses, t
+    for _ in range(CURVE_REFIT_ROUNDS):
+        c, alpha, beta, phi = (float(v) for v in shape)
+        with np.errstate(all="ignore"):
+            cos_d, sin_d = frame_equations.pose_from_shape(
+                c, np.tan(alpha), np.tan(beta), phi, obs.cp, obs.dp, obs.ep, -np.sin(poses[:, 1])
+            )
+        delta = np.arctan2(np.broadcast_to(sin_d, (n,)), np.broadcast_to(cos_d, (n,)))
+        frames = np.flatnonzero(np.isfinite(delta))
+        if frames.size == 0:
+            break
+        starts = np.repeat(poses[None], frames.size, axis=0)
+        starts[np.arange(frames.size), frames, 0] = delta[frames]
+        starts[np.arange(frames.size), frames, 1] = -poses[frames, 1]
+        shapes = np.repeat(np.asarray(shape, float)[None], frames.size, axis=0)
+        g, p, _, chi2, _, _ = refine_batch(obs, shapes, starts, ps, ts, max_iter=60)
+        cands = [k for k in range(frames.size) if chi2[k] < rec.chi2 + CURVE_REFIT_DCHI2]
+        scored = [(total(p[k]), k) for k in cands]
+        if not scored:
+            break
+        t, k = min(scored)
+        if not t < (1.0 - CURVE_REFIT_GAIN) * best_total:
+            break
+        trial = refine(obs, g[k], p[k], ps, ts, covariance=True)
+        trial_shape, trial_poses = normalise(trial.shape, trial.poses)
+        t = total(trial_poses)  # the full refinement may move on: check again
+        if not (
+            t < (1.0 - CURVE_REFIT_GAIN) * best_total and trial.chi2 < rec.chi2 + CURVE_REFIT_DCHI2
+        ):
+            break
+        fit, shape, poses, best_total = trial, trial_shape, trial_poses, t
+    if fit is None:
+        return rec, res
+    alt_poses, alt_chi2 = branch_alternatives(obs, shape, poses, w8)
+    std = fit.std if fit.std is not None and np.all(np.isfinite(fit.std)) else rec.std
+    warnings = list(rec.warnings) + [
+        "the curve chose between nearby maximum-likelihood optima (pose branches refitted "
+        f"jointly; chi2 {rec.chi2:.2f} -> {fit.chi2:.2f})"
+    ]
+    new = Reconstruction(
+        shape,
+        poses,
+        std,
+        rec.inliers,
+        alternatives,
+        warnings,
+        rec.method,
+        fit.chi2,
+        fit.frame_chi2,
+        alt_poses,
+        alt_chi2,
+    )
+    return new, reconstruct_curve(obs.curves, new.rotations(), new.translations())

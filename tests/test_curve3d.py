@@ -232,3 +232,16 @@ def _figures() -> None:  # pragma: no cover - the measured figures quoted in the
 
 if __name__ == "__main__":  # pragma: no cover
     _figures()
+
+
+def test_frame_without_any_crossing_is_skipped():
+    """A frame whose polyline no line of sight of frame 0 crosses (here moved far aside, across
+    the projected lines of sight) gives no depth candidate: it must be skipped, not crash."""
+    polys, rots, trans, truth = make_scene(3, 4, 0.0)
+    r = (rots[3] @ rots[0].T)[:, 2]  # frame 0's viewing direction seen in frame 3
+    side = np.array([-r[1], r[0]]) / np.hypot(r[0], r[1])
+    polys[3] = polys[3] + 1e5 * side
+    res = reconstruct_curve(polys, rots, trans)
+    assert np.all(np.isfinite(res.points))
+    assert relative_curve_distance(res.points, truth) < 0.01
+    assert res.frame_residual[3] > 100.0
