@@ -23,6 +23,8 @@ import argparse  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 import warnings  # noqa: E402
+from collections.abc import Callable  # noqa: E402
+from dataclasses import dataclass  # noqa: E402
 from datetime import datetime, timezone  # noqa: E402
 from itertools import zip_longest  # noqa: E402
 from pathlib import Path  # noqa: E402
@@ -32,7 +34,10 @@ from bench import accuracy, plan, report, robustness, speed, stability  # noqa: 
 from bench.common import Task, chunks, machine_info, run_tasks  # noqa: E402
 from bench.config import Config, full, quick  # noqa: E402
 
-REPORT_RESERVE_S = 15.0
+PRIORITY_WEIGHT = 3.0
+"""Share of robustness and of the first noise-free 6-frame scenes against other groups."""
+
+REPORT_RESERVE_S = 20.0
 """Wall time kept back for the summaries, the plots and writing the report."""
 
 
@@ -58,76 +63,115 @@ def run_speed(cfg: Config) -> dict[str, Any]:
     return out
 
 
+@dataclass
+class _Group:
+    """One experiment's scenes: a task per chunk, a floor run early, a weight for the rest."""
+
+    label: str
+    function: Callable[..., list[dict[str, Any]]]
+    args: Callable[[range], tuple]
+    start: int
+    stop: int
+    chunk: int
+    floor: int
+    weight: float
+
+    def tasks(self, lo: int, hi: int) -> list[Task]:
+        lo, hi = self.start + lo, min(self.stop, self.start + hi)
+        return [
+            Task(self.function, self.args(range(lo + r.start, lo + r.stop)), len(r), self.label)
+            for r in chunks(max(0, hi - lo), self.chunk)
+        ]
+
+
 def build_tasks(cfg: Config, deadline: float) -> list[Task]:
-    """Every pool task at its required count, in priority order (``bench.plan``)."""
+    """Every pool task at its required count, in priority order (``bench.plan``).
+
+    Cheap accuracy parts; the headline cell; a floor of every other group (interleaved); then
+    the rest of every group merged by weighted fair queuing (robustness and the first noise-free
+    6-frame scenes weigh ``PRIORITY_WEIGHT``), so a cut at the deadline shortens all groups.
+    """
     seed, chord = cfg.seed, cfg.chord
+    hn, hf = cfg.headline_noise, cfg.headline_frames
     cheap: list[Task] = []
     head: list[Task] = []
-    tier2: list[list[Task]] = []
-    tier3: list[list[Task]] = []
+    groups: list[_Group] = []
     for cell_id, (noise, n) in enumerate(
         (s, n) for s in cfg.noise_levels for n in cfg.frame_counts
     ):
         for r in chunks(cfg.accuracy_scenes, 4 * cfg.chunk):
             args = (seed, cell_id, noise, n, r, "cheap", chord, deadline)
             cheap.append(Task(accuracy.run_scenes, args, len(r), f"acc|{noise}|{n}"))
-        group = [
-            Task(
-                accuracy.run_scenes,
-                (seed, cell_id, noise, n, r, "default", chord, deadline),
-                len(r),
-                f"accd|{noise}|{n}",
-            )
-            for r in chunks(cfg.accuracy_default_scenes, cfg.chunk)
-        ]
-        if (noise, n) == (cfg.headline_noise, cfg.headline_frames):
-            head += group
+        g = _Group(
+            f"accd|{noise}|{n}",
+            accuracy.run_scenes,
+            lambda r, c=cell_id, s=noise, n=n: (seed, c, s, n, r, "default", chord, deadline),
+            0,
+            cfg.accuracy_default_scenes,
+            cfg.chunk,
+            2 * cfg.chunk,
+            1.0,
+        )
+        if (noise, n) == (hn, hf):
+            head += g.tasks(0, g.stop)
         else:
-            tier3.append(group)
+            groups.append(g)
     for fid, frac in enumerate(cfg.outlier_fractions):
-        hn, hf = cfg.headline_noise, cfg.headline_frames
-        tier2.append(
-            [
-                Task(
-                    robustness.run_scenes,
-                    (seed, fid, frac, hn, hf, r, chord, deadline),
-                    len(r),
-                    f"rob|{frac}",
-                )
-                for r in chunks(cfg.robustness_scenes, cfg.chunk)
-            ]
+        groups.append(
+            _Group(
+                f"rob|{frac}",
+                robustness.run_scenes,
+                lambda r, i=fid, f=frac: (seed, i, f, hn, hf, r, chord, deadline),
+                0,
+                cfg.robustness_scenes,
+                cfg.chunk,
+                5 * cfg.chunk,
+                PRIORITY_WEIGHT,
+            )
         )
     required, first = plan.stability_counts(cfg)
     for n, k in required.items():
         k1 = first.get(n, 0)
-        for lo, hi, tier in ((0, k1, tier2), (k1, k, tier3)):
-            tier.append(
-                [
-                    Task(
-                        stability.run_scenes,
-                        (seed, n, range(lo + r.start, lo + r.stop), chord, deadline),
-                        len(r),
+        for lo, hi, w in ((0, k1, PRIORITY_WEIGHT), (k1, k, 1.0)):
+            if hi > lo:
+                floor = 12 * cfg.chunk if w > 1 else (5 * cfg.chunk if lo == 0 else 0)
+                groups.append(
+                    _Group(
                         f"stab|{n}",
+                        stability.run_scenes,
+                        lambda r, n=n: (seed, n, r, chord, deadline),
+                        lo,
+                        hi,
+                        cfg.chunk,
+                        floor,
+                        w,
                     )
-                    for r in chunks(hi - lo, cfg.chunk)
-                ]
-            )
-    for n, k in plan.split(cfg.stability_linear_scenes, cfg.stability_linear_frames).items():
-        tier3.append(
-            [
-                Task(
-                    stability.run_linear_scenes,
-                    (seed, n, r, chord, deadline),
-                    len(r),
-                    f"lin|{n}",
                 )
-                for r in chunks(k, 4 * cfg.chunk)
-            ]
+    for n, k in plan.split(cfg.stability_linear_scenes, cfg.stability_linear_frames).items():
+        groups.append(
+            _Group(
+                f"lin|{n}",
+                stability.run_linear_scenes,
+                lambda r, n=n: (seed, n, r, chord, deadline),
+                0,
+                k,
+                4 * cfg.chunk,
+                4 * cfg.chunk,
+                1.0,
+            )
         )
-    return cheap + head + _interleave(tier2) + _interleave(tier3)
+    floors = [g.tasks(0, g.floor) for g in groups]
+    rest = [g.tasks(g.floor, g.stop - g.start) for g in groups]
+    merged = sorted(
+        ((j + 1) / g.weight, gi, j)
+        for gi, (g, ts) in enumerate(zip(groups, rest, strict=True))
+        for j in range(len(ts))
+    )
+    return cheap + head + _interleave(floors) + [rest[gi][j] for _, gi, j in merged]
 
 
 def _interleave(groups: list[list[Task]]) -> list[Task]:
+    """Round robin over the groups' task lists."""
     return [t for row in zip_longest(*groups) for t in row if t is not None]
 
 
@@ -171,7 +215,9 @@ def main(argv: list[str] | None = None) -> int:
         f"{max(0.0, deadline - time.time()):.0f} s"
     )
     t_exp = time.time()
-    results = run_tasks(build_tasks(cfg, deadline), cfg.workers, "scenes", progress)
+    results = run_tasks(
+        build_tasks(cfg, deadline), cfg.workers, "scenes (stops at the deadline)", progress
+    )
     t_exp = time.time() - t_exp
     _log(f"scene experiments took {t_exp:.0f} s; writing the report")
     sections.update(

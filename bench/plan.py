@@ -6,16 +6,15 @@ stays within the budget whatever the machine's speed; the report then prints, pe
 the required and the run count, the measured per-scene times and the CPU time all the required
 counts would need.  Nothing is cut silently.
 
-Priority (tiers run in this order; inside a tier the groups are interleaved task by task, so a
-cut at the deadline shortens them alike):
+Priority (in this order):
 
 0. the cheap parts of every accuracy scene (CRLB, refinement from the truth, linearisation);
    these ignore the deadline (a few hundredths of a second per scene);
-1. the default pipeline at the headline cell (1 px, 1 deg, 20 frames);
-2. the robustness runs and the first ``stability_target_scenes`` noise-free scenes at the
-   target's frame count (6);
-3. the default pipeline at the other cells, the rest of the noise-free scenes, the
-   linearisation's noise-free scenes.
+1. the default pipeline at the headline cell (1 px, 1 deg, 20 frames), all required scenes;
+2. a floor of every other group (16 scenes per cell, 40 per robustness fraction, 96 noise-free
+   6-frame scenes, 40 at 4 and 5 frames, 32 per linearisation frame count), interleaved;
+3. the rest of every group, merged by weighted fair queuing: robustness and the first
+   ``stability_target_scenes`` noise-free 6-frame scenes weigh 3, the others 1.
 """
 
 from __future__ import annotations
