@@ -26,6 +26,7 @@ from __future__ import annotations
 import sympy as sp
 
 from derivations.codegen.spec import FunctionSpec
+from derivations.construction import rot_x, rot_y
 
 # ---------------------------------------------------------------------------------------------
 # Symbols.  Names are the generated functions' argument names; all are real.
@@ -47,16 +48,7 @@ ALL_PARAMETERS: tuple[sp.Symbol, ...] = GLOBAL_PARAMETERS + LOCAL_PARAMETERS
 # ---------------------------------------------------------------------------------------------
 
 
-def rot_x(angle: sp.Expr) -> sp.Matrix:
-    """R_x(angle): rotation about +x by ``angle`` radians (counter-clockwise seen from +x)."""
-    ca, sa = sp.cos(angle), sp.sin(angle)
-    return sp.Matrix([[1, 0, 0], [0, ca, -sa], [0, sa, ca]])
-
-
-def rot_y(angle: sp.Expr) -> sp.Matrix:
-    """R_y(angle) = [[cos, 0, sin], [0, 1, 0], [-sin, 0, cos]] (CONVENTIONS.md)."""
-    ca, sa = sp.cos(angle), sp.sin(angle)
-    return sp.Matrix([[ca, 0, sa], [0, 1, 0], [-sa, 0, ca]])
+# R_x and R_y are the section-3 construction's own (derivations.construction); theta adds R_z.
 
 
 def rot_z(angle: sp.Expr) -> sp.Matrix:
