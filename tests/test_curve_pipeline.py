@@ -21,21 +21,8 @@ import json
 import numpy as np
 import pytest
 
+from bench.curve_end_to_end import curve_error
 from curverecon.cli import main
-
-
-def _mean_dist(p: np.ndarray, q: np.ndarray) -> float:
-    """Symmetric mean distance between two 3-D polylines (point to segment)."""
-
-    def one_way(a, b):
-        s0, s1 = b[:-1], b[1:]
-        v = s1 - s0
-        l2 = np.maximum((v * v).sum(1), 1e-300)
-        t = np.clip(((a[:, None, :] - s0[None]) * v[None]).sum(2) / l2, 0, 1)
-        proj = s0[None] + t[..., None] * v[None]
-        return np.linalg.norm(a[:, None, :] - proj, axis=2).min(1).mean()
-
-    return 0.5 * (one_way(p, q) + one_way(q, p))
 
 
 @pytest.mark.parametrize(
@@ -52,8 +39,6 @@ def test_curve_within_3_percent_when_frame_zero_starts_on_the_wrong_branch(tmp_p
     assert main(["simulate", "-o", s, "--truth", t, *args, "--with-curve"]) == 0
     assert main(["reconstruct", s, "-o", o]) == 0
     out, truth = json.load(open(o)), json.load(open(t))
-    p, q = np.array(out["curve3d"]), np.array(truth["curve3d"])
-    length = np.linalg.norm(np.diff(q, axis=0), axis=1).sum()
-    err = min(_mean_dist(p, q), _mean_dist(p, q * [1, 1, -1])) / length
+    err = curve_error(np.array(out["curve3d"]), np.array(truth["curve3d"]))
     assert err < 0.03, err
     assert any(w.startswith(warning) for w in out["warnings"]), out["warnings"]
