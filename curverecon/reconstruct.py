@@ -5,9 +5,11 @@ linearisation seeds it too when it is determined) -> ML refinement over all fram
 (standardised per-frame chi2; the worst frame above the threshold is dropped and the fit redone
 until none is left) -> with few frames, single frames tried on their other branch of (10) with a
 joint refit (``_flip_ambiguous_frames``: nearby local minima with tau near 0 or phi near 0 or 180
-degrees) -> normalised answer (alpha, beta in [0, 90] deg, phi in [0, 180] deg,
+degrees; pairs and triples of frames on nearly noise-free data; nothing once the fit is exact)
+-> normalised answer (alpha, beta in [0, 90] deg, phi in [0, 180] deg,
 tau in (-90, 90] deg), the shape's standard deviations from the covariance, and every other shape
-that fits about equally well ("alternatives", e.g. with 4-5 frames).
+that fits about equally well ("alternatives", e.g. with 4-5 frames; the other candidates of the
+search, refined in one batch).
 
 ``method="linear"``: the paper's linearisation alone (``linear.solve_linear``), poses from the
 shape (``pose.poses_from_shape``), no refinement.
@@ -17,6 +19,7 @@ Library units: lengths in input units, angles in radians; files use degrees.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 
@@ -29,6 +32,8 @@ from curverecon.observations import Observations, wrap_line_angle
 from curverecon.pose import normalise, poses_from_shape, rotations, translations
 from curverecon.refine import RefineResult, optimise_poses, refine, refine_batch
 from curverecon.start import (
+    EXACT_COST,
+    NEAR_EXACT_CHI2,
     branch_alternatives,
     robust_start,
     shape_distance,
@@ -53,6 +58,10 @@ FLIP_DCHI2 = 4.0
 FLIP_MAX_FRAMES = 12
 """... only with at most this many inlier frames (with more, the others pin the shape and the
 per-frame branch switching of the search suffices; the joint refits would cost time)."""
+
+FLIP_COMBO_MAX = 64
+"""Nearly noise-free fits (``start.NEAR_EXACT_CHI2``): at most this many pairs and triples of
+frames switched together (``_flip_ambiguous_frames``, one batched refinement)."""
 
 METHODS = ("auto", "linear")
 
@@ -306,21 +315,52 @@ def _flip_ambiguous_frames(
     a frame with c' close to c (tau near 0), or phi near 0 or 180 degrees where a single frame's
     mirror image fits almost as well.  Each such frame is switched in turn (one batched
     refinement, one start per frame) and the best refit is kept if it lowers chi2.
+
+    Nearly noise-free data (chi2 below ``start.NEAR_EXACT_CHI2`` per degree of freedom, not exact):
+    when no single switch helps, pairs and triples of those frames are switched together (at
+    most ``FLIP_COMBO_MAX`` starts, one batch): several frames near tau = 0 can sit on their
+    other branch at once, a local minimum a hair above the exact fit.  Skipped once the fit is
+    exact (``start.EXACT_COST``: no refit can beat it by the required margin).
     """
+    dof = max(obs.n_frames - 4, 1)
     for _ in range(rounds):
+        if fit.chi2 <= EXACT_COST:  # an exact fit: no refit can lower chi2 by the margin below
+            return fit
         alt, alt_chi2 = branch_alternatives(obs, fit.shape, fit.poses, w8)
         frames = np.flatnonzero(alt_chi2 - fit.frame_chi2 < FLIP_DCHI2)
         if frames.size == 0:
             return fit
-        poses = np.repeat(fit.poses[None], frames.size, axis=0)
-        poses[np.arange(frames.size), frames] = alt[frames]
-        shapes = np.repeat(fit.shape[None], frames.size, axis=0)
-        g, p, _, chi2, _, _ = refine_batch(obs, shapes, poses, ps, ts, max_iter=60)
+        combos = [(int(i),) for i in frames]
+        g, p, chi2 = _refit_switched(obs, fit, alt, combos, ps, ts)
         k = int(np.argmin(chi2))
+        if not chi2[k] < fit.chi2 - 1e-9 * (1.0 + fit.chi2) and fit.chi2 < NEAR_EXACT_CHI2 * dof:
+            combos = [c for m in (2, 3) for c in itertools.combinations(frames.tolist(), m)][
+                :FLIP_COMBO_MAX
+            ]
+            if combos:
+                g, p, chi2 = _refit_switched(obs, fit, alt, combos, ps, ts)
+                k = int(np.argmin(chi2))
         if not chi2[k] < fit.chi2 - 1e-9 * (1.0 + fit.chi2):
             return fit
         fit = refine(obs, g[k], p[k], ps, ts, covariance=True)
     return fit
+
+
+def _refit_switched(
+    obs: Observations,
+    fit: RefineResult,
+    alt: np.ndarray,
+    combos: list[tuple[int, ...]],
+    ps: float,
+    ts: float,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Joint refits (one batch) with the frames of each combination on their other branch."""
+    poses = np.repeat(fit.poses[None], len(combos), axis=0)
+    for j, c in enumerate(combos):
+        poses[j, list(c)] = alt[list(c)]
+    shapes = np.repeat(fit.shape[None], len(combos), axis=0)
+    g, p, _, chi2, _, _ = refine_batch(obs, shapes, poses, ps, ts, max_iter=60)
+    return g, p, chi2
 
 
 def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction:
@@ -386,17 +426,29 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
             + ", ".join(str(int(i)) for i in outliers)
         )
 
-    # Alternatives: other refined candidates that fit the inlier frames about as well.
+    # Alternatives: other refined candidates that fit the inlier frames about as well (all
+    # refined in one batch; the covariance only for those kept).
     alternatives: list[Alternative] = []
     sub = obs.subset(inliers)
     seen = [shape]
-    for cand in cands[1:]:
-        r = cand.result
-        if cand.robust_cost - cands[0].robust_cost > 4 * ALTERNATIVE_DCHI2:
-            continue
+    pending = [
+        cand.result
+        for cand in cands[1:]
+        if cand.robust_cost - cands[0].robust_cost <= 4 * ALTERNATIVE_DCHI2
+        and shape_distance(cand.result.shape, shape) >= 0.02
+    ]
+    if pending:
+        g_alt, p_alt, _, _, _, _ = refine_batch(
+            sub,
+            np.array([r.shape for r in pending]),
+            np.array([r.poses[inliers] for r in pending]),
+            ps,
+            ts,
+        )
+    for k, r in enumerate(pending):
         if any(shape_distance(r.shape, s) < 0.02 for s in seen):
             continue
-        alt = refine(sub, r.shape, r.poses[inliers], ps, ts, covariance=True)
+        alt = refine(sub, g_alt[k], p_alt[k], ps, ts, max_iter=0, covariance=True)
         if alt.chi2 - final.chi2 > ALTERNATIVE_DCHI2:
             continue
         alt_shape, alt_poses_in = normalise(alt.shape, alt.poses)

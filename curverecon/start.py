@@ -28,6 +28,11 @@ best two by robust cost (three, and more restarts, with few frames or an implaus
 More than 40 frames: the search runs on 40 evenly spread frames and the candidates are refined
 on all (``robust_start``).
 
+Shortcuts that cannot change the answer's fit: with at least ``EXACT_STAGE_MIN_FRAMES`` frames
+the best ``EXACT_STAGE_STARTS`` grid minima are polished and refined first, and if one of them
+fits exactly (noise-free data) the other minima are not searched; the restarts are skipped when
+the best fit is already exact (``EXACT_COST``: they could not beat it by their margin).
+
 Symmetries let the grid cover alpha, beta in (0, 90) degrees and phi in [0, 180] only
 (docs/CONVENTIONS.md); c = max(c') / cos(gamma) with gamma in [0, 80] degrees.
 """
@@ -43,6 +48,43 @@ from curverecon.observations import Observations, wrap_angle
 from curverecon.pose import normalise
 from curverecon.refine import RefineResult, optimise_poses, refine_batch
 
+EXACT_COST = 1e-9
+"""A (robust) chi2 at or below this is an exact fit: nothing can beat it by the relative 1e-9
+margin the searches require, so the restarts (``search_start``) and the single-frame branch
+flips (``reconstruct._flip_ambiguous_frames``) are skipped."""
+
+CANDIDATES = 16
+"""Grid minima refined briefly (``search_start``) with 12 or more frames."""
+
+CANDIDATES_FEW = 48
+"""... with 5 to 11 frames."""
+
+CANDIDATES_MINIMAL = 16
+"""... with 4 frames (every start fits exactly: the candidates are the exact shapes found)."""
+
+RESTARTS = 32
+"""Random restarts per centre (``search_start``) with 12 or more frames and a plausible chi2."""
+
+RESTARTS_FEW = 96
+"""... with fewer than 12 frames (and a plausible chi2)."""
+
+RESTARTS_IMPLAUSIBLE = 96
+"""... when the best chi2 is implausibly high (outlier frames, a missed minimum) or far below its
+degrees of freedom but not exact (``NEAR_EXACT_CHI2``: nearly noise-free data, where an exact fit
+missed by the search is probably near)."""
+
+NEAR_EXACT_CHI2 = 0.05
+"""chi2 per degree of freedom below which a fit that is not exact counts as nearly noise-free."""
+
+EXACT_STAGE_STARTS = 12
+"""Grid minima searched first for an exact fit (``search_start``)."""
+
+EXACT_STAGE_MIN_FRAMES = 5
+"""... from this many frames on (with 4 frames every start fits exactly: no test of the data)."""
+
+EXACT_REDUCED_COST = 1e-20
+"""A pose-free (reduced) cost at or below this counts as an exact fit of the exact stage."""
+
 
 @dataclass
 class GridSpec:
@@ -54,6 +96,14 @@ class GridSpec:
     n_phi: int = 19
     gamma_max_deg: float = 80.0
     truncate_deg: float = 12.0
+    gamma_power: float = 1.0
+
+    def gammas(self) -> np.ndarray:
+        """The gamma grid (radians): ``gamma_max * (k / (n - 1)) ** gamma_power``; a power above
+        1 packs the values near 0, where the frames with c' close to c (tau near 0) make the
+        cost's minima narrow in gamma."""
+        u = np.linspace(0.0, 1.0, self.n_gamma)
+        return np.radians(self.gamma_max_deg) * u**self.gamma_power
 
     @classmethod
     def for_frames(cls, n_frames: int) -> GridSpec:
@@ -120,7 +170,7 @@ def grid_costs(obs: Observations, spec: GridSpec | None = None) -> tuple[np.ndar
     t = _frame_terms(obs)
     cp, ua, ub = t["cp"], t["ua"], t["ub"]
     n = cp.size
-    gam = np.radians(np.linspace(0.0, spec.gamma_max_deg, spec.n_gamma))
+    gam = spec.gammas()
     alp = np.radians((np.arange(spec.n_alpha) + 0.5) * 90.0 / spec.n_alpha)
     bet = np.radians((np.arange(spec.n_beta) + 0.5) * 90.0 / spec.n_beta)
     phi = np.radians(np.linspace(0.0, 180.0, spec.n_phi))
@@ -445,17 +495,25 @@ def search_start(
 
     The ``n_candidates`` best grid minima (plus ``extra_shapes``) get a short ML refinement,
     all at once (``refine.refine_batch``); the ``n_final`` best distinct ones are refined to
-    convergence.
+    convergence.  Exact stage (at least ``EXACT_STAGE_MIN_FRAMES`` frames): the best
+    ``EXACT_STAGE_STARTS`` grid minima go first; those that polish to a pose-free cost
+    <= ``EXACT_REDUCED_COST`` are refined, and if the best ML chi2 is
+    <= ``EXACT_COST`` their candidates are returned (nothing can fit better; the other shapes
+    returned are other exact fits only); otherwise the search continues as if the stage had not
+    been (the same candidates).
 
     Args:
         obs: observations (at least 4 frames).
         point_sigma, tangent_sigma: noise (input units; radians) used by the ML refinement.
-        n_candidates: number of grid minima refined briefly.
+        n_candidates: number of grid minima refined briefly (default ``CANDIDATES``,
+            ``CANDIDATES_FEW`` below 12 frames, ``CANDIDATES_MINIMAL`` with 4).
         n_final: number of distinct candidates refined to convergence.
         spec: grid resolution.
         extra_shapes: further start shapes (e.g. from the linearisation).
-        n_restarts: random restarts around each of the best candidates (default 32; 96
-            with fewer than 12 frames or when the best chi2 is implausibly high).
+        n_restarts: random restarts around each of the best candidates (default ``RESTARTS``;
+            ``RESTARTS_FEW`` with fewer than 12 frames; ``RESTARTS_IMPLAUSIBLE`` when the best
+            chi2 is implausibly high or nearly but not exactly zero, ``NEAR_EXACT_CHI2``); none
+            once the best fit is exact (``EXACT_COST``).
         n_restart_centres: around how many of the best candidates (by robust cost) the random
             restarts are drawn (default 2; 3 with fewer than 12 frames or an implausible chi2).
     Returns:
@@ -465,11 +523,55 @@ def search_start(
     n = obs.n_frames
     few = n < 12
     if n_candidates is None:
-        n_candidates = 48 if few else 16
+        n_candidates = CANDIDATES_MINIMAL if n <= 4 else (CANDIDATES_FEW if few else CANDIDATES)
     spec = spec or GridSpec.for_frames(n)
-    cost, axes = grid_costs(obs, spec)
-    # Grid minima -> local compass search of the same (pose-free) cost -> best distinct ones.
     n_search = (4 if few else 2) * n_candidates
+    trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
+    terms = _frame_terms(obs)
+    extra = [np.asarray(e, float) for e in (extra_shapes or []) if np.all(np.isfinite(e))]
+
+    def polish(x: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        x, f = pattern_search(terms, x, h, trunc, n_iter=8)
+        return local_refine(terms, x, trunc, n_iter=12 if few else 8)
+
+    def finish(xs: np.ndarray, fs: np.ndarray) -> list[Candidate]:
+        return _refine_candidates(
+            obs,
+            xs,
+            fs,
+            extra,
+            point_sigma,
+            tangent_sigma,
+            n_candidates,
+            n_final,
+            n_restarts,
+            n_restart_centres,
+        )
+
+    # Exact stage (noise-free data, at least EXACT_STAGE_MIN_FRAMES frames): the best
+    # EXACT_STAGE_STARTS grid minima first; if some fit exactly (reduced cost ~0) they alone are
+    # refined, and if the best ML chi2 is <= EXACT_COST nothing can fit better: the search ends
+    # with those exact candidates.  Otherwise the search runs as without this stage (the first
+    # minima's polish is reused).
+    m = EXACT_STAGE_STARTS
+    x0, h0 = _grid_starts(obs, spec, n_search)
+    if n < EXACT_STAGE_MIN_FRAMES or x0.shape[0] <= m:
+        xs, fs = polish(x0, h0)
+        return finish(xs, fs)
+    xs1, fs1 = polish(x0[:m], h0[:m])
+    exact = fs1 <= EXACT_REDUCED_COST
+    if exact.any():
+        out = finish(xs1[exact], fs1[exact])
+        if out and out[0].robust_cost <= EXACT_COST:
+            return out
+    xs2, fs2 = polish(x0[m:], h0[m:])
+    return finish(np.concatenate([xs1, xs2]), np.concatenate([fs1, fs2]))
+
+
+def _grid_starts(obs: Observations, spec: GridSpec, n_search: int) -> tuple[np.ndarray, np.ndarray]:
+    """The ``n_search`` best local minima of the grid as (gamma, alpha, beta, phi) rows, best
+    first, and per row the compass steps (half a grid cell; in gamma the local spacing)."""
+    cost, axes = grid_costs(obs, spec)
     cells = _local_minima(cost, n_search)
     gam = np.arccos(np.clip(np.max(obs.cp) / axes["c"], 0.0, 1.0))
     x0 = np.array(
@@ -477,34 +579,53 @@ def search_start(
             [gam[ig], axes["alpha"][ia], axes["beta"][ib], axes["phi"][ip]]
             for ig, ia, ib, ip in cells
         ]
+    ).reshape(-1, 4)
+    gam_grid = spec.gammas()
+    gam_step = np.diff(gam_grid) if gam_grid.size > 1 else np.radians([spec.gamma_max_deg])
+    gam_step = np.maximum(np.r_[gam_step, gam_step[-1:]], np.r_[gam_step[:1], gam_step])
+    steps = 0.5 * np.column_stack(
+        [
+            gam_step[[ig for ig, _, _, _ in cells]],
+            np.full(len(cells), axes["alpha"][1] - axes["alpha"][0]),
+            np.full(len(cells), axes["beta"][1] - axes["beta"][0]),
+            np.full(len(cells), axes["phi"][1] - axes["phi"][0]),
+        ]
     )
-    steps = (
-        np.array(
-            [
-                np.radians(spec.gamma_max_deg) / max(spec.n_gamma - 1, 1),
-                axes["alpha"][1] - axes["alpha"][0],
-                axes["beta"][1] - axes["beta"][0],
-                axes["phi"][1] - axes["phi"][0],
-            ]
-        )
-        * 0.5
-    )
-    trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
-    terms = _frame_terms(obs)
-    xs, fs = pattern_search(terms, x0, steps, trunc, n_iter=8)
-    xs, fs = local_refine(terms, xs, trunc, n_iter=12 if few else 8)
+    return x0, steps
+
+
+def _refine_candidates(
+    obs: Observations,
+    xs: np.ndarray,
+    fs: np.ndarray,
+    extra: list[np.ndarray],
+    point_sigma: float,
+    tangent_sigma: float,
+    n_candidates: int,
+    n_final: int,
+    n_restarts: int | None,
+    n_restart_centres: int | None,
+) -> list[Candidate]:
+    """The ML part of :func:`search_start` from polished grid minima ``xs`` (gamma, alpha, beta,
+    phi) with reduced costs ``fs``: short batched refinement of the best distinct ones (and
+    ``extra`` shapes), the best distinct refined to convergence, branch switching, restarts."""
+    n = obs.n_frames
+    few = n < 12
     order = np.argsort(fs, kind="stable")
-    starts, grid_cost = [], []
-    kept: list[np.ndarray] = []
-    for i in order:
-        if len(starts) >= n_candidates:
+    # distinct minima (all four parameters within 1e-3 rad of a kept one: the same), best first
+    keep = np.zeros(order.size, bool)
+    for j, i in enumerate(order):
+        if np.count_nonzero(keep) >= n_candidates:
             break
-        if any(np.max(np.abs(xs[i] - k)) < 1e-3 for k in kept):
-            continue
-        kept.append(xs[i])
-        gm, al, be, ph = xs[i]
-        starts.append(np.array([np.max(obs.cp) / np.cos(gm), al, be, ph]))
-        grid_cost.append(float(fs[i]))
+        prev = xs[order[:j][keep[:j]]]
+        keep[j] = prev.size == 0 or np.min(np.max(np.abs(prev - xs[i]), axis=1)) >= 1e-3
+    sel = order[keep]
+    cmax = np.max(obs.cp)
+    starts = [np.array([cmax / np.cos(xs[i, 0]), *xs[i, 1:]]) for i in sel]
+    grid_cost = [float(fs[i]) for i in sel]
+    for e in extra:
+        starts.append(e)
+        grid_cost.append(float("nan"))
     shapes = np.array(starts)
     poses = poses_from_branches(obs, shapes)
     meas = obs.measurements()
@@ -548,11 +669,19 @@ def search_start(
     dof = max(n - 4, 1)
     implausible = np.min(chi2) > dof + 5.0 * np.sqrt(2.0 * dof) + 10.0
     if n_restarts is None:
-        n_restarts = 96 if (few or implausible) else 32
-    if n_restarts > 0:
+        near_exact = np.min(chi2) < NEAR_EXACT_CHI2 * dof  # nearly noise-free: search harder
+        n_restarts = (
+            RESTARTS_IMPLAUSIBLE
+            if implausible or near_exact
+            else (RESTARTS_FEW if few else RESTARTS)
+        )
+    # A restart replaces a candidate only if its robust cost is below the best one's by a
+    # relative 1e-9: impossible (costs are >= 0) once the best fit is exact (noise-free data,
+    # or 4 frames, where every refined start fits exactly) - the restarts are then skipped.
+    rc = np.array([robust_cost(f) for f in np.sum(r * r, axis=2)])
+    if n_restarts > 0 and np.min(rc) > EXACT_COST:
         # ranked by the robust cost (as the candidates are): with outlier frames the raw chi2
         # can prefer a wrong shape that spreads the outliers' misfit over all frames
-        rc = np.array([robust_cost(f) for f in np.sum(r * r, axis=2)])
         rng = np.random.default_rng(12345)
         if n_restart_centres is None:
             n_restart_centres = 3 if (few or implausible) else 2
