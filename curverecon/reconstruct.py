@@ -6,10 +6,13 @@ linearisation seeds it too when it is determined) -> ML refinement over all fram
 until none is left) -> with few frames, single frames tried on their other branch of (10) with a
 joint refit (``_flip_ambiguous_frames``: nearby local minima with tau near 0 or phi near 0 or 180
 degrees; pairs and triples of frames on nearly noise-free data; nothing once the fit is exact)
--> normalised answer (alpha, beta in [0, 90] deg, phi in [0, 180] deg,
-tau in (-90, 90] deg), the shape's standard deviations from the covariance, and every other shape
-that fits about equally well ("alternatives", e.g. with 4-5 frames; the other candidates of the
-search, refined in one batch).
+-> every other shape that fits about equally well by chi2 ("alternatives", e.g. with 4-5
+frames; the other candidates of the search, refined in one batch) -> with
+``estimator="marginal"`` (the default) the fit whose basin has the highest marginal likelihood
+(every frame's pose integrated out, ``curverecon.marginal``), refined to that likelihood's
+optimum, which removes most of the maximum likelihood's bias at realistic noise -> normalised
+answer (alpha, beta in [0, 90] deg, phi in [0, 180] deg, tau in (-90, 90] deg), the shape's
+standard deviations from the covariance, and the alternatives.
 
 ``method="linear"``: the paper's linearisation alone (``linear.solve_linear``), poses from the
 shape (``pose.poses_from_shape``), no refinement.
@@ -28,6 +31,7 @@ from scipy.stats import chi2 as chi2_dist
 
 from curverecon.errors import CurveReconError
 from curverecon.generated import measurement_model
+from curverecon.marginal import marginal_value, refine_marginal
 from curverecon.observations import Observations, wrap_line_angle
 from curverecon.pose import normalise, poses_from_shape, rotations, translations
 from curverecon.refine import RefineResult, optimise_poses, refine, refine_batch
@@ -65,6 +69,10 @@ frames switched together (``_flip_ambiguous_frames``, one batched refinement).""
 
 METHODS = ("auto", "linear")
 
+ESTIMATORS = ("marginal", "ml")
+"""Final shape estimate of ``method="auto"``: the marginal likelihood (poses integrated out,
+``marginal.refine_marginal``; the default) or plain maximum likelihood (``refine.refine``)."""
+
 CAUCHY_K = 4.0
 """Scale (in standard deviations, per frame) of the robust reweighting before the outlier test."""
 
@@ -101,6 +109,8 @@ class Reconstruction:
         branch_alternative_chi2: (N,) its chi2 (inf if none).  Frames where it is within
             ``BRANCH_DCHI2`` of ``frame_chi2`` are ambiguous from the end points and tangents
             alone (``ambiguous_frames``); a curve reconstruction may tell them apart.
+        estimator: "marginal" or "ml", the estimate the shape is (None for linear); "ml" also
+            where the marginal step does not apply (noise-free data, fewer than 5 frames).
     """
 
     shape: np.ndarray
@@ -114,6 +124,7 @@ class Reconstruction:
     frame_chi2: np.ndarray | None = None
     branch_alternatives: np.ndarray | None = None
     branch_alternative_chi2: np.ndarray | None = None
+    estimator: str | None = None
 
     @property
     def c(self) -> float:
@@ -185,6 +196,7 @@ class Reconstruction:
         out = {"format": "curverecon.reconstruction/1", **_shape_dict(self.shape)}
         out["frames"] = frames
         out["method"] = self.method
+        out["estimator"] = self.estimator
         out["std"] = None if self.std is None else _shape_dict(self.std)
         out["chi2"] = self.chi2
         out["outlier_frames"] = self.outlier_frames()
@@ -239,6 +251,7 @@ def reconstruct(
     method: str = "auto",
     point_sigma: float = 1.0,
     tangent_sigma_deg: float = 1.0,
+    estimator: str = "marginal",
 ) -> Reconstruction:
     """Recover c, alpha, beta, phi and every frame's pose.
 
@@ -248,17 +261,26 @@ def reconstruct(
             linearisation alone; needs ``linear.min_frames()`` frames).
         point_sigma: standard deviation of the image point coordinates (input units).
         tangent_sigma_deg: standard deviation of the tangent directions (degrees).
+        estimator: "marginal" (default): after the maximum-likelihood fit, the shape that
+            maximises the likelihood with every frame's pose integrated out (less biased: the
+            ML chord c comes out long at realistic noise, see ``curverecon.marginal``); "ml":
+            the maximum-likelihood fit itself.  Noise-free data and 4 frames give the same
+            answer either way.
     Raises:
         CurveReconError: bad input, too few frames, degenerate motion.
     """
     if method not in METHODS:
         raise CurveReconError(f'unknown method "{method}" (choose {" or ".join(METHODS)})')
+    if estimator not in ESTIMATORS:
+        raise CurveReconError(f'unknown estimator "{estimator}" (choose {" or ".join(ESTIMATORS)})')
     if not (point_sigma > 0 and tangent_sigma_deg > 0):
         raise CurveReconError("point and tangent standard deviations must be positive")
     obs.require_reconstructable()
     if method == "linear":
         return _reconstruct_linear(obs)
-    return _reconstruct_auto(obs, float(point_sigma), math.radians(tangent_sigma_deg))
+    return _reconstruct_auto(
+        obs, float(point_sigma), math.radians(tangent_sigma_deg), estimator == "marginal"
+    )
 
 
 def _reconstruct_linear(obs: Observations) -> Reconstruction:
@@ -363,7 +385,9 @@ def _refit_switched(
     return g, p, chi2
 
 
-def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction:
+def _reconstruct_auto(
+    obs: Observations, ps: float, ts: float, marginal: bool = True
+) -> Reconstruction:
     n = obs.n_frames
     cands = robust_start(obs, ps, ts, extra_shapes=_linear_seed(obs))
     if not cands:
@@ -400,6 +424,61 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
             "the maximum-likelihood refinement stopped at its iteration limit (slow creep along "
             "c; the answer is near, not exactly at, the optimum)"
         )
+    # Alternatives: other refined candidates that fit the inlier frames about as well as the
+    # ML fit (all refined in one batch; the covariance only for those kept).
+    sub = obs.subset(inliers)
+    ml_chi2 = final.chi2
+    fits = [(normalise(final.shape, final.poses)[0], final)]  # (normalised shape, fit)
+    pending = [
+        cand.result
+        for cand in cands[1:]
+        if cand.robust_cost - cands[0].robust_cost <= 4 * ALTERNATIVE_DCHI2
+        and shape_distance(cand.result.shape, fits[0][0]) >= 0.02
+    ]
+    if pending:
+        g_alt, p_alt, _, _, _, _ = refine_batch(
+            sub,
+            np.array([r.shape for r in pending]),
+            np.array([r.poses[inliers] for r in pending]),
+            ps,
+            ts,
+        )
+    for k, r in enumerate(pending):
+        if any(shape_distance(r.shape, f[0]) < 0.02 for f in fits):
+            continue
+        alt = refine(sub, g_alt[k], p_alt[k], ps, ts, max_iter=0, covariance=True)
+        if alt.chi2 - ml_chi2 > ALTERNATIVE_DCHI2:
+            continue
+        alt_shape = normalise(alt.shape, alt.poses)[0]
+        if any(shape_distance(alt_shape, f[0]) < 0.02 for f in fits):
+            continue
+        fits.append((alt_shape, alt))
+
+    # The answer.  Maximum likelihood: the best fit.  Marginal: among the fits that are about
+    # equally good by chi2, the one whose basin has the highest marginal likelihood (F at its
+    # ML point, one noise scale for all), then that basin's marginal optimum.  (At 1 px, 1 deg
+    # and 20 frames the lowest chi2 is sometimes a spurious basin, c off by 10-30 standard
+    # deviations, while F prefers the basin of the truth by 20-80; see curverecon.marginal.)
+    estimator = "ml"
+    chosen = 0
+    if marginal:
+        meas_in = sub.measurements()
+        values = [marginal_value(meas_in, f[1].shape, f[1].poses, ps, ts, ml_chi2) for f in fits]
+        if all(v is not None for v in values):
+            chosen = int(np.argmin(values))
+        r0 = fits[chosen][1]
+        mg = refine_marginal(meas_in, r0.shape, r0.poses, ps, ts, ml_chi2)
+        if mg is not None:
+            # each frame on its best branch of (10) for the new shape (the step may have
+            # moved a frame's other branch below the one it started on); once more if so
+            switched = switch_branches(sub, mg.shape, mg.poses, w8)
+            if not np.array_equal(switched, mg.poses):
+                mg = refine_marginal(meas_in, mg.shape, switched, ps, ts, ml_chi2) or mg
+                mg.poses = switch_branches(sub, mg.shape, mg.poses, w8)
+            final = refine(sub, mg.shape, mg.poses, ps, ts, max_iter=0, covariance=True)
+            estimator = "marginal"
+        else:
+            final = r0
 
     # Poses of outlier frames: best pose for the final shape (shape held fixed).
     poses = np.array(poses_from_shape(obs, final.shape)[0])
@@ -425,39 +504,13 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
             f"{outliers.size} frame(s) do not fit and were left out of the shape estimate: "
             + ", ".join(str(int(i)) for i in outliers)
         )
-
-    # Alternatives: other refined candidates that fit the inlier frames about as well (all
-    # refined in one batch; the covariance only for those kept).
     alternatives: list[Alternative] = []
-    sub = obs.subset(inliers)
-    seen = [shape]
-    pending = [
-        cand.result
-        for cand in cands[1:]
-        if cand.robust_cost - cands[0].robust_cost <= 4 * ALTERNATIVE_DCHI2
-        and shape_distance(cand.result.shape, shape) >= 0.02
-    ]
-    if pending:
-        g_alt, p_alt, _, _, _, _ = refine_batch(
-            sub,
-            np.array([r.shape for r in pending]),
-            np.array([r.poses[inliers] for r in pending]),
-            ps,
-            ts,
-        )
-    for k, r in enumerate(pending):
-        if any(shape_distance(r.shape, s) < 0.02 for s in seen):
+    for k, (alt_shape, alt) in enumerate(fits):
+        if k == chosen:
             continue
-        alt = refine(sub, g_alt[k], p_alt[k], ps, ts, max_iter=0, covariance=True)
-        if alt.chi2 - final.chi2 > ALTERNATIVE_DCHI2:
-            continue
-        alt_shape, alt_poses_in = normalise(alt.shape, alt.poses)
-        if any(shape_distance(alt_shape, s) < 0.02 for s in seen):
-            continue
-        seen.append(alt_shape)
-        alt_poses = np.array(poses_from_shape(obs, alt_shape)[0])
-        alt_poses[inliers] = alt_poses_in
-        alternatives.append(Alternative(alt_shape, alt_poses, alt.chi2, alt.std))
+        other_poses = np.array(poses_from_shape(obs, alt_shape)[0])
+        other_poses[inliers] = normalise(alt.shape, alt.poses)[1]
+        alternatives.append(Alternative(alt_shape, other_poses, alt.chi2, alt.std))
     if alternatives:
         warnings.append(_alternatives_warning(shape, std, alternatives))
     rec = Reconstruction(
@@ -472,6 +525,7 @@ def _reconstruct_auto(obs: Observations, ps: float, ts: float) -> Reconstruction
         frame_chi2,
         alt_poses,
         alt_chi2,
+        estimator,
     )
     return rec
 
