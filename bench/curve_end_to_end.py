@@ -1,6 +1,11 @@
 """Curve accuracy end to end through the command (issue 4's figures; not part of `make bench`).
 
-Usage: ``python -m bench.curve_end_to_end FRAMES NOISE full|poly SEED_FROM SEED_TO``
+Usage: ``python -m bench.curve_end_to_end FRAMES NOISE full|poly SEED_FROM SEED_TO [-v] [ARGS]``
+
+``-v`` prints every seed; further ARGS go to ``curverecon reconstruct`` (e.g. ``--curve-bundle
+off`` for the answer without the curve bundle).  The summary line adds the wall time of each
+reconstruction (median and max; wall clock and the process's CPU time, which depends less on
+other load on the machine).
 
 For each seed: ``curverecon simulate --with-curve`` (NOISE px on every point, NOISE degrees on the
 tangents), then ``curverecon reconstruct``; the written ``curve3d`` is compared with the
@@ -16,6 +21,7 @@ import io
 import json
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
@@ -41,9 +47,22 @@ def curve_error(recovered: np.ndarray, truth: np.ndarray) -> float:
     return min(errors) / length
 
 
-def run(frames: int, noise: float, polyline_only: bool, seeds: range) -> np.ndarray:
-    """Relative curve errors, one per seed (inf where the command refused the scene)."""
+def run(
+    frames: int,
+    noise: float,
+    polyline_only: bool,
+    seeds: range,
+    extra: tuple[str, ...] = (),
+    verbose: bool = False,
+) -> np.ndarray:
+    """Relative curve errors, one per seed (inf where the command refused the scene).
+
+    ``extra``: more arguments for ``curverecon reconstruct`` (e.g. ``--curve-bundle off``);
+    ``verbose``: print each seed's error and the reconstruction's wall time.
+    """
     out = []
+    times = []
+    cpu = []
     with tempfile.TemporaryDirectory() as tmp:
         scene, truth, result = (str(Path(tmp) / n) for n in ("s.json", "t.json", "r.json"))
         for seed in seeds:
@@ -56,22 +75,41 @@ def run(frames: int, noise: float, polyline_only: bool, seeds: range) -> np.ndar
                     for key in ("A", "B", "tangent_A", "tangent_B"):
                         frame.pop(key)
                 Path(scene).write_text(json.dumps(doc))
+            start, start_cpu = time.perf_counter(), time.process_time()
             with contextlib.redirect_stderr(io.StringIO()):
-                status = main(["reconstruct", scene, "-o", result])
+                status = main(["reconstruct", scene, "-o", result, *extra])
+            times.append(time.perf_counter() - start)
+            cpu.append(time.process_time() - start_cpu)
             if status != 0:
                 out.append(np.inf)
-                continue
-            rec = np.array(json.loads(Path(result).read_text())["curve3d"])
-            out.append(curve_error(rec, np.array(json.loads(Path(truth).read_text())["curve3d"])))
+            else:
+                rec = np.array(json.loads(Path(result).read_text())["curve3d"])
+                truth_curve = np.array(json.loads(Path(truth).read_text())["curve3d"])
+                out.append(curve_error(rec, truth_curve))
+            if verbose:
+                print(
+                    f"seed {seed}: {100 * out[-1]:.3f}% in {times[-1]:.1f} s (cpu {cpu[-1]:.1f} s)",
+                    flush=True,
+                )
+    run.last_times = np.array(times)  # type: ignore[attr-defined]
+    run.last_cpu = np.array(cpu)  # type: ignore[attr-defined]
     return np.array(out)
 
 
 if __name__ == "__main__":
     n_frames, sigma, kind, lo, hi = sys.argv[1:6]
-    err = run(int(n_frames), float(sigma), kind == "poly", range(int(lo), int(hi)))
+    rest = sys.argv[6:]
+    verbose = "-v" in rest
+    extra = tuple(a for a in rest if a != "-v")
+    err = run(int(n_frames), float(sigma), kind == "poly", range(int(lo), int(hi)), extra, verbose)
+    t = run.last_times  # type: ignore[attr-defined]
+    cpu = run.last_cpu  # type: ignore[attr-defined]
     print(
         f"frames={n_frames} noise={sigma} input={kind} scenes={len(err)} "
         f"median={100 * np.median(err):.3f}% p90={100 * np.quantile(err, 0.9):.3f}% "
         f"max={100 * err.max():.2f}% within1%={np.mean(err < 0.01):.2f} "
-        f"within3%={np.mean(err < 0.03):.2f}"
+        f"within3%={np.mean(err < 0.03):.2f} "
+        f"time/scene median={np.median(t):.1f}s max={t.max():.1f}s "
+        f"(cpu median={np.median(cpu):.1f}s max={cpu.max():.1f}s)"
+        + (f" ({' '.join(extra)})" if extra else "")
     )

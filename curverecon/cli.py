@@ -39,12 +39,26 @@ def build_parser() -> argparse.ArgumentParser:
     rec.add_argument("-o", "--output", required=True, help="curverecon.reconstruction/1 JSON")
     rec.add_argument("--method", choices=["auto", "linear"], default="auto")
     rec.add_argument(
+        "--estimator",
+        choices=["marginal", "ml"],
+        default="marginal",
+        help="auto's final shape: the marginal likelihood, every frame's pose integrated out "
+        "(default; less biased), or plain maximum likelihood",
+    )
+    rec.add_argument(
         "--point-sigma", type=float, default=1.0, help="image point noise (input units)"
     )
     rec.add_argument(
         "--tangent-sigma", type=float, default=1.0, help="tangent direction noise (degrees)"
     )
     rec.add_argument("--plot", help="also draw the reconstruction to this PNG file")
+    rec.add_argument(
+        "--curve-bundle",
+        choices=["on", "off"],
+        default="on",
+        help="with polylines (and --method auto): refine the poses and the 3-D curve jointly "
+        "against every frame's polyline, then take the shape from the fitted curve (default on)",
+    )
 
     sim = sub.add_parser("simulate", help="write a synthetic scene (and its truth)")
     sim.add_argument("-o", "--output", required=True, help="scene (observations) JSON")
@@ -72,8 +86,9 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
     if not (math.isfinite(args.tangent_sigma) and args.tangent_sigma > 0):
         raise CurveReconError("--tangent-sigma must be a positive number")
     obs = load_observations(args.input)
-    rec = reconstruct(obs, args.method, args.point_sigma, args.tangent_sigma)
+    rec = reconstruct(obs, args.method, args.point_sigma, args.tangent_sigma, args.estimator)
     curve3d = None
+    bundle_info = None
     curve_warnings: list[str] = []
     if obs.curves is not None:
         from curverecon.curve3d import reconstruct_curve
@@ -82,21 +97,51 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
             resolve_branches_with_curves,
         )
 
-        if rec.branch_alternatives is not None:
-            # fixed-shape branch switches first, then the other equally good optima (alternative
-            # shapes, joint refits from the other sign of tau); each change is kept only if the
-            # recovered curve reprojects clearly better (reconstruct.py)
-            rec, res = resolve_branches_with_curves(rec, obs.curves, reconstruct_curve)
-            rec, res = refit_branches_with_curves(
-                rec, obs, reconstruct_curve, args.point_sigma, args.tangent_sigma, curve=res
+        bundle = args.curve_bundle == "on" and rec.method == "auto"
+        try:
+            if rec.branch_alternatives is not None:
+                # fixed-shape branch switches first, then the other equally good optima
+                # (alternative shapes, joint refits from the other sign of tau); each change is
+                # kept only if the recovered curve reprojects clearly better (reconstruct.py)
+                rec, res = resolve_branches_with_curves(rec, obs.curves, reconstruct_curve)
+                rec, res = refit_branches_with_curves(
+                    rec, obs, reconstruct_curve, args.point_sigma, args.tangent_sigma, curve=res
+                )
+            else:
+                res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
+        except CurveReconError as exc:
+            if not bundle:
+                raise
+            # e.g. a degenerate shape whose poses all look along one direction: the bundle
+            # starts from frame 0's polyline and searches every frame's pose again
+            res = None
+            curve_warnings.append(f"section 4 failed on the end-point answer ({exc})")
+        if bundle:
+            from curverecon.curve_bundle import refine_reconstruction
+            from curverecon.io import read_json
+
+            frames = read_json(args.input)["frames"]
+            given = all(
+                all(key in f for key in ("A", "B", "tangent_A", "tangent_B")) for f in frames
+            )
+            rec, curve3d, bundle_info = refine_reconstruction(
+                rec,
+                obs,
+                None if res is None else res.points,
+                use_given=given,
+                point_sigma=args.point_sigma,
+                tangent_sigma_deg=args.tangent_sigma,
+                n_out=None if res is None else len(res.points),
             )
         else:
-            res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
-        curve3d = np.asarray(res.points, float)
-        curve_warnings.extend(res.warnings)
+            curve3d = np.asarray(res.points, float)
+            curve_warnings.extend(res.warnings)
     out = rec.to_json_dict()
     if curve3d is not None:
         out["curve3d"] = curve3d.tolist()
+    if bundle_info is not None:
+        out["curve_bundle"] = bundle_info
+        out["warnings"] = list(out["warnings"]) + curve_warnings
     for w in list(rec.warnings) + curve_warnings:
         _warn(w)
     write_json(args.output, out)

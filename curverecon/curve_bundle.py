@@ -1,0 +1,918 @@
+"""Curve-aware bundle adjustment: poses and the 3-D curve fitted jointly to every frame's polyline.
+
+The pipeline's shape and poses come from A', B' and the end tangents alone; when the tangents are
+estimated from noisy polylines (``polyline.end_tangents``) they are off by degrees at
+foreshortened ends and so are the poses, and section 4 (``curve3d``) inherits the error.  Here
+the whole polyline of every frame is used: starting from the pipeline's poses and curve, the
+per-frame poses and a 3-D curve model are refined jointly so that each frame's projected curve
+fits that frame's polyline (maximum likelihood for Gaussian pixel noise on the polyline points).
+
+Model.  Body frame = frame 0's camera coordinates (the contract's ``curve3d`` frame), so frame 0's
+pose is the identity (gauge) and frame i maps ``X_i = M_i X_0 + b_i`` (orthographic, unit scale:
+keep x, y).  The curve is a clamped cubic B-spline ``X(u) = sum_k N_k(u) P_k``, u in [0, 1], with
+``X(0) = P_0 = A`` and ``X(1) = P_{K-1} = B``; A's depth is fixed at 0 (the depth gauge).
+Parameters: the control points (3K - 1) and per frame i >= 1 a rotation increment (3, applied as
+``M_i <- exp([w]x) M_i`` after each step) and the image translation (2).
+
+Residuals (in units of the pixel noise sigma, estimated from the polylines): for every interior
+polyline point q, the signed distance to the projected curve along its normal at the foot point
+(closest point, found on a dense sampling and polished by Newton steps; its derivative is the
+normal component of the curve point's derivative - the foot point's own motion drops out at the
+optimum); for the first and last polyline points the 2-D offsets from the projected ends A, B.
+That forward term alone does not see a detour of the curve that no polyline point is near (seen:
+a loop hidden along the lines of sight, 34 % of the length off with every frame fitting at the
+noise level), so a light reverse term adds the distances of fixed curve samples from each
+polyline (``REVERSE_WEIGHT`` of the forward term's weight: a detour many sigma away costs a lot,
+while the small bias of distances to a noisy polyline stays negligible).  Given A', B' and
+tangents (input with ``tangent_A``/``tangent_B``) add their residuals in units of
+``point_sigma`` / ``tangent_sigma``.  Huber (k = 3 sigma) on the polyline terms keeps stray
+points from dragging the fit.
+
+Regulariser.  Sliding control points along the curve changes the curve's shape only to second
+order, so the normal equations are nearly singular along those directions (the spline's
+parametrisation is not determined by the images; without it LM crept for 60+ iterations).  A
+penalty on the fourth differences of the control points P_2 .. P_{K-3} (those with uniform knot
+triples: zero for every cubic polynomial curve, so no bias on smooth curves; it favours an even
+parametrisation) removes that freedom; its weight is ``SMOOTH_WEIGHT`` relative to one polyline
+point's residual.  The two control points at each end are left out: including them bent the end
+tangents (2 degrees on alpha, noise-free).
+
+Levenberg-Marquardt on the dense normal equations (a few hundred residuals per frame and
+3K + 5(N - 1) parameters).  Stages (:func:`bundle_adjust`): a coarse curve (``K_COARSE``
+control points) with the start poses; every frame's pose searched again against that curve
+(:func:`_resect`: a sweep over the poses that put A, B on the polyline's ends - the wrong-branch
+poses that degree-off end tangents leave are beyond LM's reach - and a regauge when frame 0's
+own pose moves); the coarse fit again; then the full curve.  :func:`refine_reconstruction`
+retries from frame 0's polyline at depth 0 when a frame still fits clearly worse than the others
+(``UNEVEN_RATIO``) and keeps the lower cost.
+
+Afterwards the shape (c, alpha, beta, phi) and the end tangents come from the fitted curve and
+every frame's pose from its fitted rotation (``shape_and_poses``), in the conventions of
+docs/CONVENTIONS.md.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.interpolate import BSpline
+
+from curverecon import polyline as pl
+
+#: Control points of the curve's cubic B-spline (default; fewer for short polylines).
+N_CONTROL = 12
+#: Weight of the difference penalty (order DIFF_ORDER) relative to one polyline point's residual.
+SMOOTH_WEIGHT = 2.0
+#: Huber threshold of the polyline-point residuals, in units of sigma.
+HUBER_K = 3.0
+#: Floor of the pixel noise used as the residual unit (float rounding, sub-pixel tracing).
+SIGMA_FLOOR = 0.05
+#: Dense samples per knot span for the foot-point search.
+SAMPLES_PER_SPAN = 24
+#: Iteration cap of each Levenberg-Marquardt run (the full-curve stage).
+MAX_ITER = 60
+#: Order of the differences of the control points the regulariser penalises.
+DIFF_ORDER = 4
+#: Control points of the coarse stage (smoother cost landscape for the pose search).
+K_COARSE = 6
+#: Rounds of per-frame pose search against the coarse curve.
+RESECT_ROUNDS = 2
+#: Relative decrease of the cost below which LM stops.
+REL_TOL = 1e-6
+#: ... in the coarse stages (they only need the basin).
+COARSE_REL_TOL = 1e-4
+#: Iteration cap of each coarse LM run.
+COARSE_MAX_ITER = 30
+#: A swept pose is refined only if its grid score (mean squared distance) is below this multiple
+#: of the current pose's (the grid is coarse: a pose near the right one can score several px^2).
+RESECT_GAIN = 4.0
+#: Curve samples per knot span of the reverse term (curve to polyline) ...
+REVERSE_SAMPLES_PER_SPAN = 6
+#: ... and its total weight relative to the forward term (polyline points to curve).
+REVERSE_WEIGHT = 0.02
+#: A frame whose RMS distance from the fitted curve exceeds RMS_LIMIT_SIGMA * sigma +
+#: RMS_LIMIT_PX does not fit (second start, warning).
+RMS_LIMIT_SIGMA = 3.0
+RMS_LIMIT_PX = 1.0
+#: A frame whose RMS distance exceeds UNEVEN_RATIO times the median frame's (plus sigma / 4,
+#: and at least sigma) fits clearly worse than the others: the coarse stage down-weights it
+#: before the pose search, and :func:`refine_reconstruction` tries the second start.
+UNEVEN_RATIO = 1.5
+
+
+@dataclass
+class BundleResult:
+    """Outcome of :func:`bundle_adjust`.
+
+    control: (K, 3) control points of the curve's clamped cubic B-spline (frame 0 camera).
+    m, b: (N, 3, 3), (N, 3) frame 0 camera -> frame i camera (``X_i = m_i X_0 + b_i``).
+    sigma: the pixel noise used as the residual unit.
+    rms: (N,) RMS distance (pixels) of each frame's polyline points from the projected curve.
+    cost_start, cost: sum of squared (weighted) residuals before and after.
+    iterations: LM iterations taken; converged: whether the relative-change test was met.
+    """
+
+    control: np.ndarray
+    m: np.ndarray
+    b: np.ndarray
+    sigma: float
+    rms: np.ndarray
+    cost_start: float
+    cost: float
+    iterations: int
+    converged: bool
+    warnings: list[str] = field(default_factory=list)
+
+    def curve_points(self, n: int = 200) -> np.ndarray:
+        """(n, 3) points of the fitted curve in frame 0's camera coordinates, A first."""
+        basis = _Basis(len(self.control))
+        return basis.values(np.linspace(0.0, 1.0, n)) @ self.control
+
+    def ends(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(A, B, unit tangent at A into the curve, unit tangent at B into the curve), frame 0."""
+        p = self.control
+        ta, tb = p[1] - p[0], p[-2] - p[-1]
+        return p[0], p[-1], ta / np.linalg.norm(ta), tb / np.linalg.norm(tb)
+
+
+def _error(message: str) -> Exception:
+    from curverecon.errors import CurveReconError
+
+    return CurveReconError(message)
+
+
+class _Basis:
+    """Clamped uniform cubic B-spline basis with K control points on u in [0, 1].
+
+    Evaluated as piecewise cubics: per knot span the K basis functions' power-series
+    coefficients in the span's local coordinate (from scipy's ``BSpline`` once), so that values
+    and derivatives at many u cost one gather and a few multiplications.
+    """
+
+    def __init__(self, k: int) -> None:
+        self.k = k
+        self.spans = k - 3
+        inner = np.linspace(0.0, 1.0, k - 2)
+        self.knots = np.concatenate([[0.0] * 3, inner, [1.0] * 3])
+        spl = BSpline(self.knots, np.eye(k), 3)
+        x = np.array([0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0])
+        v = np.vander(x, 4, increasing=True)
+        coef = np.empty((self.spans, 4, k))
+        for j in range(self.spans):
+            vals = spl((j + x) / self.spans)  # (4, K)
+            coef[j] = np.linalg.solve(v, vals)
+        self.coef = coef
+
+    def _local(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        t = np.clip(np.asarray(u, float), 0.0, 1.0) * self.spans
+        j = np.minimum(t.astype(int), self.spans - 1)
+        return self.coef[j], t - j
+
+    def values(self, u: np.ndarray) -> np.ndarray:
+        c, x = self._local(u)
+        return ((c[:, 3] * x[:, None] + c[:, 2]) * x[:, None] + c[:, 1]) * x[:, None] + c[:, 0]
+
+    def d1(self, u: np.ndarray) -> np.ndarray:
+        c, x = self._local(u)
+        return ((3.0 * c[:, 3] * x[:, None] + 2.0 * c[:, 2]) * x[:, None] + c[:, 1]) * self.spans
+
+    def d2(self, u: np.ndarray) -> np.ndarray:
+        c, x = self._local(u)
+        return (6.0 * c[:, 3] * x[:, None] + 2.0 * c[:, 2]) * self.spans**2
+
+
+def _skew(v: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+def _expm_so3(w: np.ndarray) -> np.ndarray:
+    th = float(np.linalg.norm(w))
+    k = _skew(w)
+    if th < 1e-12:
+        return np.eye(3) + k
+    return np.eye(3) + np.sin(th) / th * k + (1 - np.cos(th)) / th**2 * (k @ k)
+
+
+def fit_spline(points: np.ndarray, k: int) -> np.ndarray:
+    """(k, 3) control points of the clamped cubic B-spline fitting ``points`` (chord-length u),
+    interpolating the first and last point."""
+    pts = np.asarray(points, float)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+    u = s / s[-1]
+    basis = _Basis(k)
+    n = basis.values(u)
+    # Ends fixed: solve for the interior control points.
+    rhs = pts - np.outer(n[:, 0], pts[0]) - np.outer(n[:, -1], pts[-1])
+    d3 = np.diff(np.eye(k), 3, axis=0)
+    reg = 1e-3 * np.sqrt(len(pts) / k) * d3
+    a = np.vstack([n[:, 1:-1], reg[:, 1:-1]])
+    r = np.vstack([rhs, -np.outer(reg[:, 0], pts[0]) - np.outer(reg[:, -1], pts[-1])])
+    inner, *_ = np.linalg.lstsq(a, r, rcond=None)
+    return np.vstack([pts[0], inner, pts[-1]])
+
+
+class _Problem:
+    """Residuals and Jacobians of the bundle for one state (control points, m, b)."""
+
+    def __init__(
+        self,
+        polys: list[np.ndarray],
+        sigma: float,
+        k: int,
+        ends: np.ndarray | None,
+        tangents: np.ndarray | None,
+        point_sigma: float,
+        tangent_sigma: float,
+    ) -> None:
+        self.polys = polys
+        self.n = len(polys)
+        self.sigma = sigma
+        self.basis = _Basis(k)
+        self.k = k
+        self.ends = ends
+        self.tangents = tangents
+        self.point_sigma = point_sigma
+        self.tangent_sigma = tangent_sigma
+        g = SAMPLES_PER_SPAN * (k - 3) + 1
+        self.u_grid = np.linspace(0.0, 1.0, g)
+        self.n_grid = self.basis.values(self.u_grid)
+        # differences over the control points whose knot triples are uniform (P_2 .. P_{K-3}):
+        # zero for every cubic polynomial curve, so no bias; the two control points at each end
+        # (clamped knots) are left free, or the penalty would bend the end tangents
+        self.dreg = np.zeros((max(k - 4 - DIFF_ORDER, 0), k))
+        if len(self.dreg):
+            self.dreg[:, 2 : k - 2] = np.diff(np.eye(k - 4), DIFF_ORDER, axis=0)
+        # parameter layout: control points (3k, minus P0_z), then per frame i >= 1 (w 3, b 2)
+        self.n_curve = 3 * k - 1
+        self.n_par = self.n_curve + 5 * (self.n - 1)
+        idx = np.full((k, 3), -1, dtype=int)
+        flat = [j for j in range(3 * k) if j != 2]
+        idx.reshape(-1)[flat] = np.arange(self.n_curve)
+        self.cidx = idx
+        from scipy.spatial import cKDTree
+
+        self.trees = [cKDTree(p) for p in polys]
+        self.frame_w = np.ones(self.n)  # frame weights (the coarse stage's robust reweighting)
+        n_rev = REVERSE_SAMPLES_PER_SPAN * (k - 3) + 1
+        self.rev_basis = self.basis.values(np.linspace(0.0, 1.0, n_rev)[1:-1])
+        # the reverse term carries REVERSE_WEIGHT of the forward term's total weight per frame
+        self.rev_weight = [
+            np.sqrt(REVERSE_WEIGHT * max(len(p) - 2, 1) / len(self.rev_basis)) for p in polys
+        ]
+
+    def _to_polyline(self, pts: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """Direction and signed distance of image points from frame i's polyline (normal of the
+        nearest segment; the offset direction beyond the polyline's ends)."""
+        poly = self.polys[i]
+        j = self.trees[i].query(pts)[1]
+        best_d = np.full(len(pts), np.inf)
+        best_dir = np.zeros((len(pts), 2))
+        best_r = np.zeros(len(pts))
+        g = len(poly)
+        for js in (np.maximum(j - 1, 0), np.minimum(j, g - 2)):
+            s0 = poly[js]
+            seg = poly[js + 1] - s0
+            len2 = np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-300)
+            t = np.einsum("ij,ij->i", pts - s0, seg) / len2
+            inside = ((t > 0) | (js > 0)) & ((t < 1) | (js < g - 2))
+            t = np.clip(t, 0.0, 1.0)
+            e = pts - (s0 + t[:, None] * seg)
+            d = np.einsum("ij,ij->i", e, e)
+            nrm = np.column_stack([-seg[:, 1], seg[:, 0]]) / np.sqrt(len2)[:, None]
+            off = e / np.maximum(np.sqrt(d), 1e-300)[:, None]
+            dirn = np.where(inside[:, None], nrm, off)
+            take = d < best_d
+            best_d = np.where(take, d, best_d)
+            best_dir = np.where(take[:, None], dirn, best_dir)
+            best_r = np.where(take, np.einsum("ij,ij->i", dirn, e), best_r)
+        return best_dir, best_r
+
+    def foot_points(self, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int) -> np.ndarray:
+        """Curve parameter u of the foot point of each interior polyline point of frame i."""
+        from scipy.spatial import cKDTree
+
+        q = self.polys[i][1:-1]
+        cp2 = ctrl @ mi[:2].T
+        proj = self.n_grid @ cp2 + bi[:2]
+        g = len(proj)
+        j = cKDTree(proj).query(q)[1]
+        # the foot lies on one of the two dense segments next to the nearest dense sample
+        best_u = np.zeros(len(q))
+        best_d = np.full(len(q), np.inf)
+        du = self.u_grid[1] - self.u_grid[0]
+        for js in (np.maximum(j - 1, 0), np.minimum(j, g - 2)):
+            s0, s1 = proj[js], proj[js + 1]
+            seg = s1 - s0
+            len2 = np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-300)
+            t = np.clip(np.einsum("ij,ij->i", q - s0, seg) / len2, 0.0, 1.0)
+            d = np.sum((s0 + t[:, None] * seg - q) ** 2, axis=1)
+            take = d < best_d
+            best_d = np.where(take, d, best_d)
+            best_u = np.where(take, self.u_grid[js] + t * du, best_u)
+        u = best_u
+        for _ in range(2):  # Newton on |p(u) - q|^2
+            e = self.basis.values(u) @ cp2 + bi[:2] - q
+            d1 = self.basis.d1(u) @ cp2
+            dd = self.basis.d2(u) @ cp2
+            g1 = np.einsum("ij,ij->i", d1, e)
+            g2 = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", dd, e)
+            step = np.where(g2 > 0, -g1 / np.where(g2 > 0, g2, 1.0), 0.0)
+            u = np.clip(u + np.clip(step, -du, du), 0.0, 1.0)
+        return u
+
+    def _point_rows(self, ctrl, mi, bi, pts, which, scale):
+        """2-D residual rows of curve points ctrl[which] against image points ``pts``."""
+        r, jc, jp = [], [], []
+        for w, pt in zip(which, pts, strict=True):
+            y = mi @ ctrl[w] + bi
+            r.append((y[:2] - pt) / scale)
+            c = np.zeros((2, self.n_curve))
+            ok = self.cidx[w] >= 0
+            c[:, self.cidx[w][ok]] = mi[:2][:, ok] / scale
+            jc.append(c)
+            yp = mi @ ctrl[w]
+            jp.append(
+                np.array([[0.0, yp[2], -yp[1], 1.0, 0.0], [-yp[2], 0.0, yp[0], 0.0, 1.0]]) / scale
+            )
+        return np.concatenate(r), np.vstack(jc), np.vstack(jp)
+
+    def frame_rows(
+        self, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int, jac: bool = True
+    ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None, float]:
+        """Frame i's residuals, their Jacobians with respect to the curve parameters and to the
+        frame's pose increment (w, b), and the RMS point distance (pixels)."""
+        poly = self.polys[i]
+        basis, s = self.basis, self.sigma
+        u = self.foot_points(ctrl, mi, bi, i)
+        nu = basis.values(u)
+        x = nu @ ctrl  # (Q, 3) frame 0
+        e = (x @ mi[:2].T + bi[:2]) - poly[1:-1]
+        tan = basis.d1(u) @ ctrl @ mi[:2].T
+        tn = np.linalg.norm(tan, axis=1)
+        nrm = np.column_stack([-tan[:, 1], tan[:, 0]]) / np.maximum(tn, 1e-300)[:, None]
+        interior = (u > 0.0) & (u < 1.0) & (tn > 0)
+        dist = np.linalg.norm(e, axis=1)
+        direc = np.where(interior[:, None], nrm, e / np.maximum(dist, 1e-300)[:, None])
+        r = np.einsum("ij,ij->i", direc, e)
+        rms = float(np.sqrt(np.mean(dist**2)))
+        # reverse term: fixed curve samples to the polyline (a detour of the curve that no
+        # polyline point is near costs nothing in the forward term)
+        xs = self.rev_basis @ ctrl
+        ps = xs @ mi[:2].T + bi[:2]
+        rev_dir, rev_r = self._to_polyline(ps, i)
+        nus = np.vstack([nu, self.rev_basis])
+        xx = np.vstack([x, xs])
+        direc = np.vstack([direc, rev_dir])
+        r = np.concatenate([r, rev_r])
+        wt = np.concatenate([np.ones(len(u)), np.full(len(rev_r), self.rev_weight[i])])
+        # Huber cost: residual f(a) with f(a)^2 = 2 k |a| - k^2 beyond k (a = r / sigma),
+        # f'(a) = k / |f(a)| there; rows of the Jacobian scaled by f'(a)
+        a = np.abs(r) / s
+        big = a > HUBER_K
+        fa = np.where(big, np.sqrt(np.maximum(2.0 * HUBER_K * a - HUBER_K**2, 0.0)), a)
+        w = np.where(big, fa / np.maximum(a, 1e-300), 1.0) * wt
+        wj = np.where(big, HUBER_K / np.maximum(fa, 1e-300), 1.0) * wt
+        res = [w * r / s]
+        jcs, jps = [], []
+        if jac:
+            q = len(r)
+            jc = np.zeros((q, self.n_curve))
+            dm = direc @ mi[:2]  # (Q, 3)
+            for c in range(3):
+                col = self.cidx[:, c]
+                ok = col >= 0
+                jc[:, col[ok]] += nus[:, ok] * dm[:, c : c + 1]
+            yy = xx @ mi.T  # rotation increment: d y / d w = -[Y]x
+            jp = np.empty((q, 5))
+            jp[:, 0] = -direc[:, 1] * yy[:, 2]
+            jp[:, 1] = direc[:, 0] * yy[:, 2]
+            jp[:, 2] = -direc[:, 0] * yy[:, 1] + direc[:, 1] * yy[:, 0]
+            jp[:, 3:5] = direc
+            scale = (wj / s)[:, None]
+            jcs.append(jc * scale)
+            jps.append(jp * scale)
+        # the polyline's end points are the images of A and B
+        er, ejc, ejp = self._point_rows(ctrl, mi, bi, (poly[0], poly[-1]), (0, -1), s)
+        res.append(er)
+        jcs.append(ejc)
+        jps.append(ejp)
+        if self.ends is not None:  # given A', B'
+            er, ejc, ejp = self._point_rows(ctrl, mi, bi, self.ends[i], (0, -1), self.point_sigma)
+            res.append(er)
+            jcs.append(ejc)
+            jps.append(ejp)
+        if self.tangents is not None:  # given tangent directions (lines)
+            ts = self.tangent_sigma
+            out = np.zeros(2)
+            jt = np.zeros((2, self.n_curve))
+            jtp = np.zeros((2, 5))
+            for row, (lo, hi) in enumerate(((0, 1), (-1, -2))):
+                v3 = mi @ (ctrl[hi] - ctrl[lo])  # into the curve
+                v = v3[:2]
+                ob = self.tangents[i, row]
+                if not np.all(np.isfinite(ob)):  # not given (or left out) in this frame
+                    continue
+                ang = np.arctan2(v[1], v[0]) - np.arctan2(ob[1], ob[0])
+                out[row] = ((ang + np.pi / 2) % np.pi - np.pi / 2) / ts
+                g = np.array([-v[1], v[0]]) / max(float(v @ v), 1e-300) / ts
+                gm = g @ mi[:2]
+                for c in range(3):
+                    if self.cidx[hi, c] >= 0:
+                        jt[row, self.cidx[hi, c]] += gm[c]
+                    if self.cidx[lo, c] >= 0:
+                        jt[row, self.cidx[lo, c]] -= gm[c]
+                jtp[row, :3] = g @ np.array([[0.0, v3[2], -v3[1]], [-v3[2], 0.0, v3[0]]])
+            res.append(out)
+            jcs.append(jt)
+            jps.append(jtp)
+        rr = np.concatenate(res)
+        fw = np.sqrt(self.frame_w[i])
+        if not jac:
+            return rr * fw, None, None, rms
+        return rr * fw, np.vstack(jcs) * fw, np.vstack(jps) * fw, rms
+
+    def residuals(
+        self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, jac: bool = True
+    ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
+        """(weighted residuals, Jacobian or None, per-frame RMS point distance in pixels)."""
+        rows_r: list[np.ndarray] = []
+        rows_j: list[np.ndarray] = []
+        rms = np.zeros(self.n)
+        for i in range(self.n):
+            r, jc, jp, rms[i] = self.frame_rows(ctrl, m[i], b[i], i, jac)
+            rows_r.append(r)
+            if jac:
+                full = np.zeros((len(r), self.n_par))
+                full[:, : self.n_curve] = jc
+                if i > 0:
+                    off = self.n_curve + 5 * (i - 1)
+                    full[:, off : off + 5] = jp
+                rows_j.append(full)
+        # difference regulariser on the control points (see the module docstring)
+        wreg = SMOOTH_WEIGHT / self.sigma
+        rr = (self.dreg @ ctrl) * wreg
+        rows_r.append(rr.reshape(-1))
+        if jac:
+            jreg = np.zeros((rr.size, self.n_par))
+            for c in range(3):
+                col = self.cidx[:, c]
+                ok = col >= 0
+                jreg[c::3][:, col[ok]] = self.dreg[:, ok] * wreg
+            rows_j.append(jreg)
+        return np.concatenate(rows_r), (np.vstack(rows_j) if jac else None), rms
+
+    def apply(self, ctrl, m, b, dx):
+        c2 = ctrl.copy()
+        ok = self.cidx >= 0
+        c2[ok] += dx[self.cidx[ok]]
+        m2, b2 = m.copy(), b.copy()
+        for i in range(1, self.n):
+            off = self.n_curve + 5 * (i - 1)
+            m2[i] = _expm_so3(dx[off : off + 3]) @ m[i]
+            b2[i, :2] += dx[off + 3 : off + 5]
+        return c2, m2, b2
+
+
+def _lm(residual, apply, state, max_iter: int, lam: float = 1e-3, rel_tol: float = REL_TOL):
+    """Levenberg-Marquardt (Marquardt's diagonal scaling) on ``residual(*state) -> (r, J, ...)``;
+    ``apply(*state, dx)`` makes the new state.  Returns (state, cost, iterations, converged)."""
+    r, jac, *_ = residual(*state)
+    cost = float(r @ r)
+    it, converged = 0, False
+    while it < max_iter:
+        it += 1
+        jtj = jac.T @ jac
+        g = jac.T @ r
+        diag = np.maximum(np.diag(jtj), 1e-12 * max(float(np.max(np.diag(jtj))), 1e-300))
+        improved = False
+        for _ in range(10):
+            try:
+                dx = -np.linalg.solve(jtj + lam * np.diag(diag), g)
+            except np.linalg.LinAlgError:
+                lam *= 10.0
+                continue
+            new = apply(*state, dx)
+            r2 = residual(*new, jac=False)[0]
+            cost2 = float(r2 @ r2)
+            if np.isfinite(cost2) and cost2 < cost:
+                improved = True
+                break
+            lam *= 10.0
+        if not improved:
+            converged = True
+            break
+        rel = (cost - cost2) / max(cost, 1e-300)
+        state = new
+        lam = max(lam / 10.0, 1e-9)
+        r, jac, *_ = residual(*state)
+        cost = float(r @ r)
+        if rel < rel_tol:
+            converged = True
+            break
+    return state, cost, it, converged
+
+
+def _rot_zyx(theta: float, tau: float, delta: float) -> np.ndarray:
+    ct, st, cd, sd = np.cos(tau), np.sin(tau), np.cos(delta), np.sin(delta)
+    ch, sh = np.cos(theta), np.sin(theta)
+    rz = np.array([[ch, -sh, 0.0], [sh, ch, 0.0], [0.0, 0.0, 1.0]])
+    ry = np.array([[ct, 0.0, st], [0.0, 1.0, 0.0], [-st, 0.0, ct]])
+    rx = np.array([[1.0, 0.0, 0.0], [0.0, cd, -sd], [0.0, sd, cd]])
+    return rz @ ry @ rx
+
+
+def _resect(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int):
+    """Best pose of frame i for the fixed curve: a sweep over the poses that put A, B on the
+    polyline's ends (both signs of tau, rotation about AB in 10-degree steps), scored by the
+    mean squared distance of the projected curve from the polyline.  The best two are refined
+    by LM if they score below ``RESECT_GAIN`` times the current pose (a frame on the right
+    branch scores near the noise level, far below any grid pose).  Returns (m_i, b_i, cost) of
+    the best refined pose, or None when no sweep pose beats the current one."""
+    from scipy.spatial import cKDTree
+
+    poly = prob.polys[i]
+    a3 = ctrl[0]
+    ab = ctrl[-1] - a3
+    c = float(np.linalg.norm(ab))
+    chord = poly[-1] - poly[0]
+    cp = float(np.hypot(*chord))
+    e1 = ab / c
+    e2 = np.cross(e1, [1.0, 0.0, 0.0] if abs(e1[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e2 /= np.linalg.norm(e2)
+    cmat = np.column_stack([e1, e2, np.cross(e1, e2)])
+    tau_abs = float(np.arccos(min(cp / c, 1.0)))
+    theta = float(np.arctan2(chord[1], chord[0]))
+    pts = prob.basis.values(np.linspace(0.0, 1.0, 40)) @ ctrl - a3
+    tree = cKDTree(pl.resample(poly, 200)[0])
+    cands = []
+    for tau in sorted({tau_abs, -tau_abs}):
+        for delta in np.radians(np.arange(0.0, 360.0, 10.0)):
+            mm = _rot_zyx(theta, tau, delta) @ cmat.T
+            score = float(np.mean(tree.query(pts @ mm[:2].T + poly[0])[0] ** 2))
+            cands.append((score, len(cands), mm))
+    cands.sort(key=lambda t: t[:2])
+    current = float(np.mean(tree.query((pts + a3) @ mi[:2].T + bi[:2])[0] ** 2))
+    # only sweep poses that beat the current one even on the coarse grid are refined
+    starts = [
+        (mm, np.append(poly[0] - (mm @ a3)[:2], 0.0))
+        for score, _, mm in cands[:2]
+        if score < RESECT_GAIN * current
+    ]
+    if not starts:
+        return None
+
+    def residual(mm, bb, jac=True):
+        r, _, jp, _ = prob.frame_rows(ctrl, mm, bb, i, jac)
+        return r, jp
+
+    def apply(mm, bb, dx):
+        b2 = bb.copy()
+        b2[:2] += dx[3:5]
+        return _expm_so3(dx[:3]) @ mm, b2
+
+    best = None
+    for mm, bb in starts:
+        (m2, b2), cost, _, _ = _lm(residual, apply, (mm, bb), 15, rel_tol=1e-4)
+        if best is None or cost < best[2]:
+            best = (m2, b2, cost)
+    return best
+
+
+def _uneven_level(rms: np.ndarray, sigma: float) -> float:
+    """RMS distance above which a frame fits clearly worse than the others (pixels)."""
+    return max(UNEVEN_RATIO * float(np.median(rms)) + 0.25 * sigma, sigma)
+
+
+def _uneven(rms: np.ndarray, sigma: float) -> bool:
+    """Whether some frame fits clearly worse than the others (a pose on a wrong branch)."""
+    return bool(np.max(rms) > _uneven_level(rms, sigma))
+
+
+def _regauge(ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
+    """Re-express the state in frame 0's (new) camera coordinates with A at depth 0."""
+    m0, b0 = m[0].copy(), b[0].copy()
+    ctrl = ctrl @ m0.T + b0
+    m = np.einsum("nij,kj->nik", m, m0)  # m_i m_0^T
+    b = b - np.einsum("nij,j->ni", m, b0)
+    dz = ctrl[0, 2]
+    ctrl = ctrl - [0.0, 0.0, dz]
+    b = b + dz * m[:, :, 2]
+    m[0], b[0] = np.eye(3), np.zeros(3)
+    return ctrl, m, b
+
+
+def bundle_adjust(
+    polylines: Sequence[np.ndarray],
+    rotations: np.ndarray,
+    translations: np.ndarray,
+    curve0: np.ndarray,
+    *,
+    n_control: int | None = None,
+    ends: np.ndarray | None = None,
+    tangents: np.ndarray | None = None,
+    point_sigma: float = 1.0,
+    tangent_sigma_deg: float = 1.0,
+    max_iter: int = MAX_ITER,
+) -> BundleResult:
+    """Refine the poses and the 3-D curve jointly against every frame's polyline.
+
+    polylines: N arrays (M_i, 2) from A' to B' (pixels).
+    rotations, translations: (N, 3, 3), (N, 3) start poses, ``X_cam = R_i X_curve + t_i``.
+    curve0: (K0, 3) start curve in frame 0's camera coordinates from A to B (e.g. ``curve3d``).
+    n_control: control points of the spline (default ``N_CONTROL``, fewer for short polylines).
+    ends: optional (N, 2, 2) given A', B' per frame; tangents: optional (N, 2, 2) given image
+        tangent directions at A and B (any sign); with their sigmas (pixels, degrees).
+
+    Stages: a coarse curve (``K_COARSE`` control points) with the start poses; every frame's
+    pose searched again against that curve (``_resect``: the wrong-branch poses the end
+    tangents leave are far from the right ones, beyond LM's reach) and the coarse fit repeated
+    (``RESECT_ROUNDS``); then the full curve.
+
+    Returns a :class:`BundleResult` (curve and poses in frame 0's camera coordinates).
+    Raises ``CurveReconError`` for bad input.
+    """
+    rot = np.asarray(rotations, float)
+    tr = np.asarray(translations, float)
+    n = len(polylines)
+    if n < 2:
+        raise _error(f"the curve bundle needs at least 2 frames, got {n}")
+    if rot.shape != (n, 3, 3) or tr.shape != (n, 3):
+        raise _error(f"rotations/translations must have shapes ({n}, 3, 3) and ({n}, 3)")
+    if not (np.all(np.isfinite(rot)) and np.all(np.isfinite(tr))):
+        raise _error("rotations/translations contain NaN or infinite values")
+    if np.abs(np.einsum("nij,nkj->nik", rot, rot) - np.eye(3)).max() > 1e-6:
+        raise _error("rotations are not orthonormal")
+    polys = [pl.as_polyline(p, name=f"frame {i} curve") for i, p in enumerate(polylines)]
+    curve0 = np.asarray(curve0, float)
+    if curve0.ndim != 2 or curve0.shape[1] != 3 or len(curve0) < 4:
+        raise _error("the start curve must be at least 4 points [x, y, z]")
+    if not np.all(np.isfinite(curve0)):
+        raise _error("the start curve contains NaN or infinite values")
+    for name, arr in (("ends", ends), ("tangents", tangents)):
+        # NaN tangents mean "not given" in that frame
+        if arr is not None and (
+            np.shape(arr) != (n, 2, 2)
+            or np.any(np.isinf(np.asarray(arr, float)))
+            or (name == "ends" and not np.all(np.isfinite(np.asarray(arr, float))))
+        ):
+            raise _error(f"{name}: expected {n} pairs of finite 2-D vectors")
+    # Polylines run from A to B; A's image is t_i[:2].
+    for i, p in enumerate(polys):
+        if np.hypot(*(p[-1] - tr[i, :2])) < np.hypot(*(p[0] - tr[i, :2])):
+            polys[i] = p[::-1].copy()
+    m_pts = min(len(p) for p in polys)
+    k = int(n_control) if n_control is not None else int(np.clip(m_pts // 6, 5, N_CONTROL))
+    if k < 4:
+        raise _error(f"n_control must be at least 4, got {k}")
+    sigma = max(float(np.median([pl.noise_level(p) for p in polys])), SIGMA_FLOOR)
+    m = np.einsum("nij,kj->nik", rot, rot[0])  # R_i R_0^T: frame 0 camera -> frame i camera
+    b = tr - np.einsum("nij,j->ni", m, tr[0])
+    ends_arr = None if ends is None else np.asarray(ends, float)
+    tans_arr = None if tangents is None else np.asarray(tangents, float)
+    ts = float(np.radians(tangent_sigma_deg))
+
+    def problem(kk: int) -> _Problem:
+        return _Problem(polys, sigma, kk, ends_arr, tans_arr, float(point_sigma), ts)
+
+    k_coarse = min(K_COARSE, k)
+    prob = problem(k_coarse)
+    ctrl = fit_spline(curve0 - [0.0, 0.0, curve0[0, 2]], k_coarse)
+    cost_start = float(np.sum(prob.residuals(ctrl, m, b, jac=False)[0] ** 2))
+    coarse = {"max_iter": min(max_iter, COARSE_MAX_ITER), "rel_tol": COARSE_REL_TOL}
+    (ctrl, m, b), cost, total_it, _ = _lm(prob.residuals, prob.apply, (ctrl, m, b), **coarse)
+    limit = RMS_LIMIT_SIGMA * sigma + RMS_LIMIT_PX
+    for _ in range(int(RESECT_ROUNDS)):
+        changed = False
+        # frames that do not fit (wrong pose branch) bend the coarse curve: refit it with them
+        # down-weighted, then search their poses against the cleaner curve
+        rms = prob.residuals(ctrl, m, b, jac=False)[2]
+        if _uneven(rms, sigma):
+            ref = min(limit, _uneven_level(rms, sigma))
+            prob.frame_w = 1.0 / (1.0 + (rms / ref) ** 4)
+            (ctrl, m, b), _, it, _ = _lm(prob.residuals, prob.apply, (ctrl, m, b), **coarse)
+            total_it += it
+            prob.frame_w = np.ones(n)
+        for i in range(n):
+            cur = float(np.sum(prob.frame_rows(ctrl, m[i], b[i], i, jac=False)[0] ** 2))
+            found = _resect(prob, ctrl, m[i], b[i], i)
+            if found is None:
+                continue
+            mi, bi, ci = found
+            if ci < cur:
+                changed = changed or ci < 0.9 * cur
+                m[i], b[i] = mi, bi
+        if not np.allclose(m[0], np.eye(3), atol=1e-12):
+            ctrl, m, b = _regauge(ctrl, m, b)
+        (ctrl, m, b), cost, it, _ = _lm(prob.residuals, prob.apply, (ctrl, m, b), **coarse)
+        total_it += it
+        if not changed:
+            break
+    converged = True
+    if k > k_coarse:
+        ctrl = fit_spline(prob.basis.values(np.linspace(0.0, 1.0, 200)) @ ctrl, k)
+        prob = problem(k)
+        (ctrl, m, b), cost, it, converged = _lm(prob.residuals, prob.apply, (ctrl, m, b), max_iter)
+        total_it += it
+    rms = prob.residuals(ctrl, m, b, jac=False)[2]
+    return BundleResult(ctrl, m, b, sigma, rms, cost_start, cost, total_it, converged)
+
+
+def shape_and_poses(
+    result: BundleResult, theta_ref: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Shape (c, alpha, beta, phi), poses (N, 5) and the curve-frame rotation of a bundle.
+
+    The curve frame of docs/CONVENTIONS.md: A at the origin, B on +x, the tangent line at B in
+    the x-y plane with direction (-cos alpha, sin alpha, 0), alpha in [0, pi/2]; phi in (-pi, pi]
+    is then the angle of the tangent at A about +x (the caller's ``pose.normalise`` folds the
+    mirror image).  Returns ``(shape, poses, C)`` with ``X_cam0 = A + C X_curve``.
+    """
+    a, bpt, ta, tb = result.ends()
+    ab = bpt - a
+    c = float(np.linalg.norm(ab))
+    if not c > 0:
+        raise _error("the fitted curve has A = B")
+    e1 = ab / c
+    if tb @ e1 > 0:
+        tb = -tb  # a tangent is a line: the direction making an acute angle with BA
+    if ta @ e1 < 0:
+        ta = -ta
+    perp = tb - (tb @ e1) * e1
+    if np.linalg.norm(perp) < 1e-12:  # tangent at B along AB: any normal
+        perp = np.cross(e1, [0.0, 0.0, 1.0] if abs(e1[2]) < 0.9 else [1.0, 0.0, 0.0])
+    e2 = perp / np.linalg.norm(perp)
+    e3 = np.cross(e1, e2)
+    cmat = np.column_stack([e1, e2, e3])
+    alpha = float(np.arctan2(np.linalg.norm(perp), -(tb @ e1)))
+    beta = float(np.arctan2(np.hypot(ta @ e2, ta @ e3), ta @ e1))
+    phi = float(np.arctan2(ta @ e3, ta @ e2))
+    rot = np.einsum("nij,jk->nik", result.m, cmat)
+    t = np.einsum("nij,j->ni", result.m, a) + result.b
+    tau = np.arcsin(np.clip(-rot[:, 2, 0], -1.0, 1.0))
+    theta = np.arctan2(rot[:, 1, 0], rot[:, 0, 0])
+    delta = np.arctan2(rot[:, 2, 1], rot[:, 2, 2])
+    poses = np.column_stack([delta, tau, theta, t[:, 0], t[:, 1]])
+    return np.array([c, alpha, beta, phi]), poses, cmat
+
+
+def flat_start(polyline: np.ndarray, n: int = 100) -> np.ndarray:
+    """A start curve when no 3-D curve is available: frame 0's polyline at depth 0 (the pose
+    search of :func:`bundle_adjust` then finds the other frames' poses against it)."""
+    pts, _ = pl.resample(pl.as_polyline(polyline, name="frame 0 curve"), n)
+    return np.column_stack([pts, np.zeros(len(pts))])
+
+
+def _shape_std(result: BundleResult, prob_k: int, jac: np.ndarray) -> np.ndarray | None:
+    """Standard deviations of (c, alpha, beta, phi) from the bundle's covariance (residuals in
+    units of sigma, so the covariance is (J^T J)^-1), propagated through the end geometry."""
+    n_curve = 3 * prob_k - 1
+    try:
+        cov = np.linalg.pinv(jac.T @ jac)[:n_curve, :n_curve]
+    except np.linalg.LinAlgError:
+        return None
+    idx = np.full((prob_k, 3), -1, dtype=int)
+    flat = [j for j in range(3 * prob_k) if j != 2]
+    idx.reshape(-1)[flat] = np.arange(n_curve)
+
+    def shape_of(ctrl: np.ndarray) -> np.ndarray:
+        r = BundleResult(ctrl, result.m, result.b, result.sigma, result.rms, 0.0, 0.0, 0, True)
+        return shape_and_poses(r)[0]
+
+    base = shape_of(result.control)
+    grad = np.zeros((4, n_curve))
+    h = 1e-6 * max(float(np.abs(result.control).max()), 1.0)
+    for row in (0, 1, prob_k - 2, prob_k - 1):
+        for c in range(3):
+            j = idx[row, c]
+            if j < 0:
+                continue
+            ctrl = result.control.copy()
+            ctrl[row, c] += h
+            d = shape_of(ctrl) - base
+            d[3] = (d[3] + np.pi) % (2 * np.pi) - np.pi
+            grad[:, j] = d / h
+    var = np.einsum("ij,jk,ik->i", grad, cov, grad)
+    return np.sqrt(np.clip(var, 0.0, None)) if np.all(np.isfinite(var)) else None
+
+
+def refine_reconstruction(
+    rec,
+    obs,
+    curve_start: np.ndarray | None,
+    *,
+    use_given: bool = False,
+    point_sigma: float = 1.0,
+    tangent_sigma_deg: float = 1.0,
+    n_out: int | None = None,
+):
+    """Run the curve bundle on a reconstruction and return the updated answer.
+
+    rec: a ``reconstruct.Reconstruction`` (its poses are the start); obs: the observations
+    (with curves); curve_start: the start curve in frame 0's camera coordinates (``curve3d``),
+    or None for :func:`flat_start`.  use_given: the input gave A', B' and the tangents (they
+    join the fit with ``point_sigma``, ``tangent_sigma_deg``; tangents of frames the end-point
+    fit marked as outliers are left out).
+
+    Returns ``(reconstruction, curve3d (n_out, 3), info)``: the shape and every pose from the
+    fitted curve (normalised as in ``pose.normalise``), ``std`` from the bundle's covariance,
+    ``chi2`` / per-frame ``chi2`` recomputed for the end points and tangents, the branch
+    alternatives recomputed for the new shape; ``curve3d`` in frame 0's camera coordinates
+    with A at z = 0 (the mirror image consistent with the frames' ``A3``, ``B3``, tangents);
+    ``info`` the ``curve_bundle`` key of the output (see docs/file-formats.md).
+    """
+    from dataclasses import replace
+
+    from curverecon.pose import normalise
+    from curverecon.refine import standardised_residuals
+    from curverecon.start import branch_alternatives
+
+    curves = obs.curves
+    if curves is None:
+        raise _error("the curve bundle needs a polyline in every frame")
+    flat = curve_start is None
+    if flat:
+        curve_start = flat_start(curves[0])
+    ends = tangents = None
+    if use_given:
+        ends = np.stack([obs.a, obs.b], axis=1)
+        tangents = np.stack([obs.tangent_a, obs.tangent_b], axis=1)
+        tangents[~np.asarray(rec.inliers, bool)] = np.nan  # gross tangent errors: left out
+    kw = {
+        "ends": ends,
+        "tangents": tangents,
+        "point_sigma": point_sigma,
+        "tangent_sigma_deg": tangent_sigma_deg,
+    }
+    br = bundle_adjust(curves, rec.rotations(), rec.translations(), curve_start, **kw)
+    if _uneven(br.rms, br.sigma) and not flat:
+        # some frame does not fit: a second start from frame 0's polyline at depth 0 (every
+        # pose searched again against it); the lower cost wins
+        other = bundle_adjust(
+            curves, rec.rotations(), rec.translations(), flat_start(curves[0]), **kw
+        )
+        if other.cost < br.cost:
+            br = other
+    shape, poses, _ = shape_and_poses(br)
+    shape_n, poses_n = normalise(shape, poses)
+    # curve samples equally spaced in 3-D arc length, in the curve frame
+    dense = br.curve_points(2000)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))])
+    n_out = int(n_out) if n_out is not None else 200
+    t = np.linspace(0.0, s[-1], n_out)
+    pts = np.column_stack([np.interp(t, s, dense[:, j]) for j in range(3)])
+    # normalise changes the curve frame by rotations (no change in camera coordinates) and,
+    # for phi < 0, by the mirror image z -> -z (camera depth negated; A stays at z = 0)
+    curve3d = pts * [1.0, 1.0, -1.0] if shape[3] < 0 else pts
+    # end-point / tangent chi2 of the new answer (the fit's own units)
+    w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / np.radians(tangent_sigma_deg)] * 2)
+    resid = standardised_residuals(shape_n, poses_n, obs.measurements(), w8)
+    frame_chi2 = np.sum(resid * resid, axis=1)
+    inl = np.asarray(rec.inliers, bool)
+    alt_poses, alt_chi2 = branch_alternatives(obs, shape_n, poses_n, w8)
+    k = br.control.shape[0]
+    prob = _Problem(
+        [pl.as_polyline(p) for p in curves],
+        br.sigma,
+        k,
+        ends,
+        tangents,
+        point_sigma,
+        float(np.radians(tangent_sigma_deg)),
+    )
+    _, jac, _ = prob.residuals(br.control, br.m, br.b)
+    std = _shape_std(br, k, jac)
+    warnings = list(rec.warnings)
+    limit = RMS_LIMIT_SIGMA * br.sigma + RMS_LIMIT_PX
+    bad = [int(i) for i in np.flatnonzero(br.rms > limit)]
+    if bad:
+        warnings.append(
+            f"frames {bad}: the fitted curve stays up to {float(br.rms.max()):.1f} px (RMS) from "
+            f"their polylines (limit {limit:.1f} px)"
+        )
+    if not use_given:
+        warnings.append(
+            "alpha, beta, phi come from the fitted curve's end tangents (no tangents were given): "
+            "ends of noisy polylines fix them less well than their std says"
+        )
+    new = replace(
+        rec,
+        estimator="curve-bundle",
+        shape=shape_n,
+        poses=poses_n,
+        std=std if std is not None else rec.std,
+        warnings=warnings,
+        chi2=float(np.sum(frame_chi2[inl])),
+        frame_chi2=frame_chi2,
+        branch_alternatives=alt_poses,
+        branch_alternative_chi2=alt_chi2,
+    )
+    info = {
+        "control_points": int(k),
+        "sigma_px": float(br.sigma),
+        "frame_rms_px": [float(v) for v in br.rms],
+        "iterations": int(br.iterations),
+        "converged": bool(br.converged),
+    }
+    return new, curve3d, info

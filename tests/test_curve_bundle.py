@@ -1,0 +1,166 @@
+"""The curve bundle (curverecon.curve_bundle) against the independent simulator.
+
+Scenes come from ``simulate.make_scene(..., with_curve=True)`` (a 3-D Bezier curve moved and
+projected without the generated code); errors are ``bench.curve_end_to_end.curve_error`` (mean
+distance over the curve's length, best over the mirror image).
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from bench.curve_end_to_end import curve_error
+from curverecon.cli import main
+from curverecon.curve3d import reconstruct_curve
+from curverecon.curve_bundle import bundle_adjust, flat_start, refine_reconstruction
+from curverecon.errors import CurveReconError
+from curverecon.io import observations_from_dict, observations_to_dict
+from curverecon.reconstruct import reconstruct
+from curverecon.simulate import make_scene
+
+
+def _polyline_only(scene):
+    doc = observations_to_dict(scene.observations)
+    for frame in doc["frames"]:
+        for key in ("A", "B", "tangent_A", "tangent_B"):
+            frame.pop(key)
+    return observations_from_dict(doc)
+
+
+def _truth_poses(scene):
+    rot = scene.truth.rotations
+    return rot, scene.truth.A3
+
+
+def test_noise_free_truth_is_a_fixed_point():
+    """Started at the true poses and curve, noise-free: the fit stays on the truth."""
+    scene = make_scene(np.random.default_rng(3), 6, with_curve=True)
+    rot, tr = _truth_poses(scene)
+    res = bundle_adjust(scene.observations.curves, rot, tr, scene.curve_3d)
+    assert curve_error(res.curve_points(), scene.curve_3d) < 1e-3
+    assert np.max(res.rms) < 0.01
+    assert np.allclose(res.m, np.einsum("nij,kj->nik", rot, rot[0]), atol=1e-3)
+
+
+def test_recovers_from_perturbed_poses_and_a_flat_start():
+    """Noise-free polylines, poses off by several degrees, the curve flat: the truth comes back."""
+    rng = np.random.default_rng(11)
+    scene = make_scene(np.random.default_rng(5), 8, with_curve=True)
+    rot, tr = _truth_poses(scene)
+    from scipy.spatial.transform import Rotation
+
+    noisy = np.array(
+        [Rotation.from_rotvec(rng.normal(scale=0.08, size=3)).as_matrix() @ r for r in rot]
+    )
+    res = bundle_adjust(
+        scene.observations.curves, noisy, tr, flat_start(scene.observations.curves[0])
+    )
+    assert curve_error(res.curve_points(), scene.curve_3d) < 0.005
+
+
+@pytest.mark.parametrize("seed", [5, 7])
+def test_lowers_the_curve_error_on_noisy_polylines(seed):
+    """12 frames, 0.5 px on every polyline point, tangents from the polylines: the bundle's
+    curve is within 3 % of the length (the issue's target).  Not every scene: of seeds 0-29,
+    4, 8 and 18 end 18 %, 9 % and 4 % off (``python -m bench.curve_end_to_end 12 0.5 poly 0 30``,
+    27 of 30 within 3 %)."""
+    scene = make_scene(np.random.default_rng(seed), 12, 0.5, 0.5, with_curve=True)
+    obs = _polyline_only(scene)
+    rec = reconstruct(obs)
+    start = reconstruct_curve(obs.curves, rec.rotations(), rec.translations()).points
+    before = curve_error(start, scene.curve_3d)
+    new, curve3d, info = refine_reconstruction(rec, obs, start)
+    after = curve_error(curve3d, scene.curve_3d)
+    assert after < 0.03 and after <= max(before, 0.01), (before, after)
+    assert max(info["frame_rms_px"]) < 1.0
+    # c comes from the fitted curve's ends (the angles from its end tangents, which noisy
+    # foreshortened ends determine poorly, so only c is checked here)
+    assert abs(new.c - scene.truth.c) < 0.03 * scene.truth.c
+
+
+def test_output_curve_agrees_with_the_frames_geometry():
+    """curve3d starts at frame 0's A3, ends at B3 and leaves along tangent_A3 (mirror included)."""
+    scene = make_scene(np.random.default_rng(3), 8, with_curve=True)
+    obs = scene.observations
+    rec = reconstruct(obs)
+    start = reconstruct_curve(obs.curves, rec.rotations(), rec.translations()).points
+    new, curve3d, _ = refine_reconstruction(rec, obs, start, use_given=True)
+    a3, b3, ta3, tb3 = new.points_3d()
+    assert np.allclose(curve3d[0], a3[0], atol=1e-6)
+    assert np.allclose(curve3d[-1], b3[0], atol=1e-6)
+    d = curve3d[2] - curve3d[0]
+    assert abs(d @ ta3[0]) / np.linalg.norm(d) > 0.99
+    assert curve_error(curve3d, scene.curve_3d) < 0.002
+    assert new.std is not None and np.all(np.isfinite(new.std))
+
+
+def test_bad_input_raises():
+    scene = make_scene(np.random.default_rng(1), 4, with_curve=True)
+    curves = scene.observations.curves
+    rot, tr = _truth_poses(scene)
+    with pytest.raises(CurveReconError, match="at least 2 frames"):
+        bundle_adjust(curves[:1], rot[:1], tr[:1], scene.curve_3d)
+    with pytest.raises(CurveReconError, match="shapes"):
+        bundle_adjust(curves, rot[:3], tr, scene.curve_3d)
+    bad = rot.copy()
+    bad[0, 0, 0] = np.nan
+    with pytest.raises(CurveReconError, match="NaN"):
+        bundle_adjust(curves, bad, tr, scene.curve_3d)
+    with pytest.raises(CurveReconError, match="orthonormal"):
+        bundle_adjust(curves, rot * 2.0, tr, scene.curve_3d)
+    with pytest.raises(CurveReconError, match="start curve"):
+        bundle_adjust(curves, rot, tr, scene.curve_3d[:, :2])
+    with pytest.raises(CurveReconError, match="frame 2 curve"):
+        bundle_adjust([*curves[:2], curves[2][:3], curves[3]], rot, tr, scene.curve_3d)
+    with pytest.raises(CurveReconError, match="ends"):
+        bundle_adjust(curves, rot, tr, scene.curve_3d, ends=np.zeros((4, 2)))
+
+
+def test_command_falls_back_to_a_flat_start_when_section_4_fails(tmp_path, monkeypatch):
+    """Section 4 refuses when the end-point answer's poses all look along one direction (seen on
+    seed 8, 12 frames, 0.5 px: the end-point fit ran off to c about 9 times the truth).  The
+    bundle then starts from frame 0's polyline at depth 0; here section 4 is made to fail on a
+    benign scene, and the command still answers, within 3 % of the curve's length."""
+    import curverecon.curve3d
+
+    def refuse(*args, **kwargs):
+        raise CurveReconError("no frame views the curve from a different direction than frame 0")
+
+    s, t, o = (str(tmp_path / n) for n in ("s.json", "t.json", "o.json"))
+    args = ["--frames", "12", "--point-noise", "0.5", "--tangent-noise", "0.5", "--seed", "2"]
+    assert main(["simulate", "-o", s, "--truth", t, *args, "--with-curve"]) == 0
+    doc = json.load(open(s))
+    for frame in doc["frames"]:
+        for key in ("A", "B", "tangent_A", "tangent_B"):
+            frame.pop(key)
+    json.dump(doc, open(s, "w"))
+    monkeypatch.setattr(curverecon.curve3d, "reconstruct_curve", refuse)
+    assert main(["reconstruct", s, "-o", o]) == 0
+    out, truth = json.load(open(o)), json.load(open(t))
+    assert curve_error(np.array(out["curve3d"]), np.array(truth["curve3d"])) < 0.03
+    assert len(out["curve_bundle"]["frame_rms_px"]) == 12
+    assert any(w.startswith("section 4 failed") for w in out["warnings"])
+    # --curve-bundle off: the refusal stands (status 2)
+    assert main(["reconstruct", s, "-o", o, "--curve-bundle", "off"]) == 2
+
+
+def test_command_bundle_switch_and_keys(tmp_path):
+    """Noise-free, tangents given: on and off both within 1 %; the contract's keys stay."""
+    s, t, o = (str(tmp_path / n) for n in ("s.json", "t.json", "o.json"))
+    assert (
+        main(["simulate", "-o", s, "--truth", t, "--frames", "8", "--seed", "1", "--with-curve"])
+        == 0
+    )
+    truth = json.load(open(t))
+    for switch in ("on", "off"):
+        assert main(["reconstruct", s, "-o", o, "--curve-bundle", switch]) == 0
+        out = json.load(open(o))
+        assert curve_error(np.array(out["curve3d"]), np.array(truth["curve3d"])) < 0.01
+        for key in ("c", "alpha_deg", "beta_deg", "phi_deg", "frames", "curve3d"):
+            assert key in out
+        for key in ("delta_deg", "tau_deg", "A3", "B3", "tangent_A3", "tangent_B3"):
+            assert key in out["frames"][0]
+        assert ("curve_bundle" in out) == (switch == "on")
