@@ -5,7 +5,9 @@ A cell is (noise level, frame count); the noise is ``sigma`` px on each image co
 
 - the CRLB of the shape at the true parameters (``refine.crlb_covariance``: Fisher information of
   the same measurement model, poses eliminated as nuisance parameters);
-- ``truth_start``: ``refine.refine`` started at the true shape and poses;
+- ``truth_start``: ``refine.refine`` (maximum likelihood) started at the true shape and poses;
+- ``truth_marginal``: ``marginal.refine_marginal`` from that fit (the marginal likelihood, poses
+  integrated out), in the cells of ``MARGINAL_CELLS`` only;
 - ``linear``: the paper's linearisation alone (``linear.solve_linear``), only where it is
   determined (at least ``linear.min_frames()`` frames);
 - ``default``: the default pipeline ``reconstruct.reconstruct`` (no truth), on scenes 0, 1, ...
@@ -33,16 +35,20 @@ from bench.common import (
     worst_angle_deg,
 )
 from curverecon.errors import CurveReconError
+from curverecon.marginal import refine_marginal
 from curverecon.pose import normalise
 from curverecon.reconstruct import reconstruct
 from curverecon.refine import crlb_covariance, refine
 
-METHODS = ("linear", "default", "truth_start")
+METHODS = ("linear", "default", "truth_start", "truth_marginal")
 METHOD_TITLES = {
     "linear": "linearisation alone",
     "default": "default pipeline",
     "truth_start": "refinement from the truth",
+    "truth_marginal": "marginal likelihood from the truth",
 }
+MARGINAL_CELLS = ((1.0, 10), (1.0, 20), (1.0, 50), (2.0, 20))
+"""(noise, frames) cells where ``truth_marginal`` runs (it costs a few refinements per scene)."""
 
 
 def linear_min_frames() -> int:
@@ -108,6 +114,14 @@ def run_scenes(
             rec["truth_start"] = _errors_list(shape_errors(est, shape))
             rec["truth_start_converged"] = bool(res.converged)
             rec["truth_start_s"] = time.perf_counter() - t0
+            if (noise, n_frames) in MARGINAL_CELLS:
+                t0 = time.perf_counter()
+                mg = refine_marginal(
+                    obs.measurements(), res.shape, res.poses, noise, sig_t, res.chi2
+                )
+                g, p = (res.shape, res.poses) if mg is None else (mg.shape, mg.poses)
+                rec["truth_marginal"] = _errors_list(shape_errors(normalise(g, p)[0], shape))
+                rec["truth_marginal_s"] = time.perf_counter() - t0
             rec["linear"] = None
             if n_frames >= lin_min:
                 from curverecon.linear import solve_linear

@@ -476,8 +476,10 @@ def _markdown(cfg: Config, sections: dict[str, Any], command: str, started: str)
     add("| noise | frames | method | scenes | c | alpha | beta | phi | success |")
     add("|---|---|---|---|---|---|---|---|---|")
     for row in sections["accuracy"]:
-        for m in ("linear", "default", "truth_start"):
+        for m in accuracy.METHODS:
             s = row[m]
+            if m == "truth_marginal" and not s:
+                continue
             title = accuracy.METHOD_TITLES[m]
             if m == "linear" and row["n_frames"] < lin_min:
                 add(
