@@ -22,6 +22,7 @@ in tau, so Gauss-Newton overshoots, zig-zags and creeps along the curved valley 
 every such tau) for 40-130 iterations; Newton converges quadratically.  In the Newton phase each
 shape step is followed by ``pose_iterations`` damped Gauss-Newton steps on every frame's pose
 with the shape fixed (embedded pose iterations: the poses follow the shape along the valley).
+``refine_batch(..., newton_phase=False)`` stays Gauss-Newton (cheap screening of many starts).
 
 Damping: lambda times the Gauss-Newton diagonal.  Nielsen's update (lambda times
 max(1/3, 1 - (2 rho - 1)^3) after an accepted step, times 4 after a rejected one; rho = actual
@@ -270,6 +271,12 @@ _CURVATURE_SLOTS = tuple(
     (j, np.flatnonzero(_CURVATURE_MAP[:, j])) for j in range(81) if _CURVATURE_MAP[:, j].any()
 )
 """(flat position in the 9x9 block, the terms summed there); cheaper than a BLAS product."""
+_CURVATURE_COPY = (
+    np.array([j for j, ks in _CURVATURE_SLOTS if ks.size == 1]),
+    np.array([ks[0] for _, ks in _CURVATURE_SLOTS if ks.size == 1]),
+)
+"""The positions that take a single term, and that term: filled by one indexed copy."""
+_CURVATURE_SUMS = tuple((j, ks) for j, ks in _CURVATURE_SLOTS if ks.size > 1)
 
 
 def _curvature(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray) -> np.ndarray:
@@ -291,9 +298,7 @@ def _curvature(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray) -> n
     qp = wp * (r[..., 3] * cth - r[..., 2] * sth)  # and across
     qcc = -q * c * ct
     # both tangents at once (last axis: A, B)
-    a = np.stack(
-        [np.broadcast_to(g[:, 2, None], tau.shape), np.broadcast_to(g[:, 1, None], tau.shape)], -1
-    )
+    a = np.stack([g[:, 2], g[:, 1]], -1)[:, None, :]  # (K, 1, 2): the same in every frame
     gam = p[..., 0, None] + np.stack(
         [np.broadcast_to(g[:, 3, None], tau.shape), np.zeros_like(tau)], -1
     )
@@ -310,8 +315,9 @@ def _curvature(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray) -> n
         terms[..., 5 + k] = hk[..., 0]
         terms[..., 11 + k] = hk[..., 1]
     out = np.zeros((*q.shape, 81))
-    for j, ks in _CURVATURE_SLOTS:
-        out[..., j] = terms[..., ks[0]] if ks.size == 1 else np.sum(terms[..., ks], axis=-1)
+    out[..., _CURVATURE_COPY[0]] = terms[..., _CURVATURE_COPY[1]]
+    for j, ks in _CURVATURE_SUMS:
+        out[..., j] = np.sum(terms[..., ks], axis=-1)
     return out.reshape(*q.shape, 9, 9)
 
 
@@ -325,13 +331,30 @@ def _add_curvature(
         u += np.sum(s[..., :4, :4], axis=-3)
 
 
+try:  # numpy's batched Cholesky gufunc: NaN factors (no exception) where a block is not PD
+    from numpy.linalg import _umath_linalg
+
+    _CHOLESKY_LO = _umath_linalg.cholesky_lo
+except (ImportError, AttributeError):  # pragma: no cover - other numpy versions
+    _CHOLESKY_LO = None
+
+
 def _positive_definite(m: np.ndarray) -> np.ndarray:
-    """(...,) whether each symmetric block of ``m`` (..., n, n) is positive definite."""
+    """(...,) whether each symmetric block of ``m`` (..., n, n) is positive definite.
+
+    The test is whether a Cholesky factorisation succeeds.  If one block of the batch fails,
+    the blocks are told apart by numpy's Cholesky gufunc (failed factors are NaN), which costs a
+    fraction of the eigenvalue fallback (used where that gufunc is not available).
+    """
     try:
         np.linalg.cholesky(m)
         return np.ones(m.shape[:-2], dtype=bool)
     except np.linalg.LinAlgError:
-        return np.linalg.eigvalsh(m)[..., 0] > 0
+        if _CHOLESKY_LO is None:  # pragma: no cover
+            return np.linalg.eigvalsh(m)[..., 0] > 0
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore", under="ignore"):
+        factor = _CHOLESKY_LO(m, signature="d->d")
+    return np.all(np.isfinite(factor), axis=(-2, -1))
 
 
 def _pose_steps(
@@ -360,7 +383,7 @@ def _pose_steps(
         jlt = np.swapaxes(jl, -1, -2)
         v = jlt @ jl
         if lam is not None:
-            dv = np.einsum("...ii->...i", jlt @ jl)
+            dv = np.einsum("...ii->...i", v)
             v = v.reshape(*v.shape[:-2], 25).copy()
             v[..., ::6] += lam[:, None, None] * dv
             v = v.reshape(*v.shape[:-1], 5, 5)
@@ -400,6 +423,7 @@ def refine_batch(
     frame_weights: np.ndarray | None = None,
     drop_after: int = 8,
     pose_iterations: int = 1,
+    newton_phase: bool = True,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Damped Gauss-Newton, then Newton (module docstring) on K independent starts at once.
 
@@ -412,6 +436,10 @@ def refine_batch(
         frame_weights: (N,) optional weights of the frames' squared residuals (robust IRLS);
             residuals and chi2 returned are then weighted too.
         pose_iterations: embedded pose iterations after each shape step in the Newton phase.
+        newton_phase: False stays Gauss-Newton throughout (no Newton phase, no embedded pose steps):
+            cheaper iterations that keep the start's basin but crawl along the curved valley
+            near a minimum - for screening many starts, whose best few are then refined again
+            with the Newton phase.
     Returns:
         shapes (K, 4), poses (K, N, 5), residuals (K, N, 6) standardised, chi2 (K,),
         iterations (K,), converged (K,) bool.
@@ -526,7 +554,7 @@ def refine_batch(
         rho = (c2 - chi2_new) / np.maximum(predicted, 1e-300)
         factor = np.maximum(1.0 / 3.0, 1.0 - (2.0 * np.clip(rho, 0.0, 1.0) - 1.0) ** 3)
         lam[act] = np.where(accept, np.maximum(lama * factor, 1e-15), lama * 4.0)
-        switch = ~nwt & accept & (predicted <= NEWTON_SWITCH * c2)
+        switch = ~nwt & accept & (predicted <= NEWTON_SWITCH * c2) & newton_phase
         newton[act] = nwt | switch
         lam[act[switch]] = np.minimum(lam[act[switch]], 1e-3)  # a new model: trust it afresh
         if act.size == k and accept.all():

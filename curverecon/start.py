@@ -24,7 +24,9 @@ steps and a batched Levenberg-Marquardt on the same pose-free cost (``local_refi
 distinct shapes get a short batched ML refinement (``refine.refine_batch``, poses from the
 grid's branch per frame) -> the best few are refined to convergence -> every frame tries the
 other branches of (10) with the shape fixed (``switch_branches``) -> random restarts around the
-best two by robust cost (three, and more restarts, with few frames or an implausible chi2).
+best two by robust cost (three, and more restarts, with few frames or an implausible chi2; with
+plausible noisy data screened by Gauss-Newton, ``SCREEN_ITERATIONS``, and only the
+``RESTART_FINALISTS`` best refined with the Newton phase).
 More than 40 frames: the search runs on 40 evenly spread frames and the candidates are refined
 on all (``robust_start``).
 
@@ -75,6 +77,17 @@ missed by the search is probably near)."""
 
 NEAR_EXACT_CHI2 = 0.05
 """chi2 per degree of freedom below which a fit that is not exact counts as nearly noise-free."""
+
+SCREEN_ITERATIONS = 15
+"""Gauss-Newton iterations (``refine_batch(..., newton_phase=False)``) that screen the random
+restarts of plausible noisy data (``search_start``); the ``RESTART_FINALISTS`` best by robust
+cost are then refined from their starts to convergence with the Newton phase."""
+
+SCREEN_FTOL = 1e-6
+"""Relative predicted decrease at which a screening iteration counts as converged."""
+
+RESTART_FINALISTS = 8
+"""Screened restarts refined to convergence from their starts (``search_start``)."""
 
 EXACT_STAGE_STARTS = 12
 """Grid minima searched first for an exact fit (``search_start``)."""
@@ -148,19 +161,23 @@ def branch_candidates(
     ta = np.asarray(tan_alpha, float)[..., None]
     s_abs = np.sqrt(np.clip(1.0 - (cp / c) ** 2, 0.0, None))
     t_a = c * ta
-    k4 = np.array([1.0, 1.0, -1.0, -1.0])  # sign of sin tau
-    r4 = np.array([1.0, -1.0, 1.0, -1.0])  # the two roots
-    s = s_abs[..., None] * k4
-    a_coef = (-t_a * ub[:, 0])[..., None] * np.ones(4)
-    b_coef = (t_a * ub[:, 1])[..., None] * s
-    rhs = (ub[:, 1] * cp)[..., None] * np.ones(a_coef.shape)
+    # R cos(delta - w) = rhs with (R cos w, R sin w) = (a, b s_abs sign(sin tau)): R, the root
+    # offset arccos(rhs / R) and the misfit do not depend on the sign, w only flips its sign
+    # (atan2 is odd in its first argument), so they are computed once per frame, not four times
+    a_coef = -t_a * ub[:, 0]
+    b_coef = t_a * ub[:, 1] * s_abs
+    rhs = ub[:, 1] * cp
     big_r = np.hypot(a_coef, b_coef)
     w = np.arctan2(b_coef, a_coef)
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(big_r > 0, rhs / big_r, 0.0)
     ratio_c = np.clip(ratio, -1.0, 1.0)
-    delta = w + r4 * np.arccos(ratio_c)
-    r_b = (rhs - big_r * ratio_c) / (c * np.sqrt(1.0 + ta * ta))[..., None]
+    off = np.arccos(ratio_c)
+    # branches: (sign of sin tau, root) = (+, +), (+, -), (-, +), (-, -)
+    delta = np.stack([w + off, w - off, off - w, -w - off], axis=-1)
+    s = s_abs[..., None] * np.array([1.0, 1.0, -1.0, -1.0])
+    r_b = (rhs - big_r * ratio_c) / (c * np.sqrt(1.0 + ta * ta))
+    r_b = np.broadcast_to(r_b[..., None], delta.shape)
     return np.cos(delta), np.sin(delta), s, r_b
 
 
@@ -196,23 +213,27 @@ def grid_costs(obs: Observations, spec: GridSpec | None = None) -> tuple[np.ndar
         :, None
     ].astype(dt)  # (G, 1, 3, B*P)
     shp = (spec.n_gamma, spec.n_alpha, n * 4, 3)
-    cross = lin_cross.reshape(shp).astype(dt) @ coef
-    px = lin_px.reshape(shp).astype(dt) @ coef
-    py = lin_py.reshape(shp).astype(dt) @ coef
-    np.multiply(cross, cross, out=cross)
-    np.multiply(px, px, out=px)
-    np.multiply(py, py, out=py)
-    np.add(px, py, out=px)
-    px += dt(1e-30)
-    np.divide(cross, px, out=cross)  # sin^2 of the angle error at A
-    r2 = cross.reshape(spec.n_gamma, spec.n_alpha, n, 4, -1)
-    r2 += (r_b * r_b).astype(dt)[..., None]
-    per_frame = np.minimum(
-        np.minimum(r2[:, :, :, 0], r2[:, :, :, 1]), np.minimum(r2[:, :, :, 2], r2[:, :, :, 3])
-    )  # (G, A, N, B*P)
-    trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
-    np.minimum(per_frame, dt(trunc), out=per_frame)
-    cost = np.sum(per_frame, axis=2, dtype=np.float64)  # (G, A, B*P)
+    lin_cross, lin_px, lin_py = (m.reshape(shp).astype(dt) for m in (lin_cross, lin_px, lin_py))
+    rb2 = (r_b * r_b).astype(dt)[..., None]  # (G, A, N, 4, 1)
+    trunc = dt(np.sin(np.radians(spec.truncate_deg)) ** 2)
+    cost = np.empty((spec.n_gamma, spec.n_alpha, coef.shape[-1]))
+    for ig in range(spec.n_gamma):  # one gamma at a time: the work arrays stay in cache
+        cross = lin_cross[ig] @ coef[ig]  # (A, N * 4, B*P)
+        px = lin_px[ig] @ coef[ig]
+        py = lin_py[ig] @ coef[ig]
+        np.multiply(cross, cross, out=cross)
+        np.multiply(px, px, out=px)
+        np.multiply(py, py, out=py)
+        np.add(px, py, out=px)
+        px += dt(1e-30)
+        np.divide(cross, px, out=cross)  # sin^2 of the angle error at A
+        r2 = cross.reshape(spec.n_alpha, n, 4, -1)
+        r2 += rb2[ig]
+        per_frame = np.minimum(
+            np.minimum(r2[:, :, 0], r2[:, :, 1]), np.minimum(r2[:, :, 2], r2[:, :, 3])
+        )  # (A, N, B*P)
+        np.minimum(per_frame, trunc, out=per_frame)
+        cost[ig] = np.sum(per_frame, axis=1, dtype=np.float64)  # (A, B*P)
     cost = cost.reshape(spec.n_gamma, spec.n_alpha, spec.n_beta, spec.n_phi)
     return cost, {"c": c, "alpha": alp, "beta": bet, "phi": phi}
 
@@ -668,8 +689,8 @@ def _refine_candidates(
     # Local restarts around the best candidates (few frames: many shallow minima nearby).
     dof = max(n - 4, 1)
     implausible = np.min(chi2) > dof + 5.0 * np.sqrt(2.0 * dof) + 10.0
+    near_exact = np.min(chi2) < NEAR_EXACT_CHI2 * dof  # nearly noise-free: search harder
     if n_restarts is None:
-        near_exact = np.min(chi2) < NEAR_EXACT_CHI2 * dof  # nearly noise-free: search harder
         n_restarts = (
             RESTARTS_IMPLAUSIBLE
             if implausible or near_exact
@@ -696,10 +717,31 @@ def _refine_candidates(
             starts.append(pert)
         starts = np.concatenate(starts)
         sp = poses_from_branches(obs, starts)
+        # Plausible noisy data: the restarts are screened by Gauss-Newton alone (cheap
+        # iterations that keep a start's basin); the ``RESTART_FINALISTS`` best by robust cost
+        # are then refined from their starts as every restart is otherwise (Newton phase, to
+        # convergence): the same results whenever the best restart is among them.
+        # Implausible or nearly noise-free data (a missed minimum, an exact fit to find): no
+        # screening.
+        fin = np.arange(len(starts))
+        if not (implausible or near_exact):
+            _, _, r3, _, _, _ = refine_batch(
+                meas,
+                starts,
+                sp,
+                point_sigma,
+                tangent_sigma,
+                max_iter=SCREEN_ITERATIONS,
+                ftol=SCREEN_FTOL,
+                drop_factor=3.0,
+                newton_phase=False,
+            )
+            rc3 = np.array([robust_cost(f) for f in np.sum(r3 * r3, axis=2)])
+            fin = np.sort(np.argsort(rc3, kind="stable")[:RESTART_FINALISTS])
         g3, p3, r3, chi23, it3, conv3 = refine_batch(
             meas,
-            starts,
-            sp,
+            starts[fin],
+            sp[fin],
             point_sigma,
             tangent_sigma,
             max_iter=40,
