@@ -45,7 +45,7 @@ import numpy as np
 
 from curverecon.generated import measurement_model
 from curverecon.observations import wrap_line_angle
-from curverecon.refine import _curvature
+from curverecon.refine import _curvature, _split, schur_information
 
 FD_STEP = 1e-4
 """Forward-difference step of F's gradient, in standard deviations of the shape."""
@@ -87,14 +87,9 @@ class MarginalResult:
     converged: bool
 
 
-def _args(g: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
-    """Arguments of the generated functions for shapes (K, 4) and poses (K, N, 5)."""
-    return [g[:, i : i + 1] for i in range(4)] + [p[..., i] for i in range(5)]
-
-
 def _residuals(g: np.ndarray, p: np.ndarray, meas: np.ndarray, w8: np.ndarray) -> np.ndarray:
     """(K, N, 6) standardised residuals for shapes (K, 4) and poses (K, N, 5)."""
-    r = measurement_model.predict(*_args(g, p)) - meas
+    r = measurement_model.predict(*_split(g, p)) - meas
     r[..., 4:6] = wrap_line_angle(r[..., 4:6])
     return r * w8
 
@@ -122,7 +117,7 @@ def solve_poses(
     active = np.ones(f.shape, dtype=bool)  # frames still improving
     per_frame_tol = tol / p.shape[1]
     for _ in range(n_iter):
-        _, _, jl = measurement_model.predict_with_jacobians(*_args(g, p))
+        _, _, jl = measurement_model.predict_with_jacobians(*_split(g, p))
         jl = jl * w8[:, None]
         v = np.einsum("...ki,...kj->...ij", jl, jl)
         v = v + 1e-12 * np.trace(v, axis1=-2, axis2=-1)[..., None, None] * eye5
@@ -151,7 +146,7 @@ def solve_poses(
         active &= gain > per_frame_tol
         if not active.any():
             break
-    _, _, jl = measurement_model.predict_with_jacobians(*_args(g, p))
+    _, _, jl = measurement_model.predict_with_jacobians(*_split(g, p))
     return p, r, jl * w8[:, None]
 
 
@@ -172,15 +167,10 @@ def volume_terms(
     return logdet - 2.0 * np.log(np.maximum(np.abs(np.cos(p[..., 1])), 1e-300))
 
 
-def schur_information(g: np.ndarray, p: np.ndarray, w8: np.ndarray) -> np.ndarray:
-    """(4, 4) Schur-reduced Gauss-Newton information of the shape (poses eliminated)."""
+def shape_information(g: np.ndarray, p: np.ndarray, w8: np.ndarray) -> np.ndarray:
+    """(4, 4) Schur-reduced Gauss-Newton information of the shape at (g, p), standardised."""
     _, jg, jl = measurement_model.predict_with_jacobians(*g, *p.T)
-    jg, jl = jg * w8[None, :, None], jl * w8[None, :, None]
-    v = np.einsum("nki,nkj->nij", jl, jl)
-    w = np.einsum("nki,nkj->nij", jg, jl)
-    vinv = np.linalg.inv(v + 1e-13 * np.trace(v, axis1=1, axis2=2)[:, None, None] * np.eye(5))
-    s = np.einsum("nki,nkj->ij", jg, jg) - np.einsum("nij,njk,nlk->il", w, vinv, w)
-    return 0.5 * (s + s.T)
+    return schur_information(jg * w8[None, :, None], jl * w8[None, :, None])
 
 
 def _setup(
@@ -274,7 +264,7 @@ def refine_marginal(
         return fs
 
     try:
-        chol = np.linalg.cholesky(2.0 * schur_information(g0, p0, w8) / kappa)
+        chol = np.linalg.cholesky(2.0 * shape_information(g0, p0, w8) / kappa)
     except np.linalg.LinAlgError:
         return None
     to_shape = np.linalg.inv(chol.T)

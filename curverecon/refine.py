@@ -169,14 +169,20 @@ def _batched_inverse(v: np.ndarray) -> np.ndarray:
     return np.linalg.inv(vr.reshape(v.shape))
 
 
-def schur_covariance(jg: np.ndarray, jl: np.ndarray) -> np.ndarray | None:
-    """(4, 4) shape covariance: inverse of the Schur-reduced normal matrix (or None)."""
+def schur_information(jg: np.ndarray, jl: np.ndarray) -> np.ndarray:
+    """(4, 4) Schur-reduced normal matrix of the shape, the poses eliminated: U - sum W V^-1 W^T
+    from the standardised Jacobians (N, 6, 4) and (N, 6, 5)."""
     u = np.einsum("nki,nkj->ij", jg, jg)
     v = np.einsum("nki,nkj->nij", jl, jl)
     w = np.einsum("nki,nkj->nij", jg, jl)
     vinv = _batched_inverse(v)
     s = u - np.einsum("nij,njk,nlk->il", w, vinv, w)
-    s = 0.5 * (s + s.T)
+    return 0.5 * (s + s.T)
+
+
+def schur_covariance(jg: np.ndarray, jl: np.ndarray) -> np.ndarray | None:
+    """(4, 4) shape covariance: inverse of the Schur-reduced normal matrix (or None)."""
+    s = schur_information(jg, jl)
     try:
         cond = np.linalg.cond(s)
         if not np.isfinite(cond) or cond > 1e15:

@@ -7,7 +7,7 @@ import pytest
 from curverecon.generated import measurement_model
 from test_conventions import canonical_parameters
 
-from curverecon.marginal import refine_marginal, schur_information, solve_poses, volume_terms
+from curverecon.marginal import refine_marginal, shape_information, solve_poses, volume_terms
 from curverecon.observations import wrap_line_angle
 from curverecon.pose import normalise
 from curverecon.refine import crlb, refine
@@ -89,7 +89,7 @@ def test_answer_is_a_local_minimum_of_f(seed):
     assert f_mg < f_ml - 1e-3  # the correction moved the shape, downhill
     assert abs(f_mg - mg.value) < 1e-5 * abs(f_mg)
     # steps of a tenth of a standard deviation along each axis of the shape do not go lower
-    std = np.sqrt(np.diag(np.linalg.inv(schur_information(mg.shape, mg.poses, W8))))
+    std = np.sqrt(np.diag(np.linalg.inv(shape_information(mg.shape, mg.poses, W8))))
     for k in range(4):
         for sgn in (-1.0, 1.0):
             g = mg.shape.copy()
