@@ -129,6 +129,12 @@ def test_usage_errors_are_one_line(tmp_path):
     assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1
     proc = run("reconstruct", str(tmp_path / "missing.json"), "-o", str(tmp_path / "o.json"))
     assert proc.returncode == 2 and "cannot read" in proc.stderr
+    inp = tmp_path / "in.json"
+    inp.write_text(json.dumps(_doc()))
+    for option, value in (("--estimator", "bayes"), ("--curve-bundle", "maybe")):
+        proc = run("reconstruct", str(inp), "-o", str(tmp_path / "o.json"), option, value)
+        assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1
+        assert value in proc.stderr
 
 
 def test_linear_with_too_few_frames(tmp_path):
