@@ -176,6 +176,57 @@ def jacobian(wrt: tuple[sp.Symbol, ...], params: tuple[sp.Expr, ...] = ALL_PARAM
 
 
 # ---------------------------------------------------------------------------------------------
+# Second derivatives, contracted with the residuals.  The Hessian of chi2 / 2 over all nine
+# parameters of a frame is J^T J + sum_k r_k d2 r_k (r_k standardised residuals, r_k = w_k (m_k -
+# measured_k)); Gauss-Newton drops the second term, Newton's method (``curverecon.refine``) and the
+# Laplace volume of the marginal likelihood (``curverecon.marginal``) need it.  One generated
+# function returns sum_k u_k d2 m_k / dx_i dx_j for per-frame weights u_k (the runtime passes
+# u_k = w_k r_k), so the six 9 x 9 Hessians are never formed one by one.
+# Angles: d2 psi = d(first derivative) with the first derivative in the quotient form above.
+# theta turns every image direction rigidly (d psi / d theta = 1), so any second derivative of
+# an angle that involves theta is exactly 0; taking theta first gives that without simplifying.
+# ---------------------------------------------------------------------------------------------
+
+#: Weights of the contraction, one per prediction (PREDICTIONS order).
+CURVATURE_WEIGHTS: tuple[sp.Symbol, ...] = tuple(
+    sp.Symbol(f"u_{name}", real=True) for name in PREDICTIONS
+)
+
+
+def angle_second_derivative(direction: sp.Matrix, first: sp.Symbol, second: sp.Symbol) -> sp.Expr:
+    """d2 psi / (d first d second) for psi = atan2(dy, dx) of the projected ``direction``."""
+    if theta in (first, second):
+        return sp.Integer(0)  # d psi / d theta = 1 (see the comment above)
+    return sp.diff(angle_derivative(direction, first), second)
+
+
+def contracted_hessian(
+    wrt: tuple[sp.Symbol, ...] = ALL_PARAMETERS,
+    weights: tuple[sp.Symbol, ...] = CURVATURE_WEIGHTS,
+) -> sp.Matrix:
+    """Symmetric len(wrt) x len(wrt) matrix sum_k u_k d2 m_k / d wrt_i d wrt_j.
+
+    m_k are the six predictions (ax, ay, bx, by, psi_a, psi_b); entries are built for i <= j and
+    mirrored, so the matrix is exactly symmetric.
+    """
+    a3, b3, ta3, tb3 = camera_points()
+    coordinates = [*project(a3), *project(b3)]
+    n = len(wrt)
+    out = sp.zeros(n, n)
+    for i in range(n):
+        for j in range(i, n):
+            s1, s2 = wrt[i], wrt[j]
+            value = sum(
+                (u * sp.diff(x, s1, s2) for u, x in zip(weights[:4], coordinates, strict=True)),
+                sp.Integer(0),
+            )
+            for u, direction in zip(weights[4:], (ta3, tb3), strict=True):
+                value += u * angle_second_derivative(direction, s1, s2)
+            out[i, j] = out[j, i] = value
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
 # What code generation sees.
 # ---------------------------------------------------------------------------------------------
 
@@ -188,8 +239,8 @@ Predictions per frame: (ax, ay, bx, by, psi_a, psi_b), psi = atan2(dy, dx) of th
 tangent directions (radians).  See docs/CONVENTIONS.md.
 
 Frame arguments (delta, tau, theta, tx, ty) are 1-D arrays of length N (or scalars); shape
-arguments (c, alpha, beta, phi) are scalars; everything broadcasts.  Angles in radians, lengths in
-input units.
+arguments (c, alpha, beta, phi) are scalars; everything broadcasts.  Angles in radians,
+lengths in input units.
 """
 
 
@@ -258,6 +309,17 @@ def generated_functions() -> list[FunctionSpec]:
                 "Returns (pred (N, 6), jac_global (N, 6, 4), jac_local (N, 6, 5)): derivatives of\n"
                 "(ax, ay, bx, by, psi_a, psi_b) with respect to (c, alpha, beta, phi) and\n"
                 "(delta, tau, theta, tx, ty)."
+            ),
+        ),
+        FunctionSpec(
+            name="residual_curvature",
+            args=ALL_PARAMETERS + CURVATURE_WEIGHTS,
+            outputs={"curvature": contracted_hessian()},
+            doc=(
+                "Second-order part of the Hessian, sum_k u_k d2 m_k / dx_i dx_j: (N, 9, 9).\n\n"
+                "m = (ax, ay, bx, by, psi_a, psi_b), x = (c, alpha, beta, phi, delta, tau, theta,\n"
+                "tx, ty); u_k per frame (pass u_k = w_k r_k, r_k = w_k (m_k - measured_k) the\n"
+                "standardised residuals, for the Newton term sum_k r_k d2 r_k of chi2 / 2)."
             ),
         ),
     ]

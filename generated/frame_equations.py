@@ -30,6 +30,16 @@ def _stack(values: tuple[np.ndarray | float, ...], shape: tuple[int, ...]) -> np
     return out
 
 
+def _scatter(
+    entries: tuple[tuple[int, np.ndarray | float], ...], size: int, shape: tuple[int, ...]
+) -> np.ndarray:
+    """Zeros of shape (*shape, size) with ``value`` broadcast into column k for each (k, value)."""
+    out = np.zeros((*shape, size), dtype=np.float64)
+    for k, value in entries:
+        out[..., k] = value
+    return out
+
+
 def aux_terms(
     c: npt.ArrayLike,
     tan_alpha: npt.ArrayLike,
@@ -192,17 +202,19 @@ def residual_12(
             (_tmp0 * _tmp11 + _tmp0 * _tmp5 * _tmp9 - _tmp2 * _tmp3)
             * (_tmp1 * _tmp11 + _tmp1 * _tmp7 * _tmp9 - _tmp2 * _tmp6)
             - (
-                _tmp10 * cp * sin_tau * (dp + ep) * np.sin(phi)
-                - _tmp10 * (_tmp2 - _tmp4 * _tmp8) * np.cos(phi)
-                + _tmp2 * _tmp8
-            )
-            * (
-                _tmp10 * cp * sin_tau * (dp + ep) * np.sin(phi)
-                - _tmp10 * (_tmp2 - _tmp4 * _tmp8) * np.cos(phi)
-                + _tmp2 * _tmp8
+                (
+                    _tmp10 * cp * sin_tau * (dp + ep) * np.sin(phi)
+                    - _tmp10 * (_tmp2 - _tmp4 * _tmp8) * np.cos(phi)
+                    + _tmp2 * _tmp8
+                )
+                * (
+                    _tmp10 * cp * sin_tau * (dp + ep) * np.sin(phi)
+                    - _tmp10 * (_tmp2 - _tmp4 * _tmp8) * np.cos(phi)
+                    + _tmp2 * _tmp8
+                )
             )
         )
-        / (_tmp0 * _tmp1 * c * c * c * c * (_tmp2 + _tmp5) * (_tmp2 + _tmp7)),
+        / (_tmp0 * _tmp1 * (c * c * c * c) * (_tmp2 + _tmp5) * (_tmp2 + _tmp7)),
         _shape,
     )
     return residual

@@ -101,6 +101,20 @@ def print_function(spec: FunctionSpec, config: NumPyConfig) -> FunctionCode:
         position += len(out.components)
         if out.shape == ():
             lines.append(f"{out.name} = _full({parts[0]}, _shape)")
+        elif any(e == 0 for e in reduced[position - len(out.components) : position]):
+            # sparse (Jacobians, second derivatives): zeros first, then only the nonzero entries
+            entries = [
+                f"({k}, {part})"
+                for k, (part, e) in enumerate(
+                    zip(parts, reduced[position - len(out.components) : position], strict=True)
+                )
+                if e != 0
+            ]
+            stacked = f"_scatter(({', '.join(entries)},), {len(parts)}, _shape)"
+            if len(out.shape) == 2:
+                rows, cols = out.shape
+                stacked += f".reshape((*_shape, {rows}, {cols}))"
+            lines.append(f"{out.name} = {stacked}")
         else:
             stacked = f"_stack(({', '.join(parts)},), _shape)"
             if len(out.shape) == 2:

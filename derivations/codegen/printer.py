@@ -5,7 +5,8 @@ Differences from ``sympy.printing.numpy.NumPyPrinter``:
 * functions and constants carry the ``np.`` prefix (the generated module does
   ``import numpy as np``) instead of ``numpy.``;
 * small integer powers are printed as repeated products (``x**2`` -> ``x*x``,
-  ``x**-2`` -> ``1/(x*x)``), larger ones as ``x**n``; ``x**(1/2)`` is ``np.sqrt(x)``;
+  ``x**-2`` -> ``1/(x*x)``), parenthesised as a product inside a product or quotient
+  (``a/(x*x)``, not ``a/x*x``), larger ones as ``x**n``; ``x**(1/2)`` is ``np.sqrt(x)``;
 * float constants are printed with ``repr`` (shortest round-trip form); rationals stay ``p/q``
   (true division in Python 3).
 """
@@ -66,6 +67,31 @@ class NumPyCodePrinter(NumPyPrinter):
         b = self.parenthesize(base, PRECEDENCE["Pow"], strict=True)
         e = self.parenthesize(exp, prec, strict=False)
         return f"{b}**{e}"
+
+    def _print_Mul(self, expr: sp.Mul) -> str:
+        # A negative product is printed at the precedence of a sum (SymPy's convention), so its
+        # factors come to ``parenthesize`` with the level of an Add: mark that they are factors.
+        self._factor_depth = getattr(self, "_factor_depth", 0) + 1
+        try:
+            return super()._print_Mul(expr)
+        finally:
+            self._factor_depth -= 1
+
+    def parenthesize(self, item: sp.Basic, level: int, strict: bool = False) -> str:
+        """As SymPy's, but a small positive power counts as a product (it prints as ``x*x``).
+
+        Without this a lone denominator ``x**2`` printed as ``a/x*x``, i.e. ``(a/x)*x``: SymPy
+        parenthesises a factor only below the precedence of a power.  Here such a power is put
+        in parentheses wherever it is a factor (of a product or quotient) or a base.
+        """
+        if (
+            isinstance(item, sp.Pow)
+            and item.exp.is_Integer
+            and 2 <= int(item.exp) <= self.config.power_by_multiplication
+            and (level >= PRECEDENCE["Mul"] or getattr(self, "_factor_depth", 0) > 0)
+        ):
+            return f"({self._print(item)})"
+        return super().parenthesize(item, level, strict)
 
     def _print_atan2(self, expr: sp.atan2) -> str:
         y, x = expr.args
