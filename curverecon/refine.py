@@ -7,10 +7,19 @@ angles (``wrap(pred - obs) / tangent_sigma``, wrapped to (-pi/2, pi/2]: a tangen
 Predictions and their analytic Jacobians come from ``measurement_model.predict_with_jacobians``.
 
 The normal matrix is block-arrow shaped: a 4x4 shape block U, per-frame 5x5 pose blocks V_i and
-4x5 couplings W_i.  Each step eliminates the pose blocks (batched 5x5 inverses, einsum; no Python
-loop over frames) and solves the 4x4 Schur complement S = U - sum W_i V_i^-1 W_i^T.  The shape's
-covariance is S^-1 at the solution (undamped, Gauss-Newton); at the true parameters it is the
-Cramer-Rao bound.  ``refine_batch`` runs K independent starts at once (a leading axis).
+4x5 couplings W_i.  Each step eliminates the pose blocks (batched 5x5 inverses, batched products;
+no Python loop over frames) and solves the 4x4 Schur complement S = U - sum W_i V_i^-1 W_i^T.
+The shape's covariance is S^-1 at the solution (undamped, Gauss-Newton); at the true parameters
+it is the Cramer-Rao bound.  ``refine_batch`` runs K independent starts at once (a leading axis).
+
+Cost.  With tens of frames every NumPy call costs more than its arithmetic, so an iteration is
+organised to make few calls (see the comments at ``_lin_aug``, ``_normal_blocks``,
+``_add_curvature``, ``_angle_hessian`` and in ``refine_batch``): one J^T J product per frame for
+all blocks, LAPACK gufuncs called directly, the damping's scales and the whole normal system
+kept while a start's point does not move (a rejected step only re-solves it with more damping),
+no evaluation where no step is taken, only the non-zero entries of the second-order term.  Every
+floating-point operation is the one of the plain formulation, in the same order and with the
+same kernels: the results are identical to the bit (tests/test_refine_convergence.py).
 
 Two phases per start.  Far from a minimum the model is Gauss-Newton (convex; its short steps
 keep the start's basin, as plain LM always did).  Once an accepted Gauss-Newton step predicts a
@@ -197,48 +206,43 @@ def _split(g: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
     return [g[:, i : i + 1] for i in range(4)] + [p[..., i] for i in range(5)]
 
 
-def _lin_batch(g, p, meas, w8):
+# ------------------------------------------------------------------------------------------------
+# For N = 20 frames every NumPy call costs more than its arithmetic (about a microsecond against
+# a few hundred flops), so the iteration below is organised to make few calls.  The Jacobians
+# of a frame are kept side by side, [J_pose | J_shape] (K, N, 6, 9), so that one batched product
+# J^T J per frame gives V, W and U at once (three products before; numpy computes each entry as
+# the same dot product of two columns).  Where a fused product would round differently (the
+# matrix-vector products J^T r: BLAS uses a different kernel for them) the separate product is
+# kept, so that results stay identical to the bit with those of the plain formulation.
+
+
+def _lin_aug(
+    g: np.ndarray, p: np.ndarray, meas: np.ndarray, w8: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Standardised residuals (K, N, 6) and Jacobian (K, N, 6, 9) of g (K, 4), p (K, N, 5).
+
+    Jacobian columns: d/d(delta, tau, theta, tx, ty), then d/d(c, alpha, beta, phi) (the pose
+    first).  Residuals: prediction - observation, angles wrapped, times ``w8``.
+    """
     pred, jg, jl = measurement_model.predict_with_jacobians(*_split(g, p))
     r = pred - meas
-    r[..., 4:6] = wrap_line_angle(r[..., 4:6])
+    # wrap_line_angle's operations, inlined with fewer temporaries (same values)
+    y = np.mod(r[..., 4:6] + np.pi / 2, np.pi)
+    y -= np.pi / 2
+    np.add(y, np.pi, out=y, where=y <= -np.pi / 2)
+    r[..., 4:6] = y
     r *= w8
-    return r, jg * w8[..., None], jl * w8[..., None]
+    ja = np.empty((*pred.shape, 9))
+    wc = w8[..., None]
+    np.multiply(jl, wc, out=ja[..., :5])  # written in place: no concatenation
+    np.multiply(jg, wc, out=ja[..., 5:])
+    return r, ja
 
 
-def _angle_hessian(
-    sgn: float | np.ndarray, tau: np.ndarray, a: np.ndarray, gam: np.ndarray
-) -> tuple[np.ndarray, ...]:
-    """Second derivatives of atan2(m1, m0) over (tau, a, gamma) of a projected tangent.
-
-    m0 = sgn cos(tau) cos(a) + sin(tau) sin(a) sin(gamma), m1 = sin(a) cos(gamma) is the
-    direction R_y(tau) R_x(delta) t up to the rotation theta (which only adds to the angle):
-    tangent at B: sgn = -1, a = alpha, gamma = delta; at A: sgn = 1, a = beta, gamma = delta + phi.
-    Returns the entries (tt, ta, tg, aa, ag, gg) of the symmetric 3x3 Hessian.
-    """
-    ct, st = np.cos(tau), np.sin(tau)
-    ca, sa = np.cos(a), np.sin(a)
-    cg, sg = np.cos(gam), np.sin(gam)
-    m0 = sgn * ct * ca + st * sa * sg
-    m1 = sa * cg
-    # first derivatives of m0 (m0_t, m0_a, m0_g) and m1 (m1_t = 0, m1_a, m1_g)
-    d0 = (-sgn * st * ca + ct * sa * sg, -sgn * ct * sa + st * ca * sg, st * sa * cg)
-    d1a, d1g = ca * cg, -sa * sg
-    # second derivatives of m0 and m1 (m1 does not depend on tau)
-    h0tt = -sgn * ct * ca - st * sa * sg
-    h0 = {"tt": h0tt, "ta": sgn * st * sa + ct * ca * sg, "tg": ct * sa * cg}
-    h0.update(aa=h0tt, ag=st * ca * cg, gg=-st * sa * sg)
-    h1 = {"aa": -m1, "ag": -ca * sg, "gg": -m1}
-    inv = 1.0 / (m0 * m0 + m1 * m1)
-    d1 = (0.0, d1a, d1g)
-    grad = [(m0 * d1[i] - m1 * d0[i]) * inv for i in range(3)]
-    dden = [2.0 * (m0 * d0[i] + m1 * d1[i]) for i in range(3)]
-    out = []
-    for key, i, j in (("tt", 0, 0), ("ta", 0, 1), ("tg", 0, 2), ("aa", 1, 1), ("ag", 1, 2)):
-        # symmetric part of (m0 h1 - m1 h0) / den - grad_i dden_j / den
-        num = m0 * h1.get(key, 0.0) - m1 * h0[key]
-        out.append((num - 0.5 * (grad[i] * dden[j] + grad[j] * dden[i])) * inv)
-    out.append((m0 * h1["gg"] - m1 * h0["gg"] - grad[2] * dden[2]) * inv)
-    return tuple(out)
+def _lin_batch(g, p, meas, w8):
+    """Standardised (r (K, N, 6), jg (K, N, 6, 4), jl (K, N, 6, 5)) (Jacobians: views)."""
+    r, ja = _lin_aug(g, p, meas, w8)
+    return r, ja[..., 5:], ja[..., :5]
 
 
 def _curvature_map() -> np.ndarray:
@@ -285,6 +289,127 @@ _CURVATURE_COPY = (
 _CURVATURE_SUMS = tuple((j, ks) for j, ks in _CURVATURE_SLOTS if ks.size > 1)
 
 
+def _angle_hessian(
+    sgn: float | np.ndarray,
+    tau: np.ndarray,
+    a: np.ndarray,
+    gam: np.ndarray,
+    trig: tuple[np.ndarray, np.ndarray] | None = None,
+) -> np.ndarray:
+    """Second derivatives of atan2(m1, m0) over (tau, a, gamma) of a projected tangent.
+
+    m0 = sgn cos(tau) cos(a) + sin(tau) sin(a) sin(gamma), m1 = sin(a) cos(gamma) is the
+    direction R_y(tau) R_x(delta) t up to the rotation theta (which only adds to the angle):
+    tangent at B: sgn = -1, a = alpha, gamma = delta; at A: sgn = 1, a = beta, gamma = delta + phi.
+    ``trig``: (cos(tau), sin(tau)) if already known.  Returns the entries (tt, ta, tg, aa, ag,
+    gg) of the symmetric 3x3 Hessian stacked on a new first axis.
+
+    Written for few NumPy calls: products shared by several entries are computed once, and the
+    entries of the same form are computed together on stacked arrays.  Every entry is still
+    the same sequence of floating-point operations as the expanded formula in its comment
+    (multiplying by sgn = +-1 and negating are exact), so the values are unchanged to the bit.
+    """
+    ct, st = (np.cos(tau), np.sin(tau)) if trig is None else trig
+    cg, sg = np.cos(gam), np.sin(gam)
+    shape = np.broadcast_shapes(np.shape(sgn), ct.shape, np.shape(a), cg.shape)
+    # every factor as a contiguous array of the full shape (copies): NumPy's broadcasting
+    # loops cost several times the same-shape ones on these small arrays
+    full = np.empty((8, *shape))
+    for i, v in enumerate((ct, st, np.cos(a), np.sin(a), cg, sg, sgn, -sgn)):
+        full[i] = v
+    ct, st, ca, sa, cg, sg, sgn, nsgn = full
+    x = sgn * ct * ca
+    ssa = st * sa
+    y = ssa * sg
+    m0 = x + y  # sgn ct ca + st sa sg
+    m1 = sa * cg
+    cts, stc = ct * sa, st * ca
+    # first derivatives of m0 (t, a, g) and of m1 (0, a, g)
+    d0 = np.empty((3, *shape))
+    d0[0] = nsgn * st * ca + cts * sg  # -sgn st ca + ct sa sg
+    d0[1] = nsgn * ct * sa + stc * sg  # -sgn ct sa + st ca sg
+    d0[2] = ssa * cg  # st sa cg
+    d1 = np.zeros((3, *shape))
+    d1[1] = ca * cg
+    d1[2] = (-sa) * sg
+    # second derivatives of m0 (tt, ta, tg, aa, ag) and of m1 (0, 0, 0, aa, ag); m1 has no tau
+    h0 = np.empty((5, *shape))
+    h0[0] = -m0  # -sgn ct ca - st sa sg
+    h0[1] = sgn * ssa + ct * ca * sg  # sgn st sa + ct ca sg
+    h0[2] = cts * cg  # ct sa cg
+    h0[3] = h0[0]
+    h0[4] = stc * cg  # st ca cg
+    h1 = np.zeros((5, *shape))
+    h1[3] = -m1
+    h1[4] = (-ca) * sg
+    inv = 1.0 / (m0 * m0 + m1 * m1)
+    grad = (m0 * d1 - m1 * d0) * inv
+    dden = 2.0 * (m0 * d0 + m1 * d1)
+    out = np.empty((6, *shape))
+    # symmetric part of (m0 h1 - m1 h0) / den - grad_i dden_j / den; (i, j) = (0, 0..2), (1, 1..2)
+    gd = np.empty((5, *shape))
+    np.add(grad[0] * dden[0:3], grad[0:3] * dden[0], out=gd[0:3])
+    np.add(grad[1] * dden[1:3], grad[1:3] * dden[1], out=gd[3:5])
+    np.multiply(m0 * h1 - m1 * h0 - 0.5 * gd, inv, out=out[:5])
+    # gg: h0 gg = -st sa sg, h1 gg = -m1
+    np.multiply(m0 * h1[3] - m1 * (-y) - grad[2] * dden[2], inv, out=out[5])
+    return out
+
+
+_SIGNS = np.array([1.0, -1.0])
+"""sgn of the two tangents (A, B) in :func:`_angle_hessian`."""
+_PHI_SELECT = np.array([1.0, 0.0])
+"""gamma of the two tangents (A, B): delta + phi, delta (+ 0)."""
+
+
+def _split_view(terms: np.ndarray) -> np.ndarray:
+    """Columns 5-16 of a C-ordered ``terms`` (K, N, 20) as a (K, N, 2, 6) view (never a copy)."""
+    k, n, m = terms.shape
+    item = terms.itemsize
+    return np.ndarray(
+        (k, n, 2, 6), float, terms, 5 * item, (n * m * item, m * item, 6 * item, item)
+    )
+
+
+def _curvature_terms(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray) -> np.ndarray:
+    """(K, N, 20) the distinct terms of :func:`_curvature` (rows of :func:`_curvature_map`).
+
+    Columns 0-16 as in :func:`_curvature_map`; 17-19 the sums of the entries that take several
+    terms, in :func:`_curvature`'s order: delta-tau t7 + t13, delta-delta t10 + t16, tau-tau
+    (t2 + t5) + t11.
+    """
+    c = g[:, 0, None]
+    tau, theta = p[..., 1], p[..., 2]
+    ct, st = np.cos(tau), np.sin(tau)
+    cth, sth = np.cos(theta), np.sin(theta)
+    wp = w8[..., 2]
+    q = wp * (r[..., 2] * cth + r[..., 3] * sth)  # B' residual along A'B'
+    qp = wp * (r[..., 3] * cth - r[..., 2] * sth)  # and across
+    terms = np.empty((*q.shape, 20))
+    qcc = terms[..., 2]
+    np.multiply(-q * c, ct, out=qcc)  # -q c cos(tau)
+    terms[..., 0] = -q * st
+    terms[..., 1] = qp * ct
+    terms[..., 3] = qcc
+    terms[..., 4] = -qp * c * st
+    # both tangents at once (last axis: A, B): a = (beta, alpha), gamma = (delta + phi, delta)
+    a = g[:, None, 2:0:-1]  # (K, 1, 2): the same in every frame
+    gam = p[..., 0, None] + g[:, None, 3:4] * _PHI_SELECT
+    h = _angle_hessian(_SIGNS, tau[..., None], a, gam, (ct[..., None], st[..., None]))
+    # times the standardised residual, written as columns 5-10 (A) and 11-16 (B) at once: a
+    # (K, N, 2, 6) view of those 12 columns
+    np.multiply(
+        h.transpose(1, 2, 3, 0),
+        (w8[..., 4:6] * r[..., 4:6])[..., None],
+        out=_split_view(terms),
+    )
+    np.add(terms[..., 7], terms[..., 13], out=terms[..., 17])
+    np.add(terms[..., 10], terms[..., 16], out=terms[..., 18])
+    np.add(qcc, terms[..., 5], out=terms[..., 19])
+    terms[..., 19] += terms[..., 11]
+    return terms
+
+
 def _curvature(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray) -> np.ndarray:
     """Second-order term sum_k r_k d2 r_k of the residuals of every frame, (K, N, 9, 9).
 
@@ -295,80 +420,186 @@ def _curvature(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray) -> n
     projected tangent is short.  With it the iteration is Newton's method (quadratic
     convergence); the damping and the positive-definiteness test keep it safe.
     """
-    c = g[:, 0, None]
-    tau, theta = p[..., 1], p[..., 2]
-    ct, st = np.cos(tau), np.sin(tau)
-    cth, sth = np.cos(theta), np.sin(theta)
-    wp = w8[..., 2]
-    q = wp * (r[..., 2] * cth + r[..., 3] * sth)  # B' residual along A'B'
-    qp = wp * (r[..., 3] * cth - r[..., 2] * sth)  # and across
-    qcc = -q * c * ct
-    # both tangents at once (last axis: A, B)
-    a = np.stack([g[:, 2], g[:, 1]], -1)[:, None, :]  # (K, 1, 2): the same in every frame
-    gam = p[..., 0, None] + np.stack(
-        [np.broadcast_to(g[:, 3, None], tau.shape), np.zeros_like(tau)], -1
-    )
-    h = _angle_hessian(np.array([1.0, -1.0]), tau[..., None], a, gam)
-    wr = w8[..., 4:6] * r[..., 4:6]
-    terms = np.empty((*q.shape, 17))
-    terms[..., 0] = -q * st
-    terms[..., 1] = qp * ct
-    terms[..., 2] = qcc
-    terms[..., 3] = qcc
-    terms[..., 4] = -qp * c * st
-    for k in range(6):
-        hk = h[k] * wr
-        terms[..., 5 + k] = hk[..., 0]
-        terms[..., 11 + k] = hk[..., 1]
-    out = np.zeros((*q.shape, 81))
+    terms = _curvature_terms(g, p, r, w8)
+    out = np.zeros((*terms.shape[:-1], 81))
     out[..., _CURVATURE_COPY[0]] = terms[..., _CURVATURE_COPY[1]]
     for j, ks in _CURVATURE_SUMS:
         out[..., j] = np.sum(terms[..., ks], axis=-1)
-    return out.reshape(*q.shape, 9, 9)
+    return out.reshape(*terms.shape[:-1], 9, 9)
+
+
+# Where the refinement adds the second-order term: the used blocks V (pose x pose) and W (shape
+# x pose) of each frame's 9x9 block in the pose-first order (flat positions), and U summed over
+# the frames; the values are those of :func:`_curvature` (columns of :func:`_curvature_terms`).
+_CURVATURE_VW = (
+    np.array([10, 20, 11, 19, 1, 9, 0, 46, 47, 64, 73, 63, 72, 55, 54]),
+    np.array([19, 3, 4, 4, 17, 17, 18, 0, 1, 6, 7, 9, 10, 12, 15]),
+)
+"""V: tau-tau, theta-theta, tau-theta (2), delta-tau (2), delta-delta; W: c-tau, c-theta,
+beta-tau, phi-tau, beta-delta, phi-delta, alpha-tau, alpha-delta: (positions, terms)."""
+_CURVATURE_U = (np.array([5, 10, 11, 14, 15]), np.array([14, 8, 9, 9, 10]))
+"""U (flat 4x4): alpha-alpha, beta-beta, beta-phi (2), phi-phi: (positions, terms)."""
 
 
 def _add_curvature(
-    u: np.ndarray | None, v: np.ndarray, w: np.ndarray | None, s: np.ndarray
+    h: np.ndarray, u: np.ndarray, g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray
 ) -> None:
-    """Add the per-frame second-order blocks ``s`` (K, N, 9, 9) to U, V and W."""
-    v += s[..., 4:, 4:]
-    if w is not None:
-        w += s[..., :4, 4:]
-        u += np.sum(s[..., :4, :4], axis=-3)
+    """Add the second-order term to the blocks h (K, N, 9, 9) (V, W) and u (K, 4, 4), in place.
+
+    Only its ~20 non-zero entries (of 81 per frame, :func:`_curvature`) are gathered from the
+    terms and added, with one indexed addition for the frames' blocks and one for U; the values
+    and the order of every sum are those of adding :func:`_curvature` (bit-identical).
+    """
+    terms = _curvature_terms(g, p, r, w8)
+    k, n = terms.shape[:2]
+    h.reshape(k, n, 81)[..., _CURVATURE_VW[0]] += terms[..., _CURVATURE_VW[1]]
+    # np.take: a C-ordered (K, N, 5) result, so that the sum runs over the frames in order
+    u.reshape(k, 16)[:, _CURVATURE_U[0]] += np.take(terms, _CURVATURE_U[1], axis=-1).sum(axis=1)
 
 
-try:  # numpy's batched Cholesky gufunc: NaN factors (no exception) where a block is not PD
+try:  # numpy's LAPACK gufuncs: no exception (NaN results) where a block is singular / not PD
     from numpy.linalg import _umath_linalg
 
     _CHOLESKY_LO = _umath_linalg.cholesky_lo
+    _SOLVE, _SOLVE1, _INV = _umath_linalg.solve, _umath_linalg.solve1, _umath_linalg.inv
 except (ImportError, AttributeError):  # pragma: no cover - other numpy versions
-    _CHOLESKY_LO = None
+    _CHOLESKY_LO = _SOLVE = _SOLVE1 = _INV = None
 
 
-def _positive_definite(m: np.ndarray) -> np.ndarray:
-    """(...,) whether each symmetric block of ``m`` (..., n, n) is positive definite.
+def _inverse(a: np.ndarray) -> np.ndarray:
+    """Batched inverse of (..., n, n) blocks: ``np.linalg.inv``'s gufunc called directly.
 
-    The test is whether a Cholesky factorisation succeeds.  If one block of the batch fails,
-    the blocks are told apart by numpy's Cholesky gufunc (failed factors are NaN), which costs a
-    fraction of the eigenvalue fallback (used where that gufunc is not available).
+    For 5x5 blocks the wrapper's checks cost as much as the inverse.  Singular blocks give NaN
+    (no exception).
     """
-    try:
-        np.linalg.cholesky(m)
-        return np.ones(m.shape[:-2], dtype=bool)
-    except np.linalg.LinAlgError:
-        if _CHOLESKY_LO is None:  # pragma: no cover
-            return np.linalg.eigvalsh(m)[..., 0] > 0
-    with np.errstate(invalid="ignore", over="ignore", divide="ignore", under="ignore"):
+    if _INV is None:  # pragma: no cover
+        try:
+            return np.linalg.inv(a)
+        except np.linalg.LinAlgError:
+            return np.full(a.shape, np.nan)
+    with np.errstate(all="ignore"):
+        return _INV(a, signature="d->d")
+
+
+def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Batched solution of a x = b, a (..., n, n), b (..., n, m): ``np.linalg.solve``'s gufunc.
+
+    A singular block gives NaN (no exception).
+    """
+    if _SOLVE is None:  # pragma: no cover
+        try:
+            return np.linalg.solve(a, b)
+        except np.linalg.LinAlgError:
+            return np.full(b.shape, np.nan)
+    with np.errstate(all="ignore"):
+        return _SOLVE(a, b, signature="dd->d")
+
+
+def _positive_definite(m: np.ndarray, axes: int = 2) -> np.ndarray:
+    """Whether each symmetric block of ``m`` (..., n, n) is positive definite.
+
+    The test is whether a Cholesky factorisation succeeds: numpy's Cholesky gufunc, called
+    directly, returns NaN factors where it fails (no exception; the eigenvalue test where that
+    gufunc is not available).  ``axes`` > 2 also reduces over leading block axes (``axes`` = 3:
+    (K, N, n, n) -> (K,), every block of a start).
+    """
+    if _CHOLESKY_LO is None:  # pragma: no cover
+        pd = np.linalg.eigvalsh(m)[..., 0] > 0
+        return pd.reshape(*pd.shape[: pd.ndim + 2 - axes], -1).all(axis=-1)
+    with np.errstate(all="ignore"):
         factor = _CHOLESKY_LO(m, signature="d->d")
-    return np.all(np.isfinite(factor), axis=(-2, -1))
+    return np.isfinite(factor.reshape(*m.shape[: m.ndim - axes], -1)).all(axis=-1)
+
+
+def _normal_blocks(
+    g: np.ndarray, p: np.ndarray, r: np.ndarray, ja: np.ndarray, w8: np.ndarray, nwt: np.ndarray
+) -> tuple[np.ndarray, ...]:
+    """The blocks of the (Gauss-Newton, or where ``nwt`` Newton) normal equations.
+
+    From residuals ``r`` (K, N, 6) and Jacobian ``ja`` (K, N, 6, 9) (:func:`_lin_aug`) at
+    shapes g (K, 4) and poses p (K, N, 5).  Returns (h, u, el, eg, dv, du, sv, su): h
+    (K, N, 9, 9) every frame's block of the Hessian in the pose-first order (V = h[..., :5, :5],
+    W = h[..., 5:, :5]; the other two blocks are not used), U (K, 4, 4) summed over the frames,
+    the gradients e = J^T r of the poses (K, N, 5) and of the shape (K, 4), the Gauss-Newton
+    diagonals of V (K, N, 5) and U (K, 4), and the damping's scales (sv, su: those diagonals
+    plus 1e-12 times their largest entry; computed once per point, not once per lambda).
+    """
+    h = ja.swapaxes(-1, -2) @ ja  # V, W^T, W and U_n in one product
+    u = h[..., 5:, 5:].sum(axis=1)
+    # matrix-vector products of their own: the same kernel (and rounding) as before
+    rc = r[..., None]
+    el = (ja[..., :5].swapaxes(-1, -2) @ rc)[..., 0]
+    eg = (ja[..., 5:].swapaxes(-1, -2) @ rc).sum(axis=1)[..., 0]
+    dv = h.reshape(*h.shape[:-2], 81)[..., 0:50:10].copy()  # diagonal of V
+    du = u.reshape(-1, 16)[:, ::5].copy()
+    sv = dv + 1e-12 * dv.max(axis=2)[..., None]
+    su = du + 1e-12 * du.max(axis=1)[:, None]
+    if nwt.all():  # the second-order term (Newton)
+        _add_curvature(h, u, g, p, r, w8)
+    elif nwt.any():
+        i = np.flatnonzero(nwt)
+        hi, ui = h[i], u[i]
+        _add_curvature(hi, ui, g[i], p[i], r[i], w8)
+        h[i], u[i] = hi, ui
+    return h, u, el, eg, dv, du, sv, su
+
+
+def _damped_solve(
+    h: np.ndarray,
+    u: np.ndarray,
+    el: np.ndarray,
+    eg: np.ndarray,
+    dv: np.ndarray,
+    du: np.ndarray,
+    sv: np.ndarray,
+    su: np.ndarray,
+    lam: np.ndarray,
+    check: bool = True,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Solve the damped block-arrow system by the Schur complement.
+
+    (H + lam D) d = -e with H = [[U, W], [W^T, V]] (Gauss-Newton plus the second-order blocks)
+    and D its Gauss-Newton diagonal (plus 1e-12 of its largest entry); the blocks as returned by
+    :func:`_normal_blocks`.  Returns the shape step (K, 4), the pose steps (K, N, 5), the
+    decrease of chi2 the quadratic model predicts (K,) and whether the damped matrix was
+    positive definite (K,) (``check`` False: not tested, True).
+    """
+    k, n = h.shape[:2]
+    ud = u.reshape(k, 16).copy()
+    ud[:, ::5] += lam[:, None] * su
+    vd = h[..., :5, :5].copy()
+    vdiag = vd.reshape(k, n, 25)[..., ::6]  # a view: the diagonal of each damped block
+    vdiag += lam[:, None, None] * sv
+    pd = _positive_definite(vd, 3) if check else np.ones(k, dtype=bool)
+    vdiag += 1e-13 * np.maximum(vdiag.sum(axis=-1), 1e-300)[..., None]  # tiny ridge
+    vinv = _inverse(vd)
+    w = h[..., 5:, :5]  # W (4 x 5 per frame)
+    wt = w.swapaxes(-1, -2)
+    y = w @ vinv
+    sc = ud.reshape(k, 4, 4) - (y @ wt).sum(axis=1)
+    rhs = (y @ el[..., None]).sum(axis=1) - eg[..., None]  # (K, 4, 1)
+    scdiag = sc.reshape(k, 16)[:, ::5]  # a view: a tiny ridge
+    scdiag += 1e-14 * scdiag.sum(axis=1)[:, None]
+    sc = 0.5 * (sc + sc.swapaxes(-1, -2))
+    if check:
+        pd &= _positive_definite(sc)
+    dg = _solve(sc, rhs)[..., 0]
+    if not np.isfinite(dg).all():
+        singular = ~np.all(np.isfinite(dg), axis=1) & np.all(np.isfinite(sc), axis=(1, 2))
+        if singular.any():  # a singular Schur complement: the least-squares step
+            dg[singular] = (np.linalg.pinv(sc[singular]) @ rhs[singular])[..., 0]
+    dl = (vinv @ (-el - (wt @ dg[:, None, :, None])[..., 0])[..., None])[..., 0]
+    # model decrease: -e.d + lam d^T D d (exact for the solved system)
+    predicted = -(np.einsum("ki,ki->k", eg, dg) + np.einsum("kni,kni->k", el, dl))
+    predicted += lam * (np.einsum("ki,ki->k", du, dg * dg) + np.einsum("kni,kni->k", dv, dl * dl))
+    return dg, dl, predicted, pd
 
 
 def _pose_steps(
     g: np.ndarray,
     p: np.ndarray,
     r: np.ndarray,
-    jg: np.ndarray,
-    jl: np.ndarray,
+    ja: np.ndarray,
     f: np.ndarray,
     meas: np.ndarray,
     w8: np.ndarray,
@@ -376,43 +607,45 @@ def _pose_steps(
     rtol: float,
     lam: np.ndarray | None = None,
     mask: np.ndarray | None = None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Damped Gauss-Newton steps on every frame's pose, shape ``g`` (K, 4) fixed; batched (K, N).
 
-    Damped like the outer iteration: ``lam`` (K,) times the Gauss-Newton diagonal (None:
-    undamped).  Each frame keeps its step only if the step lowers that frame's
-    chi2 ``f`` (K, N) (and, given ``mask`` (K,), only in the starts it marks).  Stops after
-    ``n_iter`` steps or when the steps gain less than ``rtol``
-    times the total chi2.  Returns the updated (p, r, jg, jl, f), linearised at the new poses.
+    ``r``, ``ja``: residuals and Jacobian at ``p`` (:func:`_lin_aug`).  Damped like the outer
+    iteration: ``lam`` (K,) times the Gauss-Newton diagonal (None: undamped).  Each frame keeps
+    its step only if the step lowers that frame's chi2 ``f`` (K, N) (and, given ``mask`` (K,),
+    only in the starts it marks).  Stops after ``n_iter`` steps or when the steps gain less than
+    ``rtol`` times the total chi2.  Returns the updated (p, r, ja, f).
     """
     for _ in range(n_iter):
-        jlt = np.swapaxes(jl, -1, -2)
-        v = jlt @ jl
+        jlt = ja[..., :5].swapaxes(-1, -2)
+        v = jlt @ ja[..., :5]
+        vdiag = v.reshape(*v.shape[:-2], 25)[..., ::6]  # a view: the diagonal of each block
         if lam is not None:
-            dv = np.einsum("...ii->...i", v)
-            v = v.reshape(*v.shape[:-2], 25).copy()
-            v[..., ::6] += lam[:, None, None] * dv
-            v = v.reshape(*v.shape[:-1], 5, 5)
+            vdiag += lam[:, None, None] * vdiag
+        vdiag += 1e-13 * np.maximum(vdiag.sum(axis=-1), 1e-300)[..., None]  # tiny ridge
         el = jlt @ r[..., None]
-        dl = -(_batched_inverse(v) @ el)[..., 0]
-        descent = np.sum(dl * el[..., 0], axis=-1) < 0
+        dl = -(_inverse(v) @ el)[..., 0]
+        descent = (dl * el[..., 0]).sum(axis=-1) < 0
         p_try = p + dl
-        r_t, jg_t, jl_t = _lin_batch(g, p_try, meas, w8)
-        f_t = np.sum(r_t * r_t, axis=-1)
+        r_t, ja_t = _lin_aug(g, p_try, meas, w8)
+        f_t = (r_t * r_t).sum(axis=-1)
         take = (f_t < f) & descent
         if mask is not None:
             take &= mask[:, None]
-        if not take.any():
+        if take.all():  # every frame moves: no selection
+            gain = (f - f_t).sum()
+            p, r, ja, f = p_try, r_t, ja_t, f_t
+        elif take.any():
+            gain = np.sum(np.where(take, f - f_t, 0.0))
+            p = np.where(take[..., None], p_try, p)
+            r = np.where(take[..., None], r_t, r)
+            ja = np.where(take[..., None, None], ja_t, ja)
+            f = np.where(take, f_t, f)
+        else:
             break
-        gain = np.sum(np.where(take, f - f_t, 0.0))
-        p = np.where(take[..., None], p_try, p)
-        r = np.where(take[..., None], r_t, r)
-        jg = np.where(take[..., None, None], jg_t, jg)
-        jl = np.where(take[..., None, None], jl_t, jl)
-        f = np.where(take, f_t, f)
-        if gain <= rtol * np.sum(f):
+        if gain <= rtol * f.sum():
             break
-    return p, r, jg, jl, f
+    return p, r, ja, f
 
 
 def refine_batch(
@@ -457,7 +690,7 @@ def refine_batch(
     g = np.array(shapes, dtype=float, ndmin=2)
     p = np.array(poses, dtype=float, ndmin=3)
     k = g.shape[0]
-    r, jg, jl = _lin_batch(g, p, meas, w8)
+    r, ja = _lin_aug(g, p, meas, w8)
     chi2 = np.einsum("kna,kna->k", r, r)
     lam = np.full(k, 1e-3)
     # Gauss-Newton while far from a minimum (convex model, short steps: the start's basin is
@@ -466,6 +699,11 @@ def refine_batch(
     done = np.zeros(k, dtype=bool)
     converged = np.zeros(k, dtype=bool)
     iters = np.zeros(k, dtype=int)
+    # Each start's normal blocks are kept with its point: a rejected step changes only lambda,
+    # and the next iteration solves the same blocks with more damping (``stale`` marks the
+    # starts whose point moved, whose blocks are built again).
+    stale = np.ones(k, dtype=bool)
+    blocks: tuple[np.ndarray, ...] = ()
     for it in range(max_iter):
         act = np.flatnonzero(~done)
         if act.size == 0:
@@ -475,150 +713,135 @@ def refine_batch(
             hopeless = chi2[act] > drop_factor * (np.min(chi2) + act_floor)
             done[act[hopeless]] = True
             act = act[~hopeless]
-        iters[act] += 1
-        if act.size == k:  # all active: views, no copies
-            ga, pa, ra, jga, jla, lama, c2 = g, p, r, jg, jl, lam.copy(), chi2.copy()
+            if act.size == 0:
+                break
+        ka = act.size
+        full = ka == k
+        if not blocks or (full and stale.all()):
+            blocks = _normal_blocks(g, p, r, ja, w8, newton)
         else:
-            ga, pa, ra, jga, jla, lama, c2 = (
-                g[act],
-                p[act],
-                r[act],
-                jg[act],
-                jl[act],
-                lam[act],
-                chi2[act],
-            )
-        jgt = np.swapaxes(jga, -1, -2)
-        jlt = np.swapaxes(jla, -1, -2)
-        u = np.sum(jgt @ jga, axis=1)
-        v = jlt @ jla
-        w = jgt @ jla
-        eg = np.sum(jgt @ ra[..., None], axis=1)[..., 0]
-        el = (jlt @ ra[..., None])[..., 0]
-        du = np.einsum("kii->ki", u).copy()
-        dv = np.einsum("knii->kni", v).copy()
-        nwt = newton[act]
-        if nwt.all():
-            _add_curvature(u, v, w, _curvature(ga, pa, ra, w8))
-        elif nwt.any():
-            i = np.flatnonzero(nwt)
-            un, vn, wn = u[i], v[i], w[i]
-            _add_curvature(un, vn, wn, _curvature(ga[i], pa[i], ra[i], w8))
-            u[i], v[i], w[i] = un, vn, wn
+            rb = act[stale[act]]
+            if rb.size:
+                new = _normal_blocks(g[rb], p[rb], r[rb], ja[rb], w8, newton[rb])
+                for cache, value in zip(blocks, new, strict=True):
+                    cache[rb] = value
+        # The active starts' state: the arrays themselves when all are active (the common
+        # case: no index arithmetic, no copies), else copies; written back below.
+        if full:
+            iters += 1
+            ga, pa, lama, c2, nwt, ba = g, p, lam, chi2, newton.copy(), blocks
+        else:
+            iters[act] += 1
+            ga, pa, lama, c2, nwt = g[act], p[act], lam[act], chi2[act], newton[act]
+            ba = tuple(b[act] for b in blocks)
         # Newton (or Gauss-Newton) model; an indefinite damped model gets more damping at once
         check = bool(nwt.any())  # a damped Gauss-Newton matrix is positive definite
-        dg, dl, predicted, pd = _damped_step(u, v, w, eg, el, du, dv, lama, check)
-        saddle = np.zeros(act.size, dtype=bool)  # the Newton model was indefinite
-        for _ in range(12):
-            bad = ~(pd & (predicted > 0)) & (lama <= 1e12)
-            if not bad.any():
-                break
-            saddle |= bad
-            lama = np.where(bad, np.maximum(lama * 10.0, 1e-4), lama)
-            dg2, dl2, pred2, pd2 = _damped_step(u, v, w, eg, el, du, dv, lama, check)
-            dg = np.where(bad[:, None], dg2, dg)
-            dl = np.where(bad[:, None, None], dl2, dl)
-            predicted = np.where(bad, pred2, predicted)
-            pd = np.where(bad, pd2, pd)
+        dg, dl, predicted, pd = _damped_solve(*ba, lama, check)
+        saddle = None  # where the Newton model was indefinite (None: nowhere)
+        indefinite = ~((predicted > 0) & pd)
+        if indefinite.any():
+            for _ in range(12):
+                bad = indefinite & (lama <= 1e12)
+                if not bad.any():
+                    break
+                saddle = bad if saddle is None else saddle | bad
+                lama = np.where(bad, np.maximum(lama * 10.0, 1e-4), lama)
+                dg2, dl2, pred2, pd2 = _damped_solve(*ba, lama, check)
+                dg = np.where(bad[:, None], dg2, dg)
+                dl = np.where(bad[:, None, None], dl2, dl)
+                predicted = np.where(bad, pred2, predicted)
+                pd = np.where(bad, pd2, pd)
+                indefinite = ~((predicted > 0) & pd)
         step = np.maximum(
-            np.max(np.abs(dg) / np.maximum(np.abs(ga), 1.0), axis=1),
-            np.max(np.abs(dl) / np.maximum(np.abs(pa), 1.0), axis=(1, 2)),
+            (np.abs(dg) / np.maximum(np.abs(ga), 1.0)).max(axis=1),
+            (np.abs(dl) / np.maximum(np.abs(pa), 1.0)).reshape(ka, -1).max(axis=1),
         )
-        indefinite = ~(predicted > 0) | ~pd
-        small = (step < xtol) | (predicted <= ftol * np.maximum(c2, 1e-300)) | (lama > 1e12)
-        small &= ~saddle | (lama > 1e12)  # a tiny damped step near a saddle is no convergence
-        small &= ~indefinite | (lama > 1e12)
-        converged[act[small & (lama <= 1e12)]] = True
-        done[act[small]] = True
+        huge = lama > 1e12
+        small = (step < xtol) | (predicted <= ftol * np.maximum(c2, 1e-300)) | huge
+        # neither a tiny damped step near a saddle nor an indefinite model is convergence
+        small &= ~(indefinite if saddle is None else indefinite | saddle) | huge
+        if small.any():
+            converged[act[small & ~huge]] = True
+            done[act[small]] = True
         g_new, p_new = ga + dg, pa + dl
-        ok = np.all(np.isfinite(g_new), axis=1) & np.all(np.isfinite(p_new), axis=(1, 2))
-        ok &= (g_new[:, 0] > 0) & ~small & ~indefinite
-        g_new = np.where(ok[:, None], g_new, ga)
-        p_new = np.where(ok[:, None, None], p_new, pa)
-        r_new, jg_new, jl_new = _lin_batch(g_new, p_new, meas, w8)
-        if pose_iterations > 0 and nwt.any():
-            # variable projection: the poses follow the new shape (the curved valley)
-            f_new = np.sum(r_new * r_new, axis=-1)
-            p_new, r_new, jg_new, jl_new, f_new = _pose_steps(
-                g_new,
-                p_new,
-                r_new,
-                jg_new,
-                jl_new,
-                f_new,
-                meas,
-                w8,
-                pose_iterations,
-                1e-6,
-                lama,
-                nwt,
-            )
-            chi2_new = np.sum(f_new, axis=-1)
+        ok = np.isfinite(g_new).all(axis=1) & np.isfinite(p_new).reshape(ka, -1).all(axis=1)
+        ok &= (g_new[:, 0] > 0) & ~(small | indefinite)
+        # Only the starts that take a trial step are evaluated (``mv``): a start that stops or
+        # whose model was indefinite keeps its point and chi2, and cannot accept anything.
+        every = bool(ok.all())
+        mv = None if every else np.flatnonzero(ok)
+        if every or mv.size:
+            if not every:
+                g_new, p_new = g_new[mv], p_new[mv]
+            r_new, ja_new = _lin_aug(g_new, p_new, meas, w8)
+            if pose_iterations > 0 and check:
+                f_new = (r_new * r_new).sum(axis=-1)
+                nm = nwt if every else nwt[mv]
+                if nm.any():
+                    # variable projection: the poses follow the new shape (the curved valley)
+                    p_new, r_new, ja_new, f_new = _pose_steps(
+                        g_new,
+                        p_new,
+                        r_new,
+                        ja_new,
+                        f_new,
+                        meas,
+                        w8,
+                        pose_iterations,
+                        1e-6,
+                        lama if every else lama[mv],
+                        nm,
+                    )
+                c2m = f_new.sum(axis=-1)  # (as before, not the einsum: same rounding)
+            else:
+                c2m = np.einsum("kna,kna->k", r_new, r_new)
+            if every:
+                chi2_new = c2m
+                accept = c2m < c2
+            else:
+                chi2_new = c2.copy()
+                chi2_new[mv] = c2m
+                accept = np.zeros(ka, dtype=bool)
+                accept[mv] = c2m < c2[mv]
         else:
-            chi2_new = np.einsum("kna,kna->k", r_new, r_new)
-        accept = ok & (chi2_new < c2)
-        rho = (c2 - chi2_new) / np.maximum(predicted, 1e-300)
-        factor = np.maximum(1.0 / 3.0, 1.0 - (2.0 * np.clip(rho, 0.0, 1.0) - 1.0) ** 3)
-        lam[act] = np.where(accept, np.maximum(lama * factor, 1e-15), lama * 4.0)
-        switch = ~nwt & accept & (predicted <= NEWTON_SWITCH * c2) & newton_phase
-        newton[act] = nwt | switch
-        lam[act[switch]] = np.minimum(lam[act[switch]], 1e-3)  # a new model: trust it afresh
-        if act.size == k and accept.all():
-            g, p, r, jg, jl, chi2 = g_new, p_new, r_new, jg_new, jl_new, chi2_new
+            accept = ok  # nothing moved: all False
+        # Nielsen's damping update (the accepted and the rejected branch only where taken)
+        if accept.all():
+            rho = (c2 - chi2_new) / np.maximum(predicted, 1e-300)
+            rho = np.minimum(np.maximum(rho, 0.0), 1.0)
+            lam_new = np.maximum(lama * np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3), 1e-15)
+        elif accept.any():
+            rho = (c2 - chi2_new) / np.maximum(predicted, 1e-300)
+            rho = np.minimum(np.maximum(rho, 0.0), 1.0)
+            factor = np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
+            lam_new = np.where(accept, np.maximum(lama * factor, 1e-15), lama * 4.0)
+        else:
+            lam_new = lama * 4.0
+        if newton_phase and not nwt.all():
+            switch = ~nwt & accept & (predicted <= NEWTON_SWITCH * c2)
+            if switch.any():  # a new model: trust it afresh
+                lam_new[switch] = np.minimum(lam_new[switch], 1e-3)
+                newton[act[switch]] = True
+        if full:
+            lam = lam_new
+            stale = accept  # a new array each iteration
+        else:
+            lam[act] = lam_new
+            stale[act] = accept
+        if not accept.any():
             continue
-        acc = act[accept]
-        g[acc], p[acc], r[acc] = g_new[accept], p_new[accept], r_new[accept]
-        jg[acc], jl[acc], chi2[acc] = jg_new[accept], jl_new[accept], chi2_new[accept]
+        if full and every and accept.all():  # the new arrays replace the old ones
+            g, p, r, ja, chi2 = g_new, p_new, r_new, ja_new, chi2_new
+            continue
+        sel = accept if every else accept[mv]  # the accepted among the evaluated starts
+        acc = act[sel] if every else act[mv[sel]]
+        g[acc], p[acc], r[acc], ja[acc] = g_new[sel], p_new[sel], r_new[sel], ja_new[sel]
+        chi2[acc] = chi2_new[accept]
     return g, p, r, chi2, iters, converged
 
 
 NEWTON_SWITCH = 1e-2
 """Switch to Newton once a Gauss-Newton step predicts a decrease below this times chi2."""
-
-
-def _damped_step(
-    u: np.ndarray,
-    v: np.ndarray,
-    w: np.ndarray,
-    eg: np.ndarray,
-    el: np.ndarray,
-    du: np.ndarray,
-    dv: np.ndarray,
-    lam: np.ndarray,
-    check: bool = True,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Solve the damped block-arrow system by the Schur complement.
-
-    (H + lam D) d = -e with H = [[U, W], [W^T, V]] (Gauss-Newton plus the second-order blocks)
-    and D its Gauss-Newton diagonal (``du``, ``dv``).  Returns the shape step (K, 4), the pose
-    steps (K, N, 5), the decrease of chi2 the quadratic model predicts (K,) and whether the
-    damped matrix was positive definite (K,) (``check`` False: not tested, True).
-    """
-    ud = u.reshape(-1, 16).copy()
-    ud[:, ::5] += lam[:, None] * (du + 1e-12 * np.max(du, axis=1)[:, None])
-    ud = ud.reshape(u.shape)
-    vd = v.reshape(*v.shape[:2], 25).copy()
-    vd[..., ::6] += lam[:, None, None] * (dv + 1e-12 * np.max(dv, axis=2)[..., None])
-    vd = vd.reshape(v.shape)
-    pd = np.all(_positive_definite(vd), axis=-1) if check else np.ones(len(lam), dtype=bool)
-    vinv = _batched_inverse(vd)
-    y = w @ vinv
-    wt = np.swapaxes(w, -1, -2)
-    sc = ud - np.sum(y @ wt, axis=1)
-    rhs = -eg + np.sum(y @ el[..., None], axis=1)[..., 0]
-    sc = sc + 1e-14 * np.einsum("kii->k", sc)[:, None, None] * np.eye(4)
-    sc = 0.5 * (sc + np.swapaxes(sc, -1, -2))
-    if check:
-        pd &= _positive_definite(sc)
-    try:
-        dg = np.linalg.solve(sc, rhs[..., None])[..., 0]
-    except np.linalg.LinAlgError:
-        dg = (np.linalg.pinv(sc) @ rhs[..., None])[..., 0]
-    dl = (vinv @ (-el - (wt @ dg[:, None, :, None])[..., 0])[..., None])[..., 0]
-    # model decrease: -e.d + lam d^T D d (exact for the solved system)
-    predicted = -(np.einsum("ki,ki->k", eg, dg) + np.einsum("kni,kni->k", el, dl))
-    predicted += lam * (np.einsum("ki,ki->k", du, dg * dg) + np.einsum("kni,kni->k", dv, dl * dl))
-    return dg, dl, predicted, pd
 
 
 def _frame_search(
@@ -642,10 +865,10 @@ def _frame_search(
     cands[:, :, 0] = np.mod(cands[:, :, 0] + np.pi, 2.0 * np.pi) - np.pi
     cands[n_delta:, :, 1] *= -1.0
     gm = np.repeat(g[None], len(cands), axis=0)
-    r, jg, jl = _lin_batch(gm, cands, meas, w8)
+    r, ja = _lin_aug(gm, cands, meas, w8)
     f = np.sum(r * r, axis=-1)
     f_now = f[0].copy()
-    cands, r, jg, jl, f = _pose_steps(gm, cands, r, jg, jl, f, meas, w8, n_iter, 0.0)
+    cands, r, ja, f = _pose_steps(gm, cands, r, ja, f, meas, w8, n_iter, 0.0)
     cols = np.arange(p.shape[0])
     best = np.argmin(f, axis=0)
     better = f[best, cols] < np.minimum(f_now, f[0]) - 1e-9 * (1.0 + f_now)

@@ -7,6 +7,7 @@ import pytest
 from curverecon.generated import measurement_model
 from test_conventions import canonical_parameters
 
+from curverecon import marginal
 from curverecon.marginal import refine_marginal, shape_information, solve_poses, volume_terms
 from curverecon.observations import wrap_line_angle
 from curverecon.pose import normalise
@@ -95,6 +96,36 @@ def test_answer_is_a_local_minimum_of_f(seed):
             g = mg.shape.copy()
             g[k] += sgn * 0.1 * std[k] * np.sqrt(mg.kappa)
             assert _f(g, mg.poses, meas, mg.kappa) > f_mg - 1e-6
+
+
+@pytest.mark.parametrize("seed", [3, 13])
+def test_analytic_gradient_matches_finite_differences_of_f(seed):
+    """F's gradient (chi2 part exact, dp/dg from the full Hessian, volume part by differences
+    at first-order poses) against central differences of F with every pose re-solved."""
+    _, _, _, meas, ml, _ = _fits(seed)
+    kappa = ml.chi2 / (meas.shape[0] - 4)
+    std = np.sqrt(np.diag(np.linalg.inv(shape_information(ml.shape, ml.poses, W8))) * kappa)
+    dirs = np.diag(std)  # one standard deviation of each parameter
+
+    def f_and_poses(g):
+        p, r, _, jl, _ = marginal._solve(g[None], ml.poses[None], meas, W8, 30, 1e-15 * kappa)
+        return float(np.sum(r * r) / kappa + np.sum(volume_terms(g[None], p, r, jl, W8))), p[0]
+
+    for offset in ([0.0, 0.0, 0.0, 0.0], [0.6, -0.4, 0.3, 0.2]):
+        g = ml.shape + dirs @ np.array(offset)
+        p, *lin = marginal._solve(g[None], ml.poses[None], meas, W8, 30, 1e-15 * kappa)
+        grad, dpdx = marginal._gradient(g, p[0], [a[0] for a in lin], meas, W8, kappa, dirs)
+        h = 1e-3  # smaller steps see the pose solves' rounding (1e-4: errors of 1e-3)
+        want, dp_want = np.empty(4), np.empty((meas.shape[0], 5, 4))
+        for k in range(4):
+            f_plus, p_plus = f_and_poses(g + h * dirs[:, k])
+            f_minus, p_minus = f_and_poses(g - h * dirs[:, k])
+            want[k] = (f_plus - f_minus) / (2 * h)
+            dp_want[:, :, k] = (p_plus - p_minus) / (2 * h)
+        assert np.max(np.abs(want)) > 0.1  # not a trivial check at a flat point
+        assert np.allclose(grad, want, rtol=1e-3, atol=1e-3)
+        # the poses follow the shape as the full Hessian says (Gauss-Newton's would not)
+        assert np.allclose(dpdx, dp_want, rtol=1e-3, atol=1e-4 * np.max(np.abs(dp_want)))
 
 
 def test_only_the_ratio_of_the_sigmas_matters():

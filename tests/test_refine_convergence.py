@@ -142,3 +142,55 @@ def test_frame_search_finds_lower_minima(idx):
     assert found.converged
     assert found.chi2 < 0.8 * local.chi2, (found.chi2, local.chi2)
     assert np.isclose(found.frame_chi2.sum(), found.chi2)
+
+
+def test_normal_blocks_are_those_of_the_plain_formulation():
+    """The fused blocks of the iteration (one J^T J product per frame, the second-order term
+    added entry by entry) equal, to the bit, the separate products plus :func:`_curvature`."""
+    from curverecon.refine import _lin_aug, _normal_blocks
+
+    obs, shape, poses = _headline(9)
+    meas = obs.measurements()
+    rng = np.random.default_rng(4)
+    g = shape[None] * (1 + 0.02 * rng.normal(size=(3, 4)))
+    p = poses[None] + 0.05 * rng.normal(size=(3, *poses.shape))
+    for w8 in (_weights(1.0, TS), _weights(1.0, TS) * rng.uniform(0.5, 1.5, (len(poses), 1))):
+        r, jg, jl = _lin_batch(g, p, meas, w8)
+        jg, jl = np.ascontiguousarray(jg), np.ascontiguousarray(jl)
+        for newton in (np.zeros(3, bool), np.ones(3, bool), np.array([True, False, True])):
+            r2, ja = _lin_aug(g, p, meas, w8)
+            h, u, el, eg, dv, du, _, _ = _normal_blocks(g, p, r2, ja, w8, newton)
+            jgt, jlt = np.swapaxes(jg, -1, -2), np.swapaxes(jl, -1, -2)
+            u0, v0, w0 = np.sum(jgt @ jg, axis=1), jlt @ jl, jgt @ jl
+            np.testing.assert_array_equal(dv, np.einsum("knii->kni", v0))
+            np.testing.assert_array_equal(du, np.einsum("kii->ki", u0))
+            s = _curvature(g, p, r, w8)
+            s[~newton] = 0.0
+            v0 += s[..., 4:, 4:]
+            w0 += s[..., :4, 4:]
+            u0 += np.sum(s[..., :4, :4], axis=-3)
+            np.testing.assert_array_equal(h[..., :5, :5], v0)
+            np.testing.assert_array_equal(h[..., 5:, :5], w0)
+            np.testing.assert_array_equal(u, u0)
+            np.testing.assert_array_equal(el, (jlt @ r[..., None])[..., 0])
+            np.testing.assert_array_equal(eg, np.sum(jgt @ r[..., None], axis=1)[..., 0])
+
+
+def test_linearisation_residuals_are_the_wrapped_residuals():
+    """_lin_aug inlines wrap_line_angle: same residuals, to the bit (and the Jacobians)."""
+    from curverecon.observations import wrap_line_angle
+    from curverecon.refine import _lin_aug
+
+    obs, shape, poses = _headline(2)
+    meas = obs.measurements()
+    w8 = _weights(1.0, TS)
+    rng = np.random.default_rng(5)
+    for scale in (0.0, 0.3, 3.0):  # also angles far outside (-pi/2, pi/2]
+        p = poses + scale * rng.normal(size=poses.shape)
+        r, ja = _lin_aug(shape[None], p[None], meas, w8)
+        pred, jg, jl = measurement_model.predict_with_jacobians(*shape, *p.T)
+        r0 = pred - meas
+        r0[:, 4:6] = wrap_line_angle(r0[:, 4:6])
+        np.testing.assert_array_equal(r[0], r0 * w8)
+        np.testing.assert_array_equal(ja[0], np.concatenate([jl, jg], -1) * w8[:, None])
+        np.testing.assert_allclose(r[0], standardised_residuals(shape, p, meas, w8), atol=1e-9)
