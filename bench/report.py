@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 import time
 from pathlib import Path
 from typing import Any
@@ -13,6 +14,7 @@ import numpy as np
 from bench import accuracy, plan, robustness, stability
 from bench.common import GROUPS, PARAMETERS, SUCCESS_DEG
 from bench.config import Config
+from bench.speed import SAME_COST_CHI2
 
 STABILITY_PNG = "stability_histogram.png"
 SCALING_PNG = "scaling.png"
@@ -127,9 +129,10 @@ def headline(cfg: Config, sections: dict[str, Any]) -> dict[str, Any]:
     stab_all = sections["stability"]["default_all"]
     stab6 = next((s for s in sections["stability"]["default"] if s["n_frames"] == 6), None)
     fd = sp["refine_vs_fd"]
-    speedups = [r[k] for r in fd for k in r if k.startswith("speedup_")]
+    speedups = fair_speedups(fd)
     speedup = float(min(speedups)) if speedups else None
     same_cost = all(_same_cost(r, k) for r in fd for k in r if k.startswith("chi2_rel_diff_"))
+    to_convergence = [r[k] for r in fd for k in r if re.fullmatch(r"speedup_(lm|trf)", k)]
     rec20 = sp["reconstruct_20"]["median_s"]
     ref1000 = sp["refine_1000"]["median_s"]
     ref_conv = bool(sp["refine_1000"].get("converged", True))
@@ -143,6 +146,7 @@ def headline(cfg: Config, sections: dict[str, Any]) -> dict[str, Any]:
         "noise_free_failure_rate": stab_all.get("failure_rate"),
         "refine_speedup_vs_finite_differences": speedup,
         "refine_same_cost_as_finite_differences": same_cost,
+        "refine_speedup_to_convergence_min": float(min(to_convergence)) if to_convergence else None,
         "reconstruct_seconds_20_frames": rec20,
         "refine_seconds_1000_frames": ref1000,
         "refine_1000_frames_converged": ref_conv,
@@ -196,20 +200,49 @@ def headline(cfg: Config, sections: dict[str, Any]) -> dict[str, Any]:
             "target": "generated-Jacobian refinement >= 20 x faster than finite differences",
             "measured": None
             if speedup is None
-            else f"{speedup:.0f} x (slowest case)" + ("" if same_cost else "; final costs differ"),
-            "verdict": verdict(None if speedup is None else speedup >= 20 and same_cost),
+            else f"{speedup:.0f} x (slowest case, at equal quality)"
+            + ("" if same_cost else "; where scipy stopped at a higher cost, timed to that cost"),
+            "verdict": verdict(None if speedup is None else speedup >= 20),
         },
     ]
     return {"headline": out, "targets": targets}
 
 
-SAME_COST_CHI2 = 0.01
-"""Two fits reach the same cost when their chi2 differ by less than this (chi2 units; the
-statistical spread of chi2 is sqrt(2 x degrees of freedom), about 6 at 20 frames)."""
-
-
 def _same_cost(row: dict[str, Any], key: str) -> bool:
     return abs(row[key]) * row["generated_chi2"] < SAME_COST_CHI2
+
+
+def _equal_cost_cell(row: dict[str, Any], method: str) -> str:
+    """The report's 'at equal cost' cell: where scipy stopped at a higher cost, the generated
+    refinement's time and iterations to that cost and the speedup then; else the same run."""
+    if f"speedup_equal_cost_{method}" in row:
+        return (
+            f"{row[f'generated_equal_cost_{method}_s']:.4f} s, "
+            f"{row[f'generated_equal_cost_{method}_iterations']} iterations: "
+            f"{row[f'speedup_equal_cost_{method}']:.0f} x"
+        )
+    if _same_cost(row, f"chi2_rel_diff_{method}"):
+        return "same cost"
+    return "scipy lower"
+
+
+def fair_speedups(fd: list[dict[str, Any]]) -> list[float]:
+    """Per problem and scipy method, the speedup at equal quality: to convergence where both
+    reach the same cost; to scipy's final cost where scipy stops higher
+    (``speedup_equal_cost_<method>``); none where scipy ends lower (then the target fails)."""
+    out = []
+    for r in fd:
+        for k in r:
+            if not k.startswith("speedup_") or k.startswith("speedup_equal_cost_"):
+                continue
+            method = k.removeprefix("speedup_")
+            if _same_cost(r, f"chi2_rel_diff_{method}"):
+                out.append(r[k])
+            elif f"speedup_equal_cost_{method}" in r:
+                out.append(r[f"speedup_equal_cost_{method}"])
+            else:
+                out.append(0.0)  # scipy found the lower cost: no equal-quality time
+    return out
 
 
 # ------------------------------------------------------------------------------ plots
@@ -635,9 +668,9 @@ def _markdown(cfg: Config, sections: dict[str, Any], command: str, started: str)
     add("")
     add(
         "| frames | problem | generated (s) | iterations | scipy method | scipy (s) | speedup | "
-        "chi2 difference |"
+        "chi2 difference | at equal cost |"
     )
-    add("|---|---|---|---|---|---|---|---|")
+    add("|---|---|---|---|---|---|---|---|---|")
     for r in sp["refine_vs_fd"]:
         for method in ("lm", "trf"):
             if f"fd_{method}_s" not in r:
@@ -646,7 +679,7 @@ def _markdown(cfg: Config, sections: dict[str, Any], command: str, started: str)
                 f"| {r['n_frames']} | {r['problem']} | {r['generated_s']:.4f} | "
                 f"{r['generated_iterations']}{'' if r['generated_converged'] else ' (limit)'} | "
                 f"{method} | {r[f'fd_{method}_s']:.3f} | {r[f'speedup_{method}']:.0f} x | "
-                f"{r[f'chi2_rel_diff_{method}']:.1e} |"
+                f"{r[f'chi2_rel_diff_{method}']:.1e} | {_equal_cost_cell(r, method)} |"
             )
     add("")
     add("### Reconstruction and refinement time")
@@ -810,11 +843,18 @@ def honest_notes(cfg: Config, sections: dict[str, Any]) -> list[str]:
             )
         for k in r:
             if k.startswith("chi2_rel_diff_") and not _same_cost(r, k):
+                method = k.rsplit("_", 1)[1]
+                eq = r.get(f"speedup_equal_cost_{method}")
                 notes.append(
-                    f"At {r['n_frames']} frames (problem {r['problem']}) scipy "
-                    f"{k.rsplit('_', 1)[1]} ended at a chi2 {100 * r[k]:+.2g} % from the "
-                    "generated-Jacobian refinement's: the two did not reach the same cost, so "
-                    "the speedup compares unequal results."
+                    f"At {r['n_frames']} frames (problem {r['problem']}) scipy {method} ended at "
+                    f"a chi2 {100 * r[k]:+.2g} % from the generated-Jacobian refinement's (another "
+                    "local minimum): to convergence the speedup compares unequal results ("
+                    f"{r[f'speedup_{method}']:.0f} x); "
+                    + (
+                        f"timed to scipy's final cost it is {eq:.0f} x, which the target uses."
+                        if eq is not None
+                        else "scipy's cost is the lower one, so the target counts as missed."
+                    )
                 )
     rate = sections.get("truth_start_not_converged_rate")
     if rate:
