@@ -9,6 +9,12 @@ more than a fifth of a standard deviation (CRLB) in any parameter.
 
 It exists to measure a change to the pipeline in a minute or two instead of the full bench's
 15; the figures it prints are the bench's definitions (``bench.accuracy.summarise_method``).
+
+``--basin SCENE`` looks at one scene instead: the pipeline's answer and the marginal optimum
+reached from the truth (maximum likelihood from the true shape and poses, then
+``marginal.refine_marginal``), their errors in CRLB standard deviations, and F (the marginal
+likelihood's objective, lower is better) of both with the same noise scale.  Where the answer's F
+is the lower one, the data prefer the answer's basin: no search can do better by F.
 """
 
 from __future__ import annotations
@@ -62,6 +68,44 @@ def _scene(args: tuple[int, str, int, float, int]) -> dict[str, Any]:
     return rec
 
 
+def _basin(i: int, cell: int, noise: float, n_frames: int) -> None:
+    """Print the ``--basin`` comparison for scene ``i`` (module docstring)."""
+    from curverecon.marginal import marginal_value, refine_marginal
+    from curverecon.pose import normalise
+    from curverecon.refine import crlb, refine
+
+    cfg = full()
+    scene = make(
+        cfg.seed,
+        "accuracy",
+        (cell, i),
+        n_frames,
+        point_sigma=noise,
+        tangent_sigma_deg=noise,
+        chord=cfg.chord,
+    )
+    ts = math.radians(noise)
+    obs, meas = scene.observations, scene.observations.measurements()
+    shape, poses = true_poses(scene)
+    sd = crlb(shape, poses, noise, ts) / np.array([shape[0], 1.0, 1.0, 1.0])
+    ml = reconstruct(obs, point_sigma=noise, tangent_sigma_deg=noise, estimator="ml")
+    rec = reconstruct(obs, point_sigma=noise, tangent_sigma_deg=noise)
+    from_truth = refine(obs, shape, poses, noise, ts, covariance=False)
+    opt = refine_marginal(meas, from_truth.shape, from_truth.poses, noise, ts, from_truth.chi2)
+    rows = [("answer", rec.shape, rec.poses)]
+    if opt is not None:
+        rows.append(("optimum from the truth", normalise(opt.shape, opt.poses)[0], opt.poses))
+    print(f"scene {i} of cell {cell}: kappa from the ML chi2 {ml.chi2:.2f}")
+    for name, g, p in rows:
+        z = shape_errors(g, shape) / sd
+        f = marginal_value(meas, g, p, noise, ts, ml.chi2)
+        print(
+            f"  {name}: errors in CRLB standard deviations "
+            + ", ".join(f"{q} {v:+.1f}" for q, v in zip(PARAMETERS, z, strict=True))
+            + f"; F {f:.2f}"
+        )
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m bench.headline", description=__doc__)
     ap.add_argument("--from", dest="lo", type=int, default=0)
@@ -72,11 +116,15 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--frames", type=int, default=20)
     ap.add_argument("--save", help="write the per-scene records (JSON)")
     ap.add_argument("--compare", help="records of an earlier run (JSON) to compare with")
+    ap.add_argument("--basin", type=int, metavar="SCENE", help="one scene's basins (docstring)")
     a = ap.parse_args(argv)
     cfg = full()
     cell = cfg.noise_levels.index(a.noise) * len(cfg.frame_counts) + cfg.frame_counts.index(
         a.frames
     )
+    if a.basin is not None:
+        _basin(a.basin, cell, a.noise, a.frames)
+        return 0
     jobs = [(i, a.estimator, cell, a.noise, a.frames) for i in range(a.lo, a.hi)]
     t0 = time.perf_counter()
     if a.workers > 1:
