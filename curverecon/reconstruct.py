@@ -34,7 +34,13 @@ from curverecon.generated import measurement_model
 from curverecon.marginal import refine_marginal
 from curverecon.observations import Observations, wrap_line_angle
 from curverecon.pose import normalise, poses_from_shape, rotations, translations
-from curverecon.refine import RefineResult, optimise_poses, refine, refine_batch
+from curverecon.refine import (
+    RefineResult,
+    frame_leverages,
+    optimise_poses,
+    refine,
+    refine_batch,
+)
 from curverecon.start import (
     EXACT_COST,
     NEAR_EXACT_CHI2,
@@ -75,6 +81,9 @@ ESTIMATORS = ("marginal", "ml")
 
 CAUCHY_K = 4.0
 """Scale (in standard deviations, per frame) of the robust reweighting before the outlier test."""
+
+LEVERAGE_FLOOR = 0.05
+"""Least 1 - leverage used by ``_studentised`` (a frame that alone fixes a shape direction)."""
 
 MEDIAN_CHI2_1 = 0.4549364231195724
 """Median of chi2 with one degree of freedom."""
@@ -320,6 +329,13 @@ def _linear_seed(obs: Observations) -> list[np.ndarray]:
     return [lin.shape] if np.all(np.isfinite(lin.shape)) else []
 
 
+def _studentised(obs: Observations, fit: RefineResult, w8: np.ndarray) -> np.ndarray:
+    """(N,) per-frame chi2 / (1 - leverage) (``refine.frame_leverages``): what the outlier test
+    compares with its threshold, so that a frame that pins the shape cannot hide its misfit."""
+    lev = frame_leverages(fit.shape, fit.poses, obs.measurements(), w8)
+    return fit.frame_chi2 / np.maximum(1.0 - lev, LEVERAGE_FLOOR)
+
+
 def _threshold(frame_chi2: np.ndarray) -> float:
     """Per-frame chi2 threshold: chi2(1) quantile, scaled up if the noise looks larger."""
     base = float(chi2_dist.isf(OUTLIER_P, 1))
@@ -400,18 +416,21 @@ def _reconstruct_auto(
     # refit, repeat.
     fit = best
     w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
-    robust_rounds = 3 if np.max(fit.frame_chi2) > _threshold(fit.frame_chi2) else 0
+    st = _studentised(obs, fit, w8)
+    robust_rounds = 3 if np.max(st) > _threshold(st) else 0
     for _ in range(robust_rounds):
-        scale2 = CAUCHY_K**2 * max(1.0, float(np.median(fit.frame_chi2)) / MEDIAN_CHI2_1)
-        weights = 1.0 / (1.0 + fit.frame_chi2 / scale2)
+        scale2 = CAUCHY_K**2 * max(1.0, float(np.median(st)) / MEDIAN_CHI2_1)
+        weights = 1.0 / (1.0 + st / scale2)
         poses_sw = switch_branches(obs, fit.shape, fit.poses, w8)
         fit = refine(obs, fit.shape, poses_sw, ps, ts, covariance=False, frame_weights=weights)
+        st = _studentised(obs, fit, w8)
     inliers = np.ones(n, dtype=bool)
     max_out = max(0, (n - 5) // 2)
     while True:
         idx = np.flatnonzero(inliers)
-        j = int(np.argmax(fit.frame_chi2))
-        if fit.frame_chi2[j] <= _threshold(fit.frame_chi2) or (~inliers).sum() >= max_out:
+        st = _studentised(obs.subset(inliers), fit, w8)
+        j = int(np.argmax(st))
+        if st[j] <= _threshold(st) or (~inliers).sum() >= max_out:
             break
         inliers[idx[j]] = False
         keep = np.arange(idx.size) != j

@@ -189,6 +189,31 @@ def schur_information(jg: np.ndarray, jl: np.ndarray) -> np.ndarray:
     return 0.5 * (s + s.T)
 
 
+def frame_leverages(
+    shape: np.ndarray, poses: np.ndarray, meas: np.ndarray, weights: np.ndarray
+) -> np.ndarray:
+    """(N,) each frame's leverage on the shape: tr(S^-1 S_i), S_i its own Schur-reduced
+    information (its pose eliminated) and S their sum; they add up to 4 (the shape's parameters).
+
+    A frame's six measurements less its five pose parameters leave it one residual degree of
+    freedom, and a fit pulls that residual towards zero by the frame's own weight in the shape:
+    linearised, its expected chi2 at the fit is 1 - leverage, not 1.  An outlier frame with a
+    large leverage drags the shape after itself and hides (masking); ``chi2 / (1 - leverage)``
+    undoes that (the studentised residual).
+    """
+    _, jg, jl = _linearise(np.asarray(shape, float), np.asarray(poses, float), meas, weights)
+    u = np.einsum("nki,nkj->nij", jg, jg)
+    v = np.einsum("nki,nkj->nij", jl, jl)
+    w = np.einsum("nki,nkj->nij", jg, jl)
+    s_i = u - np.einsum("nij,njk,nlk->nil", w, _batched_inverse(v), w)
+    s = np.sum(s_i, axis=0)
+    try:
+        s_inv = np.linalg.inv(0.5 * (s + s.T))
+    except np.linalg.LinAlgError:
+        return np.zeros(len(s_i))
+    return np.einsum("ij,nji->n", s_inv, s_i)
+
+
 def schur_covariance(jg: np.ndarray, jl: np.ndarray) -> np.ndarray | None:
     """(4, 4) shape covariance: inverse of the Schur-reduced normal matrix (or None)."""
     s = schur_information(jg, jl)
