@@ -36,10 +36,12 @@ from curverecon.observations import Observations, wrap_line_angle
 from curverecon.pose import normalise, poses_from_shape, rotations, translations
 from curverecon.refine import (
     RefineResult,
+    frame_information,
     frame_leverages,
     optimise_poses,
     refine,
     refine_batch,
+    standardised_residuals,
 )
 from curverecon.start import (
     EXACT_COST,
@@ -81,6 +83,9 @@ ESTIMATORS = ("marginal", "ml")
 
 CAUCHY_K = 4.0
 """Scale (in standard deviations, per frame) of the robust reweighting before the outlier test."""
+
+TRIM_STEPS = 2
+"""Concentration steps of ``_trimmed_inliers``."""
 
 LEVERAGE_FLOOR = 0.05
 """Least 1 - leverage used by ``_studentised`` (a frame that alone fixes a shape direction)."""
@@ -329,6 +334,57 @@ def _linear_seed(obs: Observations) -> list[np.ndarray]:
     return [lin.shape] if np.all(np.isfinite(lin.shape)) else []
 
 
+def _trimmed_inliers(
+    obs: Observations, fit: RefineResult, ps: float, ts: float, w8: np.ndarray, max_out: int
+) -> tuple[np.ndarray, RefineResult]:
+    """Outlier frames by trimmed refits (least trimmed squares' concentration steps).
+
+    When the best fit's chi2 is implausible, outlier frames have pulled the shape, every frame's
+    misfit has grown, and the median-scaled threshold hides them (masking).  So: refit the shape
+    on all but the ``max_out`` frames of largest studentised chi2; test every frame against that
+    fit, the left-out ones by their deleted residual (their pose fitted to the trimmed shape,
+    chi2 / (1 + h), h = tr(S_kept^-1 S_i)) and the others by chi2 / (1 - l); flag those above
+    the threshold; repeat from the new shape (``TRIM_STEPS``).  Returns the inliers (at least
+    N - ``max_out``) and the fit on them; all frames and ``fit`` itself when none is flagged.
+    """
+    n = obs.n_frames
+    meas = obs.measurements()
+    shape, poses = fit.shape, np.array(fit.poses)
+    flagged = np.zeros(n, bool)
+    base = float(chi2_dist.isf(OUTLIER_P, 1))
+    for step in range(TRIM_STEPS):
+        st = _studentised(obs, refine(obs, shape, poses, ps, ts, max_iter=0, covariance=False), w8)
+        keep = np.zeros(n, bool)
+        keep[np.argsort(st, kind="stable")[: n - max_out]] = True
+        tf = refine(obs.subset(keep), shape, poses[keep], ps, ts, covariance=False)
+        if step == 0:  # the kept frames searched again: the outliers may have moved the basin
+            cands = robust_start(obs.subset(keep), ps, ts)
+            if cands and cands[0].result.chi2 < tf.chi2:
+                tf = cands[0].result
+        poses[keep] = tf.poses
+        poses = switch_branches(obs, tf.shape, poses, w8)
+        poses[keep] = tf.poses
+        r = standardised_residuals(tf.shape, poses, meas, w8)
+        chi2 = np.sum(r * r, axis=1)
+        info = frame_information(tf.shape, poses, meas, w8)
+        try:
+            s_inv = np.linalg.inv(np.sum(info[keep], axis=0))
+        except np.linalg.LinAlgError:
+            break
+        lev = np.einsum("ij,nji->n", s_inv, info)
+        t2 = np.where(keep, chi2 / np.maximum(1.0 - lev, LEVERAGE_FLOOR), chi2 / (1.0 + lev))
+        scale = max(1.0, float(np.median(t2)) / MEDIAN_CHI2_1)
+        over = t2 > base * scale
+        worst = np.argsort(-t2, kind="stable")[:max_out]
+        flagged = np.zeros(n, bool)
+        flagged[worst[over[worst]]] = True
+        shape = tf.shape
+    if not flagged.any():  # nothing found: the fit stays as it was
+        return np.ones(n, bool), fit
+    inl = ~flagged
+    return inl, refine(obs.subset(inl), shape, poses[inl], ps, ts, covariance=False)
+
+
 def _studentised(obs: Observations, fit: RefineResult, w8: np.ndarray) -> np.ndarray:
     """(N,) per-frame chi2 / (1 - leverage) (``refine.frame_leverages``): what the outlier test
     compares with its threshold, so that a frame that pins the shape cannot hide its misfit."""
@@ -426,6 +482,9 @@ def _reconstruct_auto(
         st = _studentised(obs, fit, w8)
     inliers = np.ones(n, dtype=bool)
     max_out = max(0, (n - 5) // 2)
+    dof = max(n - 4, 1)
+    if max_out > 0 and best.chi2 > dof + 5.0 * math.sqrt(2.0 * dof) + 10.0:
+        inliers, fit = _trimmed_inliers(obs, fit, ps, ts, w8, max_out)
     while True:
         idx = np.flatnonzero(inliers)
         st = _studentised(obs.subset(inliers), fit, w8)

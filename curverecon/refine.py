@@ -189,6 +189,18 @@ def schur_information(jg: np.ndarray, jl: np.ndarray) -> np.ndarray:
     return 0.5 * (s + s.T)
 
 
+def frame_information(
+    shape: np.ndarray, poses: np.ndarray, meas: np.ndarray, weights: np.ndarray
+) -> np.ndarray:
+    """(N, 4, 4) each frame's own Schur-reduced information on the shape (its pose eliminated):
+    U_i - W_i V_i^-1 W_i^T; :func:`schur_information` is their sum."""
+    _, jg, jl = _linearise(np.asarray(shape, float), np.asarray(poses, float), meas, weights)
+    u = np.einsum("nki,nkj->nij", jg, jg)
+    v = np.einsum("nki,nkj->nij", jl, jl)
+    w = np.einsum("nki,nkj->nij", jg, jl)
+    return u - np.einsum("nij,njk,nlk->nil", w, _batched_inverse(v), w)
+
+
 def frame_leverages(
     shape: np.ndarray, poses: np.ndarray, meas: np.ndarray, weights: np.ndarray
 ) -> np.ndarray:
@@ -201,11 +213,7 @@ def frame_leverages(
     large leverage drags the shape after itself and hides (masking); ``chi2 / (1 - leverage)``
     undoes that (the studentised residual).
     """
-    _, jg, jl = _linearise(np.asarray(shape, float), np.asarray(poses, float), meas, weights)
-    u = np.einsum("nki,nkj->nij", jg, jg)
-    v = np.einsum("nki,nkj->nij", jl, jl)
-    w = np.einsum("nki,nkj->nij", jg, jl)
-    s_i = u - np.einsum("nij,njk,nlk->nil", w, _batched_inverse(v), w)
+    s_i = frame_information(shape, poses, meas, weights)
     s = np.sum(s_i, axis=0)
     try:
         s_inv = np.linalg.inv(0.5 * (s + s.T))
