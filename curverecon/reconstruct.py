@@ -2,10 +2,12 @@
 
 ``reconstruct(obs, method="auto")``: robust global start (``start.robust_start``; the
 linearisation seeds it too when it is determined) -> ML refinement over all frames -> outlier test
-(standardised per-frame chi2; the worst frame above the threshold is dropped and the fit redone
-until none is left) -> with few frames, single frames tried on their other branch of (10) with a
-joint refit (``_flip_ambiguous_frames``: nearby local minima with tau near 0 or phi near 0 or 180
-degrees; pairs and triples of frames on nearly noise-free data; nothing once the fit is exact)
+(studentised per-frame chi2, chi2 / (1 - leverage); when the fit's chi2 is implausible, trimmed
+refits first, ``_trimmed_inliers``; then the worst frame above the threshold is dropped and the
+fit redone until none is left) -> with few frames, single frames tried on their other branch of
+(10) with a joint refit (``_flip_ambiguous_frames``: nearby local minima with tau near 0 or phi
+near 0 or 180 degrees; pairs and triples of frames on nearly noise-free data; nothing once the
+fit is exact)
 -> every other shape that fits about equally well by chi2 ("alternatives", e.g. with 4-5
 frames; the other candidates of the search, refined in one batch) -> with
 ``estimator="marginal"`` (the default) each of those fits taken to the optimum of the marginal
@@ -467,9 +469,9 @@ def _reconstruct_auto(
     best = cands[0].result
     warnings: list[str] = []
 
-    # Robust fit (frame-level Cauchy reweighting) so that outlier frames stand out, then the
-    # outlier test on the unweighted per-frame chi2: drop the worst frame above the threshold,
-    # refit, repeat.
+    # Robust fit (frame-level Cauchy reweighting) so that outlier frames stand out; with an
+    # implausible chi2, trimmed refits; then the outlier test on the unweighted, studentised
+    # per-frame chi2: drop the worst frame above the threshold, refit, repeat.
     fit = best
     w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
     st = _studentised(obs, fit, w8)
