@@ -34,16 +34,14 @@ from bench.config import full
 from curverecon.errors import CurveReconError
 from curverecon.reconstruct import reconstruct
 from curverecon.refine import crlb_covariance
-
-HEADLINE_CELL = 13
-"""Cell index of (1 px, 20 frames) in the bench's grid (noise level 2 of 4, frame count 3 of 5:
-``bench.__main__.build_tasks`` numbers the cells noise-major)."""
+from curverecon.simulate import Scene
 
 
-def _scene(args: tuple[int, str, int, float, int]) -> dict[str, Any]:
-    i, estimator, cell, noise, n_frames = args
+def _cell_scene(i: int, cell: int, noise: float, n_frames: int) -> Scene:
+    """Scene ``i`` of an accuracy cell, as ``make bench`` makes it (``bench.accuracy``); the
+    cells are numbered noise-major (``bench.__main__.build_tasks``: 1 px, 20 frames is 13)."""
     cfg = full()
-    scene = make(
+    return make(
         cfg.seed,
         "accuracy",
         (cell, i),
@@ -52,6 +50,11 @@ def _scene(args: tuple[int, str, int, float, int]) -> dict[str, Any]:
         tangent_sigma_deg=noise,
         chord=cfg.chord,
     )
+
+
+def _scene(args: tuple[int, str, int, float, int]) -> dict[str, Any]:
+    i, estimator, cell, noise, n_frames = args
+    scene = _cell_scene(i, cell, noise, n_frames)
     shape, poses = true_poses(scene)
     cov = crlb_covariance(shape, poses, noise, math.radians(noise))
     var = np.clip(np.diag(cov), 0.0, None) / np.array([shape[0] ** 2, 1.0, 1.0, 1.0])
@@ -74,16 +77,7 @@ def _basin(i: int, cell: int, noise: float, n_frames: int) -> None:
     from curverecon.pose import normalise
     from curverecon.refine import crlb, refine
 
-    cfg = full()
-    scene = make(
-        cfg.seed,
-        "accuracy",
-        (cell, i),
-        n_frames,
-        point_sigma=noise,
-        tangent_sigma_deg=noise,
-        chord=cfg.chord,
-    )
+    scene = _cell_scene(i, cell, noise, n_frames)
     ts = math.radians(noise)
     obs, meas = scene.observations, scene.observations.measurements()
     shape, poses = true_poses(scene)
