@@ -360,7 +360,10 @@ def _trimmed_inliers(
         keep[np.argsort(st, kind="stable")[: n - max_out]] = True
         tf = refine(obs.subset(keep), shape, poses[keep], ps, ts, covariance=False)
         if step == 0:  # the kept frames searched again: the outliers may have moved the basin
-            cands = robust_start(obs.subset(keep), ps, ts)
+            try:
+                cands = robust_start(obs.subset(keep), ps, ts)
+            except CurveReconError:  # e.g. the kept frames alone are degenerate: keep tf
+                cands = []
             if cands and cands[0].result.chi2 < tf.chi2:
                 tf = cands[0].result
         poses[keep] = tf.poses
