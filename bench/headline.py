@@ -106,12 +106,18 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--to", dest="hi", type=int, default=200)
     ap.add_argument("--estimator", default="marginal", choices=("marginal", "ml"))
     ap.add_argument("--workers", type=int, default=2)
-    ap.add_argument("--noise", type=float, default=1.0)
-    ap.add_argument("--frames", type=int, default=20)
+    ap.add_argument("--noise", type=float, default=1.0, choices=full().noise_levels)
+    ap.add_argument("--frames", type=int, default=20, choices=full().frame_counts)
     ap.add_argument("--save", help="write the per-scene records (JSON)")
     ap.add_argument("--compare", help="records of an earlier run (JSON) to compare with")
     ap.add_argument("--basin", type=int, metavar="SCENE", help="one scene's basins (docstring)")
     a = ap.parse_args(argv)
+    if not 0 <= a.lo < a.hi:
+        ap.error("--from and --to must satisfy 0 <= FROM < TO")
+    if a.workers < 1:
+        ap.error("--workers must be at least 1")
+    if a.basin is not None and a.basin < 0:
+        ap.error("--basin takes a scene index (0 or more)")
     cfg = full()
     cell = cfg.noise_levels.index(a.noise) * len(cfg.frame_counts) + cfg.frame_counts.index(
         a.frames

@@ -82,3 +82,28 @@ def test_outlier_frames_detectable_at_the_true_shape() -> None:
         else:
             # 15-40 degree tangent errors: most, not all, show beyond what a pose absorbs
             assert out.sum() >= 4 and 1 <= k <= out.sum()
+
+
+def test_headline_tool_refuses_bad_arguments_in_one_line() -> None:
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parent.parent
+    for args in (
+        ["--noise", "3"],
+        ["--frames", "7"],
+        ["--from", "5", "--to", "5"],
+        ["--basin", "-1"],
+    ):
+        proc = subprocess.run(
+            [sys.executable, "-m", "bench.headline", *args],
+            cwd=root,
+            capture_output=True,
+            text=True,
+            timeout=60,
+        )
+        assert proc.returncode == 2, args
+        assert "Traceback" not in proc.stderr and proc.stderr.strip().splitlines()[-1].startswith(
+            "python -m bench.headline: error:"
+        ), proc.stderr
