@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-import re
 import time
 from pathlib import Path
 from typing import Any
@@ -132,7 +131,7 @@ def headline(cfg: Config, sections: dict[str, Any]) -> dict[str, Any]:
     speedups = fair_speedups(fd)
     speedup = float(min(speedups)) if speedups else None
     same_cost = all(_same_cost(r, k) for r in fd for k in r if k.startswith("chi2_rel_diff_"))
-    to_convergence = [r[k] for r in fd for k in r if re.fullmatch(r"speedup_(lm|trf)", k)]
+    to_convergence = [r[f"speedup_{m}"] for r in fd for m in _fd_methods(r)]
     rec20 = sp["reconstruct_20"]["median_s"]
     ref1000 = sp["refine_1000"]["median_s"]
     ref_conv = bool(sp["refine_1000"].get("converged", True))
@@ -226,18 +225,20 @@ def _equal_cost_cell(row: dict[str, Any], method: str) -> str:
     return "scipy lower"
 
 
+def _fd_methods(row: dict[str, Any]) -> list[str]:
+    """The scipy methods timed on one refinement problem (``speedup_<method>`` keys)."""
+    return [m for m in ("lm", "trf") if f"speedup_{m}" in row]
+
+
 def fair_speedups(fd: list[dict[str, Any]]) -> list[float]:
     """Per problem and scipy method, the speedup at equal quality: to convergence where both
     reach the same cost; to scipy's final cost where scipy stops higher
     (``speedup_equal_cost_<method>``); none where scipy ends lower (then the target fails)."""
     out = []
     for r in fd:
-        for k in r:
-            if not k.startswith("speedup_") or k.startswith("speedup_equal_cost_"):
-                continue
-            method = k.removeprefix("speedup_")
+        for method in _fd_methods(r):
             if _same_cost(r, f"chi2_rel_diff_{method}"):
-                out.append(r[k])
+                out.append(r[f"speedup_{method}"])
             elif f"speedup_equal_cost_{method}" in r:
                 out.append(r[f"speedup_equal_cost_{method}"])
             else:
@@ -678,9 +679,7 @@ def _markdown(cfg: Config, sections: dict[str, Any], command: str, started: str)
     )
     add("|---|---|---|---|---|---|---|---|---|")
     for r in sp["refine_vs_fd"]:
-        for method in ("lm", "trf"):
-            if f"fd_{method}_s" not in r:
-                continue
+        for method in _fd_methods(r):
             add(
                 f"| {r['n_frames']} | {r['problem']} | {r['generated_s']:.4f} | "
                 f"{r['generated_iterations']}{'' if r['generated_converged'] else ' (limit)'} | "

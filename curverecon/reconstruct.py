@@ -38,7 +38,6 @@ from curverecon.observations import Observations, wrap_line_angle
 from curverecon.pose import normalise, poses_from_shape, rotations, translations
 from curverecon.refine import (
     RefineResult,
-    frame_information,
     frame_leverages,
     optimise_poses,
     refine,
@@ -371,12 +370,7 @@ def _trimmed_inliers(
         poses[keep] = tf.poses
         r = standardised_residuals(tf.shape, poses, meas, w8)
         chi2 = np.sum(r * r, axis=1)
-        info = frame_information(tf.shape, poses, meas, w8)
-        try:
-            s_inv = np.linalg.inv(np.sum(info[keep], axis=0))
-        except np.linalg.LinAlgError:
-            break
-        lev = np.einsum("ij,nji->n", s_inv, info)
+        lev = frame_leverages(tf.shape, poses, meas, w8, among=keep)
         t2 = np.where(keep, chi2 / np.maximum(1.0 - lev, LEVERAGE_FLOOR), chi2 / (1.0 + lev))
         scale = max(1.0, float(np.median(t2)) / MEDIAN_CHI2_1)
         over = t2 > base * scale

@@ -202,10 +202,16 @@ def frame_information(
 
 
 def frame_leverages(
-    shape: np.ndarray, poses: np.ndarray, meas: np.ndarray, weights: np.ndarray
+    shape: np.ndarray,
+    poses: np.ndarray,
+    meas: np.ndarray,
+    weights: np.ndarray,
+    among: np.ndarray | None = None,
 ) -> np.ndarray:
     """(N,) each frame's leverage on the shape: tr(S^-1 S_i), S_i its own Schur-reduced
     information (its pose eliminated) and S their sum; they add up to 4 (the shape's parameters).
+    ``among`` (N,) bool: S sums only those frames (the others' leverages are then their h in
+    the deleted-residual variance 1 + h).
 
     A frame's six measurements less its five pose parameters leave it one residual degree of
     freedom, and a fit pulls that residual towards zero by the frame's own weight in the shape:
@@ -214,7 +220,7 @@ def frame_leverages(
     undoes that (the studentised residual).
     """
     s_i = frame_information(shape, poses, meas, weights)
-    s = np.sum(s_i, axis=0)
+    s = np.sum(s_i if among is None else s_i[among], axis=0)
     try:
         s_inv = np.linalg.inv(0.5 * (s + s.T))
     except np.linalg.LinAlgError:
