@@ -476,7 +476,7 @@ def _reconstruct_auto(
     for _ in range(robust_rounds):
         scale2 = CAUCHY_K**2 * max(1.0, float(np.median(st)) / MEDIAN_CHI2_1)
         weights = 1.0 / (1.0 + st / scale2)
-        poses_sw = switch_branches(obs, fit.shape, fit.poses, w8)
+        poses_sw = switch_branches(obs, fit.shape, fit.poses, w8, rescue=True)
         fit = refine(obs, fit.shape, poses_sw, ps, ts, covariance=False, frame_weights=weights)
         st = _studentised(obs, fit, w8)
     inliers = np.ones(n, dtype=bool)
@@ -484,12 +484,27 @@ def _reconstruct_auto(
     dof = max(n - 4, 1)
     if max_out > 0 and best.chi2 > dof + 5.0 * math.sqrt(2.0 * dof) + 10.0:
         inliers, fit = _trimmed_inliers(obs, fit, ps, ts, w8, max_out)
+    rescued = 0
     while True:
         idx = np.flatnonzero(inliers)
         st = _studentised(obs.subset(inliers), fit, w8)
         j = int(np.argmax(st))
-        if st[j] <= _threshold(st) or (~inliers).sum() >= max_out:
+        thr = _threshold(st)
+        if st[j] <= thr or (~inliers).sum() >= max_out:
             break
+        # a frame on a wrong pose (a minimum of its own that no branch of (10) led out of)
+        # is not an outlier: its pose re-solved from a grid of starts first, and kept if
+        # that brings it under the threshold (``start.switch_branches(..., rescue=True)``)
+        one = obs.subset(np.array([idx[j]]))
+        pj = switch_branches(one, fit.shape, fit.poses[j : j + 1], w8, rescue=True)
+        if rescued < n and not np.array_equal(pj, fit.poses[j : j + 1]):
+            _, rj = optimise_poses(fit.shape, pj.copy(), one.measurements(), w8, 0)
+            if float(np.sum(rj * rj)) < fit.frame_chi2[j] and float(np.sum(rj * rj)) <= thr:
+                poses = np.array(fit.poses)
+                poses[j] = pj[0]
+                fit = refine(obs.subset(inliers), fit.shape, poses, ps, ts, covariance=False)
+                rescued += 1
+                continue
         inliers[idx[j]] = False
         keep = np.arange(idx.size) != j
         fit = refine(obs.subset(inliers), fit.shape, fit.poses[keep], ps, ts, covariance=False)

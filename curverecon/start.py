@@ -28,7 +28,8 @@ best two by robust cost (three, and more restarts, with few frames or an implaus
 plausible noisy data screened by Gauss-Newton, ``SCREEN_ITERATIONS``, and only the
 ``RESTART_FINALISTS`` best refined with the Newton phase).
 More than 40 frames: the search runs on 40 evenly spread frames and the candidates are refined
-on all (``robust_start``).
+on all (``robust_start``); more than ``MEDIUM_FRAMES``: on that many first, and only those that
+stay near the best go on to all.
 
 Shortcuts that cannot change the answer's fit: with at least ``EXACT_STAGE_MIN_FRAMES`` frames
 the best ``EXACT_STAGE_STARTS`` grid minima are polished and refined first, and if one of them
@@ -48,7 +49,7 @@ from scipy import ndimage
 
 from curverecon.observations import Observations, wrap_angle
 from curverecon.pose import normalise
-from curverecon.refine import RefineResult, optimise_poses, refine_batch
+from curverecon.refine import POSE_HALVINGS, RefineResult, optimise_poses, refine_batch
 
 EXACT_COST = 1e-9
 """A (robust) chi2 at or below this is an exact fit: nothing can beat it by the relative 1e-9
@@ -94,6 +95,21 @@ EXACT_STAGE_STARTS = 12
 
 EXACT_STAGE_MIN_FRAMES = 5
 """... from this many frames on (with 4 frames every start fits exactly: no test of the data)."""
+
+RESCUE_CHI2 = 9.0
+"""A frame whose chi2 is still above this after the branches of (10) (``switch_branches``) is
+re-solved from a grid of starts (``RESCUE_DELTAS``)."""
+
+RESCUE_DELTAS = 12
+"""Values of delta in that grid (every 30 degrees), each with both signs of tau."""
+
+MEDIUM_FRAMES = 400
+"""Above this many frames ``robust_start`` screens its candidates on this many evenly spread
+frames before refining on all."""
+
+MEDIUM_KEEP_COST = 16.0
+"""... and keeps those whose robust cost there is within this of the best (four times
+``reconstruct.ALTERNATIVE_DCHI2``, the window in which a candidate can still matter)."""
 
 EXACT_REDUCED_COST = 1e-20
 """A pose-free (reduced) cost at or below this counts as an exact fit of the exact stage."""
@@ -386,13 +402,19 @@ def poses_from_branches(obs: Observations, shape: np.ndarray) -> np.ndarray:
 
 
 def switch_branches(
-    obs: Observations, shape: np.ndarray, poses: np.ndarray, w8: np.ndarray
+    obs: Observations,
+    shape: np.ndarray,
+    poses: np.ndarray,
+    w8: np.ndarray,
+    rescue: bool = False,
 ) -> np.ndarray:
     """Per frame, the best of the current pose and the four branches of (10), shape fixed.
 
     Each alternative is polished by a few pose-only Gauss-Newton steps before the comparison.
-    Returns the new (N, 5) poses (identical to ``poses`` where nothing fits better).  Also
-    vectorised over candidates: shapes (K, 4) and poses (K, N, 5) give (K, N, 5).
+    ``rescue``: frames that still fit badly are re-solved from a grid of starts as well
+    (``_rescue_poses``; before a frame is called an outlier).  Returns the new (N, 5) poses
+    (identical to ``poses`` where nothing fits better).  Also vectorised over candidates:
+    shapes (K, 4) and poses (K, N, 5) give (K, N, 5).
     """
     shapes = np.asarray(shape, float)
     single = shapes.ndim == 1
@@ -412,14 +434,52 @@ def switch_branches(
     allp = np.stack(sets, axis=1).reshape(-1, 5)  # (K * 5 * N, 5)
     meas = np.tile(obs.measurements(), (kk * len(sets), 1))
     rows_shape = np.repeat(shapes, len(sets) * n, axis=0)
-    allp, res = optimise_poses(rows_shape, allp, meas, w8, 6)
+    allp, res = optimise_poses(
+        rows_shape, allp, meas, w8, 6, halvings=POSE_HALVINGS if rescue else 0
+    )
     f = np.sum(res * res, axis=1).reshape(kk, len(sets), n)
     allp = allp.reshape(kk, len(sets), n, 5)
     ki, ni = np.arange(kk)[:, None], np.arange(n)[None, :]
     best = np.argmin(f, axis=1)  # (K, N)
     best = np.where(f[ki, best, ni] < f[:, 0] - 1e-9 * (1.0 + f[:, 0]), best, 0)
     out = allp[ki, best, ni]
+    if rescue:
+        out = _rescue_poses(obs, shapes, out, f[ki, best, ni], w8)
     return out[0] if single else out
+
+
+def _rescue_poses(
+    obs: Observations, shapes: np.ndarray, poses: np.ndarray, f: np.ndarray, w8: np.ndarray
+) -> np.ndarray:
+    """Poses (K, N, 5) with every frame whose chi2 ``f`` (K, N) is still above ``RESCUE_CHI2``
+    re-solved from a grid of starts (``RESCUE_DELTAS`` values of delta, both signs of tau at its
+    current magnitude), shape fixed; a frame takes the best if it fits better.
+
+    Where (10) has no real solution for the shape (c' >= c with noise, or the tangent at B out
+    of reach) its branches all start at the clipped point and can all polish into one wrong
+    minimum: on a 4642-frame test scene, chi2 64 at delta 0 where the pose at delta -30 (the
+    other sign of tau) gives 3.4, and the frame was flagged as an outlier.
+    """
+    kk, nn = np.nonzero(f > RESCUE_CHI2)
+    if kk.size == 0:
+        return poses
+    deltas = np.linspace(-np.pi, np.pi, RESCUE_DELTAS, endpoint=False)
+    base = poses[kk, nn]  # (M, 5)
+    starts = np.repeat(base[:, None], 2 * RESCUE_DELTAS, axis=1)  # (M, 2D, 5)
+    starts[..., 0] = np.tile(deltas, 2)[None]
+    tau = np.abs(base[:, 1])[:, None] * np.repeat([1.0, -1.0], RESCUE_DELTAS)[None]
+    starts[..., 1] = tau
+    m = kk.size * 2 * RESCUE_DELTAS
+    meas = np.repeat(obs.measurements()[nn], 2 * RESCUE_DELTAS, axis=0)
+    rows_shape = np.repeat(shapes[kk], 2 * RESCUE_DELTAS, axis=0)
+    sol, res = optimise_poses(rows_shape, starts.reshape(m, 5), meas, w8, 8)
+    fr = np.sum(res * res, axis=1).reshape(kk.size, 2 * RESCUE_DELTAS)
+    j = np.argmin(fr, axis=1)
+    better = fr[np.arange(kk.size), j] < f[kk, nn] - 1e-9 * (1.0 + f[kk, nn])
+    out = np.array(poses)
+    sol = sol.reshape(kk.size, 2 * RESCUE_DELTAS, 5)
+    out[kk[better], nn[better]] = sol[np.arange(kk.size), j][better]
+    return out
 
 
 def branch_alternatives(
@@ -476,13 +536,33 @@ def robust_start(
 
     With more than ``max_frames`` frames the search runs on ``max_frames`` evenly spread frames
     (its cost grows with the frame count) and its candidates are then refined on all frames.
-    Other keyword arguments go to :func:`search_start`.
+    With more than ``MEDIUM_FRAMES`` frames they are refined on that many evenly spread frames
+    first, and only those within ``MEDIUM_KEEP_COST`` of the best there go on to all frames
+    (the others would lose by far more on all frames; this saves most of the time of a long
+    sequence).  Other keyword arguments go to :func:`search_start`.
     """
     n = obs.n_frames
     if n <= max_frames:
         return search_start(obs, point_sigma, tangent_sigma, **kwargs)
-    idx = np.unique(np.linspace(0, n - 1, max_frames).round().astype(int))
-    cands = search_start(obs.subset(idx), point_sigma, tangent_sigma, **kwargs)
+    cands = search_start(obs.subset(_spread(n, max_frames)), point_sigma, tangent_sigma, **kwargs)
+    if n > MEDIUM_FRAMES and len(cands) > 1:
+        cands = _refined_on(
+            obs.subset(_spread(n, MEDIUM_FRAMES)), cands, point_sigma, tangent_sigma
+        )
+        cands = [c for c in cands if c.robust_cost <= cands[0].robust_cost + MEDIUM_KEEP_COST]
+    return _refined_on(obs, cands, point_sigma, tangent_sigma)
+
+
+def _spread(n: int, m: int) -> np.ndarray:
+    """Indices of ``m`` frames spread evenly over ``n``."""
+    return np.unique(np.linspace(0, n - 1, m).round().astype(int))
+
+
+def _refined_on(
+    obs: Observations, cands: list[Candidate], point_sigma: float, tangent_sigma: float
+) -> list[Candidate]:
+    """The candidates' shapes refined (maximum likelihood) on the frames of ``obs``: each frame
+    starts on its best branch of (10) for the shape; best (lowest robust cost) first."""
     w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / tangent_sigma] * 2)
     shapes = np.array([c.result.shape for c in cands])
     poses = switch_branches(obs, shapes, poses_from_branches(obs, shapes), w8)
