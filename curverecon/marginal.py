@@ -80,6 +80,11 @@ MAX_ITER = 40
 LINE_SEARCH_BATCHES = ((0, 1, 2, 3), tuple(range(4, 14)))
 """The line search's trial steps 2^-j, j = 0..13 (down to 1e-4), in the batches evaluated."""
 
+BATCH_MAX_FRAMES = 200
+"""Up to this many frames the line search's trial steps are evaluated in the batches of
+``LINE_SEARCH_BATCHES``; beyond, one at a time (a batch of 10 trial shapes re-solved 10,000
+frames' poses 10 times over: 17 of a 26-s reconstruction)."""
+
 POSE_ITERATIONS = 4
 """Newton iterations at most of each pose solve (warm-started, it stops earlier)."""
 
@@ -401,6 +406,13 @@ def refine_marginal(
         f2 = np.sum(r * r, axis=-1).reshape(2, len(xs), n)
         return np.where((f2[0] <= f2[1])[..., None], moved, p)
 
+    # the trial steps in batches where a batch costs about one evaluation (few frames: numpy's
+    # per-call overhead dominates); one at a time where the arithmetic does (many frames)
+    batches = (
+        LINE_SEARCH_BATCHES
+        if n <= BATCH_MAX_FRAMES
+        else tuple((j,) for levels in LINE_SEARCH_BATCHES for j in levels)
+    )
     x = np.zeros(4)
     fs, ps, lin = evaluate(x[None], p0[None])
     f, p = float(fs[0]), ps[0]
@@ -429,7 +441,7 @@ def refine_marginal(
         # time in one batch (about the cost of one: the cost is numpy's per-call overhead), the
         # gradient only at the accepted one
         accepted = None
-        for levels in LINE_SEARCH_BATCHES:
+        for levels in batches:
             ts = 0.5 ** np.asarray(levels, float)
             xs = x + ts[:, None] * step
             fs, ps, lin = evaluate(xs, predicted_starts(xs))

@@ -153,3 +153,44 @@ def test_pose_solve_reaches_the_pose_from_a_start_degrees_off(seed):
     _, r3 = optimise_poses(shape, p3, meas, w8, 0)
     f3 = np.sum(r3 * r3, axis=1)
     assert not np.any((f3 > RESCUE_CHI2) & (f3 > f0 + 1e-6))
+
+
+def test_schur_information_stays_exact_with_a_measurement_seen_end_on():
+    """A frame whose one measurement row is huge (a tangent seen nearly end-on: its angle's
+    derivatives ~1e9) makes U - W V^-1 W^T cancel to noise in double precision.  With that row
+    scaled by 1e9 (V's condition number far beyond ``SCHUR_COND_MAX``, so the row-sorted QR
+    handles the frame) the frame's information must match the same formula evaluated with 60
+    digits (mpmath), the total must stay positive definite, and on well-conditioned frames the
+    QR must match the normal equations."""
+    import mpmath
+    from test_conventions import canonical_parameters
+
+    from curverecon.refine import (
+        SCHUR_COND_MAX,
+        _frame_schur_qr,
+        _ill_conditioned,
+        frame_information,
+        schur_information,
+    )
+
+    sc = make_scene(np.random.default_rng(4), 12, point_sigma=1.0, tangent_sigma_deg=1.0)
+    shape, poses = canonical_parameters(sc.truth)
+    w8 = np.array([1.0] * 4 + [1.0 / np.radians(1.0)] * 2)
+    _, jg, jl = measurement_model.predict_with_jacobians(*shape, *poses.T)
+    jg, jl = jg * w8[None, :, None], jl * w8[None, :, None]
+    assert not _ill_conditioned(np.einsum("nki,nkj->nij", jl, jl)).any()
+    plain = frame_information(shape, poses, sc.observations.measurements(), w8)
+    scale = np.abs(plain).max()
+    assert np.allclose(_frame_schur_qr(jg, jl), plain, rtol=1e-8, atol=1e-8 * scale)
+
+    jg[3, 5] *= 1e9
+    jl[3, 5] *= 1e9
+    assert np.linalg.cond(jl[3].T @ jl[3]) > SCHUR_COND_MAX
+    mpmath.mp.dps = 60
+    g3, l3 = mpmath.matrix(jg[3].tolist()), mpmath.matrix(jl[3].tolist())
+    exact = g3.T * g3 - (g3.T * l3) * mpmath.inverse(l3.T * l3) * (l3.T * g3)
+    exact = np.array(exact.tolist(), dtype=float)
+    got = _frame_schur_qr(jg[3:4], jl[3:4])[0]
+    assert np.allclose(got, exact, rtol=1e-10, atol=1e-10 * np.abs(exact).max())
+    total = schur_information(jg, jl)
+    assert np.linalg.eigvalsh(total)[0] > 0
