@@ -33,7 +33,7 @@ from scipy.stats import chi2 as chi2_dist
 
 from curverecon.errors import CurveReconError
 from curverecon.generated import measurement_model
-from curverecon.marginal import refine_marginal
+from curverecon.marginal import KAPPA_MIN, refine_marginal
 from curverecon.observations import Observations, wrap_line_angle
 from curverecon.pose import normalise, poses_from_shape, rotations, translations
 from curverecon.refine import (
@@ -55,6 +55,10 @@ from curverecon.start import (
 
 OUTLIER_P = 2e-4
 """False-alarm probability per frame of the outlier test (chi2 with one degree of freedom)."""
+
+MIXTURE_DCHI2 = 40.0
+"""A frame's other branch joins the marginal likelihood's mixture if its chi2 is within this
+many noise scales (kappa, the chi2 per degree of freedom) of the frame's fit."""
 
 ALTERNATIVE_DCHI2 = 4.0
 """Shapes whose chi2 is within this of the best count as fitting equally well."""
@@ -456,6 +460,18 @@ def _refit_switched(
     return g, p, chi2
 
 
+def _second_branches(
+    obs: Observations, fit: RefineResult, w8: np.ndarray, kappa: float
+) -> np.ndarray:
+    """(N, 5) each frame's pose on its other branch of (10) for the fit's shape, the second
+    component of the marginal likelihood's mixture (``marginal.refine_marginal``), or NaN
+    where there is none or it fits worse by more than ``MIXTURE_DCHI2`` noise scales (its
+    weight would be below exp(-20))."""
+    alt, alt_chi2 = branch_alternatives(obs, fit.shape, fit.poses, w8)
+    keep = np.isfinite(alt_chi2) & (alt_chi2 - fit.frame_chi2 < MIXTURE_DCHI2 * kappa)
+    return np.where(keep[:, None], alt, np.nan)
+
+
 def _reconstruct_auto(
     obs: Observations, ps: float, ts: float, marginal: bool = True
 ) -> Reconstruction:
@@ -554,23 +570,35 @@ def _reconstruct_auto(
     # at the fits' ML points matters where the ML points sit on either side of a fold: F at
     # the ML point of the truth's basin was 2 higher on one headline scene, its optimum 2
     # lower.  On the bench's 200 headline scenes: alpha's RMSE/CRLB 1.26 -> 1.09, phi's 1.25
-    # -> 1.23, with 3 answers changed, at the same time per scene: ``python -m bench.headline``.)
+    # -> 1.23, with 3 answers changed, at the same time per scene: ``python -m bench.headline``.
+    # Each frame whose other branch of (10) fits about as well enters F as a mixture of both,
+    # ``_second_branches``: phi's 1.23 -> 1.12, see curverecon.marginal.)
     estimator = "ml"
     chosen = 0
     if marginal:
         meas_in = sub.measurements()
-        mgs = [refine_marginal(meas_in, f[1].shape, f[1].poses, ps, ts, ml_chi2) for f in fits]
+        kappa = ml_chi2 / max(sub.n_frames - 4, 1)
+        mixture = sub.n_frames >= 5 and kappa >= KAPPA_MIN  # where the marginal step applies
+        mgs = [
+            refine_marginal(
+                meas_in,
+                f.shape,
+                f.poses,
+                ps,
+                ts,
+                ml_chi2,
+                _second_branches(sub, f, w8, kappa) if mixture else None,
+            )
+            for _, f in fits
+        ]
         if all(m is not None for m in mgs):
             chosen = int(np.argmin([m.value for m in mgs]))
         r0 = fits[chosen][1]
         mg = mgs[chosen]
         if mg is not None:
-            # each frame on its best branch of (10) for the new shape (the step may have
-            # moved a frame's other branch below the one it started on); once more if so
-            switched = switch_branches(sub, mg.shape, mg.poses, w8)
-            if not np.array_equal(switched, mg.poses):
-                mg = refine_marginal(meas_in, mg.shape, switched, ps, ts, ml_chi2) or mg
-                mg.poses = switch_branches(sub, mg.shape, mg.poses, w8)
+            # every frame on its best branch of (10) for the answer's shape (the mixture put it
+            # on its branch of the larger weight, which can differ where the two fit alike)
+            mg.poses = switch_branches(sub, mg.shape, mg.poses, w8)
             final = refine(sub, mg.shape, mg.poses, ps, ts, max_iter=0, covariance=True)
             estimator = "marginal"
         else:
