@@ -31,11 +31,11 @@ that falls onto the other counts once).  With one branch per frame, chosen by ch
 estimate followed each frame's choice, and a choice made by the noise moved the shape:
 ``python -m bench.headline --from 0 --to 600`` (the headline cell: 1 px, 1 deg, 20 frames):
 RMS of the errors in CRLB standard deviations c 1.26 -> 1.08, alpha 1.23 -> 1.13, beta
-1.21 -> 1.12, phi 1.16 -> 1.15; 5 -> 2 scenes with an angle more than 5 degrees off; the
-bench's RMSE/CRLB on scenes 0-199 alpha 1.09 -> 1.07, beta 1.07 -> 1.00, phi 1.23 -> 1.12; a
-few percent more time.  (Merged branches must count once: with a tolerance of 1e-6 on the
-poses, two starts that ended in one minimum a hair apart counted twice, F jumped by 2 log 2
-as the poses moved, and the line search stalled.)
+1.21 -> 1.13, phi 1.16 -> 1.15; 5 -> 2 scenes with an angle more than 5 degrees off; the
+bench's RMSE/CRLB on scenes 0-199 alpha 1.09 -> 1.07, beta 1.07 -> 1.03, phi 1.23 -> 1.12; the
+same mean time per scene (0.16 s on 2 workers).  (Merged branches must count once: with a
+tolerance of 1e-6 on the poses, two starts that ended in one minimum a hair apart counted
+twice, F jumped by 2 log 2 as the poses moved, and the line search stalled.)
 
 How.  Quasi-Newton (BFGS) on the four shape parameters, in coordinates whitened by the chi2
 part's Gauss-Newton Hessian (2 S / kappa, S the Schur-reduced information as in ``refine``), so

@@ -168,6 +168,7 @@ def optimise_poses(
         return r * w8
 
     gargs = list(g.T) if per_row else list(g)
+    p = np.array(p, dtype=float)
     r = resid(p)
     f = np.sum(r * r, axis=1)
     for _ in range(n_iter):
@@ -177,23 +178,31 @@ def optimise_poses(
         v = v + 1e-9 * np.einsum("nii->ni", v)[:, :, None] * np.eye(5)
         el = np.einsum("nki,nk->ni", jl, r)
         step = -np.einsum("nij,nj->ni", _batched_inverse(v), el)
-        todo = np.arange(len(p))
-        moved = False
-        for _ in range(halvings + 1):
-            p_try = p[todo] + step[todo]
-            r_try = resid(p_try, todo)
-            f_try = np.sum(r_try * r_try, axis=1)
-            take = f_try < f[todo]
-            if take.any():
-                rows = todo[take]
-                p[rows], r[rows], f[rows] = p_try[take], r_try[take], f_try[take]
-                moved = True
-            todo = todo[~take]
-            if todo.size == 0:
-                break
-            step[todo] *= 0.5
-        if not moved:
+        p_try = p + step
+        r_try = resid(p_try)
+        f_try = np.sum(r_try * r_try, axis=1)
+        take = f_try < f
+        if halvings and not take.all():
+            # the rejected frames' steps halved (those rows only)
+            todo = np.flatnonzero(~take)
+            h_step = step[todo]
+            for _ in range(halvings):
+                h_step = 0.5 * h_step
+                pt = p[todo] + h_step
+                rt = resid(pt, todo)
+                ft = np.sum(rt * rt, axis=1)
+                ok = ft < f[todo]
+                rows = todo[ok]
+                p_try[rows], r_try[rows], f_try[rows] = pt[ok], rt[ok], ft[ok]
+                take[rows] = True
+                todo, h_step = todo[~ok], h_step[~ok]
+                if todo.size == 0:
+                    break
+        if not take.any():
             break
+        p = np.where(take[:, None], p_try, p)
+        r = np.where(take[:, None], r_try, r)
+        f = np.where(take, f_try, f)
     return p, r
 
 
@@ -211,18 +220,29 @@ def schur_information(jg: np.ndarray, jl: np.ndarray) -> np.ndarray:
     from the standardised Jacobians (N, 6, 4) and (N, 6, 5); frames whose V is ill-conditioned
     by :func:`_frame_schur_qr` instead."""
     v = np.einsum("nki,nkj->nij", jl, jl)
-    bad = _ill_conditioned(v)
-    if bad.any():
-        good = ~bad
-        s = schur_information(jg[good], jl[good]) + np.sum(
-            _frame_schur_qr(jg[bad], jl[bad]), axis=0
-        )
-        return 0.5 * (s + s.T)
     u = np.einsum("nki,nkj->ij", jg, jg)
     w = np.einsum("nki,nkj->nij", jg, jl)
     vinv = _batched_inverse(v)
     s = u - np.einsum("nij,njk,nlk->il", w, vinv, w)
-    return 0.5 * (s + s.T)
+    s = 0.5 * (s + s.T)
+    if _suspicious(s):  # only then the frames' condition numbers (an SVD each)
+        bad = _ill_conditioned(v)
+        if bad.any():
+            good = ~bad
+            s = schur_information(jg[good], jl[good]) + np.sum(
+                _frame_schur_qr(jg[bad], jl[bad]), axis=0
+            )
+            s = 0.5 * (s + s.T)
+    return s
+
+
+def _suspicious(s: np.ndarray) -> bool:
+    """Whether a (4, 4) information matrix may carry the normal equations' cancellation: not
+    finite, or its condition number above ``SCHUR_COND_MAX`` (not positive definite included)."""
+    if not np.all(np.isfinite(s)):
+        return True
+    ev = np.linalg.eigvalsh(s)
+    return not ev[0] > ev[-1] / SCHUR_COND_MAX
 
 
 def _ill_conditioned(v: np.ndarray) -> np.ndarray:
@@ -264,9 +284,10 @@ def frame_information(
     v = np.einsum("nki,nkj->nij", jl, jl)
     w = np.einsum("nki,nkj->nij", jg, jl)
     out = u - np.einsum("nij,njk,nlk->nil", w, _batched_inverse(v), w)
-    bad = _ill_conditioned(v)
-    if bad.any():
-        out[bad] = _frame_schur_qr(jg[bad], jl[bad])
+    if _suspicious(np.sum(out, axis=0)):
+        bad = _ill_conditioned(v)
+        if bad.any():
+            out[bad] = _frame_schur_qr(jg[bad], jl[bad])
     return out
 
 

@@ -502,7 +502,7 @@ def branch_alternatives(
         sets.append(alt)
     allp = np.concatenate(sets)
     meas = np.tile(obs.measurements(), (4, 1))
-    allp, res = optimise_poses(shape, allp, meas, w8, 8)
+    allp, res = optimise_poses(shape, allp, meas, w8, 8, halvings=0)
     f = np.sum(res * res, axis=1).reshape(4, n)
     allp = allp.reshape(4, n, 5)
     same_sign = np.sign(allp[:, :, 1]) == np.sign(poses[None, :, 1])
@@ -570,14 +570,14 @@ def _refined_on(
     g, p, r, chi2, iters, conv = refine_batch(
         meas, shapes, poses, point_sigma, tangent_sigma, max_iter=60
     )
-    # frames left on a wrong pose at the refined shape (among thousands a few are): those
-    # above ``RESCUE_CHI2`` try every branch and a grid of starts (``rescue``), and a refit
-    # where any frame moved.  (On a
+    # frames left on a wrong pose at the best candidate's refined shape (among thousands a few
+    # are): those above ``RESCUE_CHI2`` try every branch and a grid of starts (``rescue``),
+    # and a refit if any frame moved.  (On a
     # 4642-frame test scene three frames at chi2 500-1400 made the fit's chi2 implausible and
     # sent it to the trimmed refits, which then flagged good frames.)
     p2 = np.array(p)
     fc = np.sum(r * r, axis=2)
-    for k in range(len(g)):
+    for k in [int(np.argmin([robust_cost(f) for f in fc]))]:  # the best candidate
         bad = np.flatnonzero(fc[k] > RESCUE_CHI2)
         if bad.size:
             p2[k, bad] = switch_branches(obs.subset(bad), g[k], p[k, bad], w8, rescue=True)
