@@ -514,8 +514,9 @@ def _reconstruct_auto(
         one = obs.subset(np.array([idx[j]]))
         pj = switch_branches(one, fit.shape, fit.poses[j : j + 1], w8, rescue=True)
         if rescued < n and not np.array_equal(pj, fit.poses[j : j + 1]):
-            _, rj = optimise_poses(fit.shape, pj.copy(), one.measurements(), w8, 0)
-            if float(np.sum(rj * rj)) < fit.frame_chi2[j] and float(np.sum(rj * rj)) <= thr:
+            rj = standardised_residuals(fit.shape, pj, one.measurements(), w8)
+            chi2_j = float(np.sum(rj * rj))
+            if chi2_j < fit.frame_chi2[j] and chi2_j <= thr:
                 poses = np.array(fit.poses)
                 poses[j] = pj[0]
                 fit = refine(obs.subset(inliers), fit.shape, poses, ps, ts, covariance=False)
