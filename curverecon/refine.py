@@ -262,9 +262,10 @@ def _frame_schur_qr(jg: np.ndarray, jl: np.ndarray) -> np.ndarray:
     length near 0, its angle's derivatives ~1e9), where U - W V^-1 W^T cancels to noise: a
     10,000-frame scene's information matrix came out indefinite from one such frame, and the
     shape was reported undetermined.  (Householder QR is accurate under widely different row
-    scales when the rows are sorted by norm first, Powell and Reid 1969; unsorted it lost four
-    digits on the test's frame, an SVD projector five.)  Where J_l has lost rank exactly (the
-    fold tau = 0, to the last digit) it keeps one of the frame's two directions, a lower bound.
+    scales when the rows are sorted by norm first, Powell and Reid 1969: on the test's frame it
+    agreed with 60-digit arithmetic to 2e-16; unsorted to 3e-12, an SVD projector to 5e-5.)
+    Where J_l has lost rank exactly (the fold tau = 0, to the last digit) it keeps one of the
+    frame's two directions, a lower bound.
     """
     a = np.concatenate([jl, jg], axis=2)  # (N, 6, 9)
     order = np.argsort(-np.linalg.norm(a, axis=2), axis=1)
