@@ -572,25 +572,23 @@ def _refined_on(
     )
     # frames left on a wrong pose at the best candidate's refined shape (among thousands a few
     # are): those above ``RESCUE_CHI2`` try every branch and a grid of starts (``rescue``),
-    # and a refit if any frame moved.  (On a
-    # 4642-frame test scene three frames at chi2 500-1400 made the fit's chi2 implausible and
-    # sent it to the trimmed refits, which then flagged good frames.)
-    p2 = np.array(p)
+    # and the candidate is refitted if any moved.  (On a 4642-frame test scene three frames at
+    # chi2 500-1400 made the fit's chi2 implausible and sent it to the trimmed refits, which
+    # then flagged good frames.)
     fc = np.sum(r * r, axis=2)
-    for k in [int(np.argmin([robust_cost(f) for f in fc]))]:  # the best candidate
-        bad = np.flatnonzero(fc[k] > RESCUE_CHI2)
-        if bad.size:
-            p2[k, bad] = switch_branches(obs.subset(bad), g[k], p[k, bad], w8, rescue=True)
-    moved = np.flatnonzero(np.any(p2 != p, axis=(1, 2)))
-    if moved.size:
-        g2, p2, r2, chi22, it2, conv2 = refine_batch(
-            meas, g[moved], p2[moved], point_sigma, tangent_sigma, max_iter=60
-        )
-        better = chi22 < chi2[moved]
-        idx = moved[better]
-        g[idx], p[idx], r[idx], chi2[idx] = g2[better], p2[better], r2[better], chi22[better]
-        iters[idx] += it2[better]
-        conv[idx] = conv2[better]
+    k = int(np.argmin([robust_cost(f) for f in fc]))
+    bad = np.flatnonzero(fc[k] > RESCUE_CHI2)
+    if bad.size:
+        pk = np.array(p[k])
+        pk[bad] = switch_branches(obs.subset(bad), g[k], p[k, bad], w8, rescue=True)
+        if np.any(pk != p[k]):
+            g2, p2, r2, chi22, it2, conv2 = refine_batch(
+                meas, g[k : k + 1], pk[None], point_sigma, tangent_sigma, max_iter=60
+            )
+            if chi22[0] < chi2[k]:
+                g[k], p[k], r[k], chi2[k] = g2[0], p2[0], r2[0], chi22[0]
+                iters[k] += it2[0]
+                conv[k] = conv2[0]
     out = []
     for k, cand in enumerate(cands):
         shape_n, poses_n = normalise(g[k], p[k])
