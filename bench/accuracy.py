@@ -35,10 +35,10 @@ from bench.common import (
     worst_angle_deg,
 )
 from curverecon.errors import CurveReconError
-from curverecon.marginal import refine_marginal
-from curverecon.pose import normalise
-from curverecon.reconstruct import reconstruct
-from curverecon.refine import crlb_covariance, refine
+from curverecon.refine.marginal import refine_marginal
+from curverecon.model.pose import normalise
+from curverecon.pipeline import reconstruct
+from curverecon.refine.ml import crlb_covariance, refine
 
 METHODS = ("linear", "default", "truth_start", "truth_marginal")
 METHOD_TITLES = {
@@ -54,7 +54,7 @@ MARGINAL_CELLS = ((1.0, 10), (1.0, 20), (1.0, 50), (2.0, 20))
 def linear_min_frames() -> int:
     """Frames the linearisation needs (``linear.min_frames()``), or a large number if absent."""
     try:
-        from curverecon.linear import min_frames
+        from curverecon.solvers.linear import min_frames
 
         return int(min_frames())
     except (ImportError, AttributeError):  # pragma: no cover - runtime not there
@@ -127,7 +127,7 @@ def run_scenes(
                 rec["truth_marginal_s"] = time.perf_counter() - t0
             rec["linear"] = None
             if n_frames >= lin_min:
-                from curverecon.linear import solve_linear
+                from curverecon.solvers.linear import solve_linear
 
                 t0 = time.perf_counter()
                 try:

@@ -22,8 +22,8 @@ from typing import Any
 import numpy as np
 from curverecon.generated import measurement_model
 
-from curverecon.observations import wrap_angle
-from curverecon.pose import normalise
+from curverecon.model.observations import wrap_angle
+from curverecon.model.pose import normalise
 from curverecon.simulate import Scene, make_scene
 
 PARAMETERS = ("c", "alpha", "beta", "phi")

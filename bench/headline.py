@@ -32,8 +32,8 @@ from bench.accuracy import summarise_method
 from bench.common import PARAMETERS, make, shape_errors, true_poses
 from bench.config import full
 from curverecon.errors import CurveReconError
-from curverecon.reconstruct import reconstruct
-from curverecon.refine import crlb_covariance
+from curverecon.pipeline import reconstruct
+from curverecon.refine.ml import crlb_covariance
 from curverecon.simulate import Scene
 
 
@@ -73,9 +73,9 @@ def _scene(args: tuple[int, str, int, float, int]) -> dict[str, Any]:
 
 def _basin(i: int, cell: int, noise: float, n_frames: int) -> None:
     """Print the ``--basin`` comparison for scene ``i`` (module docstring)."""
-    from curverecon.marginal import marginal_value, refine_marginal
-    from curverecon.pose import normalise
-    from curverecon.refine import crlb, refine
+    from curverecon.refine.marginal import marginal_value, refine_marginal
+    from curverecon.model.pose import normalise
+    from curverecon.refine.ml import crlb, refine
 
     scene = _cell_scene(i, cell, noise, n_frames)
     ts = math.radians(noise)

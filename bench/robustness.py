@@ -25,9 +25,9 @@ from scipy.stats import chi2 as chi2_dist
 
 from bench.common import SUCCESS_DEG, make, shape_errors, true_poses, worst_angle_deg
 from curverecon.errors import CurveReconError
-from curverecon.reconstruct import OUTLIER_P, reconstruct
-from curverecon.refine import standardised_residuals
-from curverecon.start import switch_branches
+from curverecon.pipeline import OUTLIER_P, reconstruct
+from curverecon.refine.ml import standardised_residuals
+from curverecon.robust.search import switch_branches
 
 
 def run_scenes(

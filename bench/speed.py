@@ -21,9 +21,9 @@ from typing import Any
 import numpy as np
 
 from bench.common import make, true_poses
-from curverecon.observations import Observations
-from curverecon.reconstruct import reconstruct
-from curverecon.refine import refine, standardised_residuals
+from curverecon.model.observations import Observations
+from curverecon.pipeline import reconstruct
+from curverecon.refine.ml import refine, standardised_residuals
 
 REPO_ROOT = Path(__file__).resolve().parent.parent
 

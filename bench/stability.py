@@ -18,7 +18,7 @@ import numpy as np
 
 from bench.common import log10_relative, make, shape_errors, true_poses
 from curverecon.errors import CurveReconError
-from curverecon.reconstruct import reconstruct
+from curverecon.pipeline import reconstruct
 
 
 def run_scenes(
@@ -58,7 +58,7 @@ def run_linear_scenes(
 
     Scenes are skipped once the wall clock (``time.time()``) is past ``deadline``.
     """
-    from curverecon.linear import solve_linear
+    from curverecon.solvers.linear import solve_linear
 
     out = []
     for i in indices:

@@ -3,12 +3,12 @@ only two points A, B are traceable (after M. A. Klopotek, section 3).
 
 Library entry points (NumPy arrays in, dataclasses out; lengths in input units, angles in radians):
 
-- :class:`curverecon.observations.Observations`  per-frame A', B' and tangent directions
-- :func:`curverecon.reconstruct.reconstruct`      the full pipeline (method "auto" or "linear")
-- :func:`curverecon.linear.solve_linear`          the paper's linearisation alone
-- :func:`curverecon.start.robust_start`           start without the truth (global search)
-- :func:`curverecon.refine.refine`               maximum likelihood (Schur-complement LM)
-- :func:`curverecon.refine.crlb`                 the Cramer-Rao bound of the shape
+- :class:`curverecon.model.observations.Observations`  per-frame A', B' and tangent directions
+- :func:`curverecon.pipeline.reconstruct`      the full pipeline (method "auto" or "linear")
+- :func:`curverecon.solvers.linear.solve_linear`          the paper's linearisation alone
+- :func:`curverecon.robust.search.robust_start`           start without the truth (global search)
+- :func:`curverecon.refine.ml.refine`               maximum likelihood (Schur-complement LM)
+- :func:`curverecon.refine.ml.crlb`                 the Cramer-Rao bound of the shape
 - :func:`curverecon.simulate.make_scene`          independent synthetic scenes with the truth
 """
 

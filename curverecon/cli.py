@@ -79,7 +79,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _cmd_reconstruct(args: argparse.Namespace) -> int:
     from curverecon.io import load_observations, write_json
-    from curverecon.reconstruct import reconstruct
+    from curverecon.pipeline import reconstruct
 
     if not (math.isfinite(args.point_sigma) and args.point_sigma > 0):
         raise CurveReconError("--point-sigma must be a positive number")
@@ -91,8 +91,8 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
     bundle_info = None
     curve_warnings: list[str] = []
     if obs.curves is not None:
-        from curverecon.curve3d import reconstruct_curve
-        from curverecon.reconstruct import (
+        from curverecon.curve.section4 import reconstruct_curve
+        from curverecon.pipeline import (
             refit_branches_with_curves,
             resolve_branches_with_curves,
         )
@@ -117,7 +117,7 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
             res = None
             curve_warnings.append(f"section 4 failed on the end-point answer ({exc})")
         if bundle:
-            from curverecon.curve_bundle import refine_reconstruction
+            from curverecon.curve.bundle import refine_reconstruction
             from curverecon.io import read_json
 
             frames = read_json(args.input)["frames"]
@@ -193,7 +193,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 
 def _cmd_match_flat(args: argparse.Namespace) -> int:
-    from curverecon.flat import run_match_flat
+    from curverecon.solvers.flat import run_match_flat
 
     run_match_flat(args.input, args.output)
     return 0

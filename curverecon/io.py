@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from curverecon.errors import CurveReconError
-from curverecon.observations import Observations
+from curverecon.model.observations import Observations
 
 OBSERVATIONS_FORMAT = "curverecon.observations/1"
 RECONSTRUCTION_FORMAT = "curverecon.reconstruction/1"
@@ -103,7 +103,7 @@ def observations_from_dict(data: Any) -> Observations:
     """Observations from a parsed ``curverecon.observations/1`` document.
 
     A frame carrying "curve" may omit the tangents (they come from
-    ``curverecon.polyline.end_tangents``) and A, B (the polyline's end points are used).
+    ``curverecon.curve.polyline.end_tangents``) and A, B (the polyline's end points are used).
     Curves are kept only when every frame carries one.
     """
     if not isinstance(data, dict):
@@ -148,10 +148,10 @@ def observations_from_dict(data: Any) -> Observations:
 
 def _end_tangents(curve: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
     try:
-        from curverecon.polyline import end_tangents
+        from curverecon.curve.polyline import end_tangents
     except ImportError as exc:
         raise CurveReconError(
-            f"frame {i}: no tangents given and curverecon.polyline is not available"
+            f"frame {i}: no tangents given and curverecon.curve.polyline is not available"
         ) from exc
     try:
         ta, tb = end_tangents(curve)

@@ -76,7 +76,7 @@ def plot_reconstruction(
     from matplotlib.figure import Figure
 
     from curverecon.errors import CurveReconError
-    from curverecon.polyline import distance_to_polyline
+    from curverecon.curve.polyline import distance_to_polyline
 
     x = np.asarray(curve3d, dtype=float)
     rot = np.asarray(rotations, dtype=float)

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from curverecon.observations import Observations
+from curverecon.model.observations import Observations
 
 MIN_FORESHORTENING = 0.3
 MIN_TANGENT_TO_NORMAL_DEG = 3.0

@@ -17,7 +17,7 @@ import numpy as np
 from bench.common import make, true_poses
 from bench.report import fair_speedups
 from bench.speed import SAME_COST_CHI2, _time_to_cost
-from curverecon.refine import refine
+from curverecon.refine.ml import refine
 
 
 def test_time_to_cost_is_the_first_iterate_at_or_below_the_target() -> None:

@@ -11,7 +11,7 @@ import pytest
 
 from curverecon.errors import CurveReconError
 from curverecon.io import observations_from_dict, observations_to_dict
-from curverecon.reconstruct import reconstruct
+from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
 
 

@@ -13,7 +13,7 @@ import pytest
 from curverecon.generated import frame_equations, measurement_model
 from scipy.spatial.transform import Rotation
 
-from curverecon.observations import wrap_line_angle
+from curverecon.model.observations import wrap_line_angle
 from curverecon.simulate import make_scene
 
 

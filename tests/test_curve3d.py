@@ -1,4 +1,4 @@
-"""Tests of curverecon.curve3d (paper section 4) with true poses, on an independent scene generator.
+"""Tests of curverecon.curve.section4 (paper section 4) with true poses, on an independent scene generator.
 
 The generator here does not use curverecon.simulate: a random cubic Bezier curve in 3-D with A at
 the curve frame's origin, random rotations (scipy Rotation.random, seeded), translations
@@ -18,7 +18,7 @@ from bezier import bezier as _bezier
 from scipy.spatial import cKDTree
 from scipy.spatial.transform import Rotation
 
-from curverecon.curve3d import CurveResult, coplanarity, reconstruct_curve
+from curverecon.curve.section4 import CurveResult, coplanarity, reconstruct_curve
 from curverecon.errors import CurveReconError
 
 

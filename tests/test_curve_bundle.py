@@ -1,4 +1,4 @@
-"""The curve bundle (curverecon.curve_bundle) against the independent simulator.
+"""The curve bundle (curverecon.curve.bundle) against the independent simulator.
 
 Scenes come from ``simulate.make_scene(..., with_curve=True)`` (a 3-D Bezier curve moved and
 projected without the generated code); errors are ``bench.curve_end_to_end.curve_error`` (mean
@@ -14,11 +14,11 @@ import pytest
 
 from bench.curve_end_to_end import curve_error
 from curverecon.cli import main
-from curverecon.curve3d import reconstruct_curve
-from curverecon.curve_bundle import bundle_adjust, flat_start, refine_reconstruction
+from curverecon.curve.section4 import reconstruct_curve
+from curverecon.curve.bundle import bundle_adjust, flat_start, refine_reconstruction
 from curverecon.errors import CurveReconError
 from curverecon.io import observations_from_dict, observations_to_dict
-from curverecon.reconstruct import reconstruct
+from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
 
 
@@ -124,7 +124,7 @@ def test_command_falls_back_to_a_flat_start_when_section_4_fails(tmp_path, monke
     seed 8, 12 frames, 0.5 px: the end-point fit ran off to c about 9 times the truth).  The
     bundle then starts from frame 0's polyline at depth 0; here section 4 is made to fail on a
     benign scene, and the command still answers, within 3 % of the curve's length."""
-    import curverecon.curve3d
+    import curverecon.curve.section4
 
     def refuse(*args, **kwargs):
         raise CurveReconError("no frame views the curve from a different direction than frame 0")
@@ -137,7 +137,7 @@ def test_command_falls_back_to_a_flat_start_when_section_4_fails(tmp_path, monke
         for key in ("A", "B", "tangent_A", "tangent_B"):
             frame.pop(key)
     json.dump(doc, open(s, "w"))
-    monkeypatch.setattr(curverecon.curve3d, "reconstruct_curve", refuse)
+    monkeypatch.setattr(curverecon.curve.section4, "reconstruct_curve", refuse)
     assert main(["reconstruct", s, "-o", o]) == 0
     out, truth = json.load(open(o)), json.load(open(t))
     assert curve_error(np.array(out["curve3d"]), np.array(truth["curve3d"])) < 0.03

@@ -1,4 +1,4 @@
-"""Tests of curverecon.flat: the double-quotient (perspective) and Thales (orthographic) matching.
+"""Tests of curverecon.solvers.flat: the double-quotient (perspective) and Thales (orthographic) matching.
 
 Scenes: a random planar cubic Bezier curve (a few hundred pixels across in the images) placed in
 3-D with a random plane orientation, seen by two random cameras (perspective pinhole or
@@ -23,7 +23,7 @@ from bezier import bezier as _bezier
 from scipy.spatial.transform import Rotation
 
 from curverecon.errors import CurveReconError
-from curverecon.flat import FORMAT_IN, FORMAT_OUT, match_flat, run_match_flat
+from curverecon.solvers.flat import FORMAT_IN, FORMAT_OUT, match_flat, run_match_flat
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -155,7 +155,7 @@ def test_double_quotient_is_what_matters():
 def test_ambiguous_crossings_resolved_by_curve_order():
     # Count the queries whose line D''Y'' meets view 1's curve more than once (the true match
     # line through D'' and the true X''): the continuity rule must pick the right one for all.
-    from curverecon import flat
+    from curverecon.solvers import flat
 
     ambiguous = 0
     for seed in range(12):

@@ -80,7 +80,7 @@ def test_curve_without_tangents_uses_polyline_hook(monkeypatch):
     doc = observations_to_dict(sc.observations)
     for f in doc["frames"]:
         del f["tangent_A"], f["tangent_B"], f["A"], f["B"]
-    fake = types.ModuleType("curverecon.polyline")
+    fake = types.ModuleType("curverecon.curve.polyline")
     calls = []
 
     def end_tangents(points):
@@ -89,7 +89,7 @@ def test_curve_without_tangents_uses_polyline_hook(monkeypatch):
         return p[1] - p[0], p[-2] - p[-1]
 
     fake.end_tangents = end_tangents
-    monkeypatch.setitem(sys.modules, "curverecon.polyline", fake)
+    monkeypatch.setitem(sys.modules, "curverecon.curve.polyline", fake)
     obs = observations_from_dict(doc)
     assert len(calls) == 5
     assert np.allclose(obs.a, [c[0] for c in sc.observations.curves])

@@ -7,7 +7,7 @@ import pytest
 from curverecon.generated import lean_polynomial
 
 from curverecon.errors import CurveReconError
-from curverecon.linear import frame_matrix, min_frames, n_columns, solve_linear
+from curverecon.solvers.linear import frame_matrix, min_frames, n_columns, solve_linear
 from curverecon.simulate import make_scene
 
 

@@ -7,11 +7,11 @@ import pytest
 from curverecon.generated import measurement_model
 from test_conventions import canonical_parameters
 
-from curverecon import marginal
-from curverecon.marginal import refine_marginal, shape_information, solve_poses, volume_terms
-from curverecon.observations import wrap_line_angle
-from curverecon.pose import normalise
-from curverecon.refine import crlb, refine
+from curverecon.refine import marginal
+from curverecon.refine.marginal import refine_marginal, shape_information, solve_poses, volume_terms
+from curverecon.model.observations import wrap_line_angle
+from curverecon.model.pose import normalise
+from curverecon.refine.ml import crlb, refine
 from curverecon.simulate import make_scene
 
 TS = np.radians(1.0)
@@ -123,7 +123,7 @@ def test_mixture_answer_is_a_local_minimum_of_the_mixture_f(seed):
     """With each frame's other branch of (10) as a second mixture component (the pipeline's
     default): the value reported is the mixture F written out directly, and steps of a tenth
     of a standard deviation along each axis of the shape do not go lower."""
-    from curverecon.reconstruct import _second_branches
+    from curverecon.pipeline import _second_branches
 
     sc, _, _, meas, ml, _ = _fits(seed)
     kappa = ml.chi2 / (meas.shape[0] - 4)
@@ -221,7 +221,7 @@ def test_less_biased_than_maximum_likelihood_at_1px_20_frames():
 
 
 def test_pipeline_uses_the_marginal_estimate_and_says_so():
-    from curverecon.reconstruct import reconstruct
+    from curverecon.pipeline import reconstruct
 
     sc = make_scene(np.random.default_rng(21), 20, 1.0, 1.0)
     ml = reconstruct(sc.observations, estimator="ml")
@@ -238,7 +238,7 @@ def test_pipeline_uses_the_marginal_estimate_and_says_so():
 
 
 def test_pipeline_noise_free_answer_is_the_exact_one():
-    from curverecon.reconstruct import reconstruct
+    from curverecon.pipeline import reconstruct
 
     sc = make_scene(np.random.default_rng(22), 8)
     shape, poses = canonical_parameters(sc.truth)
@@ -249,7 +249,7 @@ def test_pipeline_noise_free_answer_is_the_exact_one():
 
 def test_unknown_estimator_is_refused():
     from curverecon.errors import CurveReconError
-    from curverecon.reconstruct import reconstruct
+    from curverecon.pipeline import reconstruct
 
     sc = make_scene(np.random.default_rng(23), 6, 1.0, 1.0)
     with pytest.raises(CurveReconError, match="unknown estimator"):
@@ -268,7 +268,7 @@ def test_pipeline_takes_the_basin_whose_marginal_optimum_is_highest():
     """
     from bench.common import make, true_poses
     from bench.config import full
-    from curverecon.reconstruct import _second_branches, reconstruct
+    from curverecon.pipeline import _second_branches, reconstruct
 
     cfg = full()
     sc = make(cfg.seed, "accuracy", (13, 196), 20, point_sigma=1.0, tangent_sigma_deg=1.0)

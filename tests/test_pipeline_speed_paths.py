@@ -13,9 +13,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import curverecon.reconstruct as reconstruct_module
-import curverecon.start as start_module
-from curverecon.reconstruct import reconstruct
+import curverecon.pipeline as reconstruct_module
+import curverecon.robust.search as start_module
+from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
 
 

@@ -1,4 +1,4 @@
-"""Tests of curverecon.polyline: end tangents on noisy polylines, validation, helpers.
+"""Tests of curverecon.curve.polyline: end tangents on noisy polylines, validation, helpers.
 
 The angle-error study (error vs fit length, several noise levels and point densities) that chose
 the default fit length is ``python tests/test_polyline.py`` (prints a table; not run by pytest).
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from bezier import bezier as _bezier
 
-from curverecon import polyline as pl
+from curverecon.curve import polyline as pl
 from curverecon.errors import CurveReconError
 
 

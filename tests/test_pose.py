@@ -7,8 +7,9 @@ import pytest
 from curverecon.generated import measurement_model
 from test_conventions import canonical_parameters
 
-from curverecon.observations import wrap_angle, wrap_line_angle
-from curverecon.pose import normalise, poses_from_shape, rotations, translations
+from curverecon.model.observations import wrap_angle, wrap_line_angle
+from curverecon.model.pose import normalise, rotations, translations
+from curverecon.solvers.pose import poses_from_shape
 from curverecon.simulate import make_scene
 
 

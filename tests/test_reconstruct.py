@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from curverecon.errors import CurveReconError
-from curverecon.linear import min_frames
-from curverecon.reconstruct import reconstruct
+from curverecon.solvers.linear import min_frames
+from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
 
 
@@ -151,7 +151,7 @@ def test_curves_choose_the_branch_of_ambiguous_frames():
     disagrees with the truth: the resolver must switch those ambiguous frames, and only those."""
     from types import SimpleNamespace
 
-    from curverecon.reconstruct import resolve_branches_with_curves
+    from curverecon.pipeline import resolve_branches_with_curves
 
     sc = make_scene(np.random.default_rng(1), 20, 1.0, 1.0)
     rec = reconstruct(sc.observations)
@@ -175,7 +175,7 @@ def test_curves_choose_the_branch_of_ambiguous_frames():
 
 def test_alternatives_warning_says_whether_they_differ():
     """Alternatives within 2 std are 'local optima of the same answer'; farther ones are not."""
-    from curverecon.reconstruct import Alternative, _alternatives_warning
+    from curverecon.pipeline import Alternative, _alternatives_warning
 
     best = np.array([200.0, 0.5, 0.7, 1.0])
     std = np.array([2.0, 0.01, 0.01, 0.01])

@@ -7,7 +7,7 @@ import pytest
 from curverecon.generated import measurement_model
 from test_conventions import canonical_parameters
 
-from curverecon.refine import crlb, crlb_covariance, refine, refine_batch
+from curverecon.refine.ml import crlb, crlb_covariance, refine, refine_batch
 from curverecon.simulate import make_scene
 
 
@@ -34,7 +34,7 @@ def test_refinement_improves_a_noisy_start():
     shape, poses = canonical_parameters(sc.truth)
     s0, p0 = _perturb(shape, poses, np.random.default_rng(1))
     res = refine(sc.observations, s0, p0, 1.0, np.radians(1.0))
-    from curverecon.refine import standardised_residuals
+    from curverecon.refine.ml import standardised_residuals
 
     w8 = np.array([1.0] * 4 + [1 / np.radians(1.0)] * 2)
     chi2_start = np.sum(standardised_residuals(s0, p0, sc.observations.measurements(), w8) ** 2)
@@ -103,7 +103,7 @@ def test_frame_leverages_predict_the_deleted_fit():
     divided by 1 - l_i (linearised).  Checked against real refits with frame i left out (its
     pose then re-fitted alone), at small noise where the linearisation holds; the leverages add
     up to the four shape parameters."""
-    from curverecon.refine import frame_leverages, optimise_poses
+    from curverecon.refine.ml import frame_leverages, optimise_poses
 
     sc = make_scene(np.random.default_rng(31), 12, 0.05, 0.05)
     obs, ts = sc.observations, np.radians(0.05)
@@ -133,8 +133,8 @@ def test_pose_solve_reaches_the_pose_from_a_start_degrees_off(seed):
     misfitting by more than ``RESCUE_CHI2`` to that minimum or below."""
     from test_conventions import canonical_parameters
 
-    from curverecon.refine import optimise_poses
-    from curverecon.start import RESCUE_CHI2, switch_branches
+    from curverecon.refine.ml import optimise_poses
+    from curverecon.robust.search import RESCUE_CHI2, switch_branches
 
     sc = make_scene(np.random.default_rng(seed), 400, point_sigma=1.0, tangent_sigma_deg=1.0)
     shape, poses = canonical_parameters(sc.truth)
@@ -165,7 +165,7 @@ def test_schur_information_stays_exact_with_a_measurement_seen_end_on():
     import mpmath
     from test_conventions import canonical_parameters
 
-    from curverecon.refine import (
+    from curverecon.refine.ml import (
         SCHUR_COND_MAX,
         _frame_schur_qr,
         _ill_conditioned,

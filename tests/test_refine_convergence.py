@@ -10,7 +10,7 @@ from curverecon.generated import measurement_model
 from test_conventions import canonical_parameters
 
 from bench.common import make, true_poses
-from curverecon.refine import _curvature, _lin_batch, _weights, refine, standardised_residuals
+from curverecon.refine.ml import _curvature, _lin_batch, _weights, refine, standardised_residuals
 from curverecon.simulate import make_scene
 
 TS = math.radians(1.0)
@@ -147,7 +147,7 @@ def test_frame_search_finds_lower_minima(idx):
 def test_normal_blocks_are_those_of_the_plain_formulation():
     """The fused blocks of the iteration (one J^T J product per frame, the second-order term
     added entry by entry) equal, to the bit, the separate products plus :func:`_curvature`."""
-    from curverecon.refine import _lin_aug, _normal_blocks
+    from curverecon.refine.ml import _lin_aug, _normal_blocks
 
     obs, shape, poses = _headline(9)
     meas = obs.measurements()
@@ -178,8 +178,8 @@ def test_normal_blocks_are_those_of_the_plain_formulation():
 
 def test_linearisation_residuals_are_the_wrapped_residuals():
     """_lin_aug inlines wrap_line_angle: same residuals, to the bit (and the Jacobians)."""
-    from curverecon.observations import wrap_line_angle
-    from curverecon.refine import _lin_aug
+    from curverecon.model.observations import wrap_line_angle
+    from curverecon.refine.ml import _lin_aug
 
     obs, shape, poses = _headline(2)
     meas = obs.measurements()

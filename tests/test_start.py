@@ -7,7 +7,7 @@ from curverecon.generated import frame_equations
 from test_conventions import canonical_parameters
 
 from curverecon.simulate import make_scene
-from curverecon.start import (
+from curverecon.robust.search import (
     _frame_terms,
     branch_candidates,
     poses_from_branches,
@@ -46,7 +46,7 @@ def test_reduced_cost_vanishes_at_the_truth_only():
 def test_poses_from_branches_at_the_truth():
     sc = make_scene(np.random.default_rng(53), 10)
     shape, poses = canonical_parameters(sc.truth)
-    from curverecon.pose import normalise
+    from curverecon.model.pose import normalise
 
     shape_n, poses_n = normalise(shape, poses)
     p = poses_from_branches(sc.observations, shape_n)

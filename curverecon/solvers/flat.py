@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from curverecon import polyline as pl
+from curverecon.curve import polyline as pl
 
 FORMAT_IN = "curverecon.flat-views/1"
 FORMAT_OUT = "curverecon.matches/1"
@@ -84,7 +84,7 @@ def parse_view(view: Mapping[str, object] | FlatView, projection: str, index: in
     """Validate one view (a JSON-like mapping or a :class:`FlatView`) and return a FlatView.
 
     The curve is reversed if its first point is nearer B than A (it must run from A to B).
-    Missing tangents are estimated from the curve with :func:`curverecon.polyline.end_tangents`.
+    Missing tangents are estimated from the curve with :func:`curverecon.curve.polyline.end_tangents`.
     """
     name = f"view {index}"
     if isinstance(view, FlatView):

@@ -80,8 +80,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from curverecon.generated import measurement_model
-from curverecon.observations import wrap_angle, wrap_line_angle
-from curverecon.refine import _curvature, _split, schur_information
+from curverecon.model.observations import wrap_angle, wrap_line_angle
+from curverecon.refine.ml import _curvature, _split, schur_information
 
 VOLUME_STEP = 1e-3
 """Central-difference step of the volume terms' gradient, in standard deviations of the shape."""

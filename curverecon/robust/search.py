@@ -47,9 +47,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
-from curverecon.observations import Observations, wrap_angle
-from curverecon.pose import normalise
-from curverecon.refine import POSE_HALVINGS, RefineResult, optimise_poses, refine_batch
+from curverecon.model.observations import Observations, wrap_angle
+from curverecon.model.pose import normalise
+from curverecon.refine.ml import POSE_HALVINGS, RefineResult, optimise_poses, refine_batch
 
 EXACT_COST = 1e-9
 """A (robust) chi2 at or below this is an exact fit: nothing can beat it by the relative 1e-9

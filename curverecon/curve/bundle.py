@@ -59,7 +59,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.interpolate import BSpline
 
-from curverecon import polyline as pl
+from curverecon.curve import polyline as pl
 
 #: Control points of the curve's cubic B-spline (default; fewer for short polylines).
 N_CONTROL = 12
@@ -824,9 +824,9 @@ def refine_reconstruction(
     """
     from dataclasses import replace
 
-    from curverecon.pose import normalise
-    from curverecon.refine import standardised_residuals
-    from curverecon.start import branch_alternatives
+    from curverecon.model.pose import normalise
+    from curverecon.refine.ml import standardised_residuals
+    from curverecon.robust.search import branch_alternatives
 
     curves = obs.curves
     if curves is None:

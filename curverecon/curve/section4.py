@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from curverecon import polyline as pl
+from curverecon.curve import polyline as pl
 
 #: Crossings flatter than this (|sin| of the angle between the projected line of sight and the
 #: polyline) are rejected as grazing.

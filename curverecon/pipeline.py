@@ -11,7 +11,7 @@ fit is exact)
 -> every other shape that fits about equally well by chi2 ("alternatives", e.g. with 4-5
 frames; the other candidates of the search, refined in one batch) -> with
 ``estimator="marginal"`` (the default) each of those fits taken to the optimum of the marginal
-likelihood (every frame's pose integrated out, ``curverecon.marginal``) and the highest optimum
+likelihood (every frame's pose integrated out, ``curverecon.refine.marginal``) and the highest optimum
 kept, which removes most of the maximum likelihood's bias at realistic noise -> normalised
 answer (alpha, beta in [0, 90] deg, phi in [0, 180] deg, tau in (-90, 90] deg), the shape's
 standard deviations from the covariance, and the alternatives.
@@ -33,10 +33,11 @@ from scipy.stats import chi2 as chi2_dist
 
 from curverecon.errors import CurveReconError
 from curverecon.generated import measurement_model
-from curverecon.marginal import KAPPA_MIN, refine_marginal
-from curverecon.observations import Observations, wrap_line_angle
-from curverecon.pose import normalise, poses_from_shape, rotations, translations
-from curverecon.refine import (
+from curverecon.refine.marginal import KAPPA_MIN, refine_marginal
+from curverecon.model.observations import Observations, wrap_line_angle
+from curverecon.model.pose import normalise, rotations, translations
+from curverecon.solvers.pose import poses_from_shape
+from curverecon.refine.ml import (
     RefineResult,
     frame_leverages,
     optimise_poses,
@@ -44,7 +45,7 @@ from curverecon.refine import (
     refine_batch,
     standardised_residuals,
 )
-from curverecon.start import (
+from curverecon.robust.search import (
     EXACT_COST,
     NEAR_EXACT_CHI2,
     branch_alternatives,
@@ -282,7 +283,7 @@ def reconstruct(
         tangent_sigma_deg: standard deviation of the tangent directions (degrees).
         estimator: "marginal" (default): after the maximum-likelihood fit, the shape that
             maximises the likelihood with every frame's pose integrated out (less biased: the
-            ML chord c comes out long at realistic noise, see ``curverecon.marginal``); "ml":
+            ML chord c comes out long at realistic noise, see ``curverecon.refine.marginal``); "ml":
             the maximum-likelihood fit itself.  Noise-free data and 4 frames give the same
             answer either way.
     Raises:
@@ -303,7 +304,7 @@ def reconstruct(
 
 
 def _reconstruct_linear(obs: Observations) -> Reconstruction:
-    from curverecon.linear import solve_linear
+    from curverecon.solvers.linear import solve_linear
 
     lin = solve_linear(obs)
     poses, _ = poses_from_shape(obs, lin.shape)
@@ -322,7 +323,7 @@ def _reconstruct_linear(obs: Observations) -> Reconstruction:
 def _linear_seed(obs: Observations) -> list[np.ndarray]:
     """The linearisation's shape as an extra start, when it is determined (enough frames)."""
     try:
-        from curverecon.linear import frame_matrix, min_frames, solve_linear
+        from curverecon.solvers.linear import frame_matrix, min_frames, solve_linear
 
         if obs.n_frames < max(min_frames(), 45):
             return []
@@ -567,13 +568,13 @@ def _reconstruct_auto(
     # good by chi2 is taken to its basin's marginal optimum (one noise scale for all), and the
     # highest of those optima is the answer.  (At 1 px, 1 deg and 20 frames the lowest chi2 is
     # sometimes a spurious basin, c off by 10-30 standard deviations, while F prefers the basin
-    # of the truth by 20-80; see curverecon.marginal.  Comparing F at the optima rather than
+    # of the truth by 20-80; see curverecon.refine.marginal.  Comparing F at the optima rather than
     # at the fits' ML points matters where the ML points sit on either side of a fold: F at
     # the ML point of the truth's basin was 2 higher on one headline scene, its optimum 2
     # lower.  On the bench's 200 headline scenes: alpha's RMSE/CRLB 1.26 -> 1.09, phi's 1.25
     # -> 1.23, with 3 answers changed, at the same time per scene: ``python -m bench.headline``.
     # Each frame whose other branch of (10) fits about as well enters F as a mixture of both,
-    # ``_second_branches``: phi's 1.23 -> 1.12, see curverecon.marginal.)
+    # ``_second_branches``: phi's 1.23 -> 1.12, see curverecon.refine.marginal.)
     estimator = "ml"
     chosen = 0
     if marginal:
@@ -695,7 +696,7 @@ def resolve_branches_with_curves(
     Args:
         rec: an "auto" reconstruction with branch alternatives.
         curves: the frames' polylines (A' to B').
-        reconstruct_curve: ``curverecon.curve3d.reconstruct_curve`` (its result has
+        reconstruct_curve: ``curverecon.curve.section4.reconstruct_curve`` (its result has
             ``frame_residual``, the per-frame median reprojection distance).
     Returns:
         (reconstruction, curve result) - the input reconstruction if nothing changed.

@@ -30,7 +30,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from curverecon.errors import CurveReconError
-from curverecon.observations import Observations
+from curverecon.model.observations import Observations
 
 
 def _lean():

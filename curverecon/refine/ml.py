@@ -58,7 +58,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from curverecon.generated import measurement_model
-from curverecon.observations import Observations, wrap_line_angle
+from curverecon.model.observations import Observations, wrap_line_angle
 
 
 @dataclass
