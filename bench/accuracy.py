@@ -35,9 +35,9 @@ from bench.common import (
     worst_angle_deg,
 )
 from curverecon.errors import CurveReconError
-from curverecon.refine.marginal import refine_marginal
 from curverecon.model.pose import normalise
 from curverecon.pipeline import reconstruct
+from curverecon.refine.marginal import refine_marginal
 from curverecon.refine.ml import crlb_covariance, refine
 
 METHODS = ("linear", "default", "truth_start", "truth_marginal")

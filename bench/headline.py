@@ -73,8 +73,8 @@ def _scene(args: tuple[int, str, int, float, int]) -> dict[str, Any]:
 
 def _basin(i: int, cell: int, noise: float, n_frames: int) -> None:
     """Print the ``--basin`` comparison for scene ``i`` (module docstring)."""
-    from curverecon.refine.marginal import marginal_value, refine_marginal
     from curverecon.model.pose import normalise
+    from curverecon.refine.marginal import marginal_value, refine_marginal
     from curverecon.refine.ml import crlb, refine
 
     scene = _cell_scene(i, cell, noise, n_frames)

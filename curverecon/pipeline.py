@@ -33,10 +33,9 @@ from scipy.stats import chi2 as chi2_dist
 
 from curverecon.errors import CurveReconError
 from curverecon.generated import measurement_model
-from curverecon.refine.marginal import KAPPA_MIN, refine_marginal
 from curverecon.model.observations import Observations, wrap_line_angle
 from curverecon.model.pose import normalise, rotations, translations
-from curverecon.solvers.pose import poses_from_shape
+from curverecon.refine.marginal import KAPPA_MIN, refine_marginal
 from curverecon.refine.ml import (
     RefineResult,
     frame_leverages,
@@ -53,6 +52,7 @@ from curverecon.robust.search import (
     shape_distance,
     switch_branches,
 )
+from curverecon.solvers.pose import poses_from_shape
 
 OUTLIER_P = 2e-4
 """False-alarm probability per frame of the outlier test (chi2 with one degree of freedom)."""

@@ -75,8 +75,8 @@ def plot_reconstruction(
     import matplotlib.pyplot as plt
     from matplotlib.figure import Figure
 
-    from curverecon.errors import CurveReconError
     from curverecon.curve.polyline import distance_to_polyline
+    from curverecon.errors import CurveReconError
 
     x = np.asarray(curve3d, dtype=float)
     rot = np.asarray(rotations, dtype=float)

@@ -1,4 +1,5 @@
-"""Tests of curverecon.curve.section4 (paper section 4) with true poses, on an independent scene generator.
+"""Tests of curverecon.curve.section4 (paper section 4) with true poses, on an independent scene
+generator.
 
 The generator here does not use curverecon.simulate: a random cubic Bezier curve in 3-D with A at
 the curve frame's origin, random rotations (scipy Rotation.random, seeded), translations

@@ -14,8 +14,8 @@ import pytest
 
 from bench.curve_end_to_end import curve_error
 from curverecon.cli import main
-from curverecon.curve.section4 import reconstruct_curve
 from curverecon.curve.bundle import bundle_adjust, flat_start, refine_reconstruction
+from curverecon.curve.section4 import reconstruct_curve
 from curverecon.errors import CurveReconError
 from curverecon.io import observations_from_dict, observations_to_dict
 from curverecon.pipeline import reconstruct

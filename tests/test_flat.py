@@ -1,4 +1,5 @@
-"""Tests of curverecon.solvers.flat: the double-quotient (perspective) and Thales (orthographic) matching.
+"""Tests of curverecon.solvers.flat: the double-quotient (perspective) and Thales (orthographic)
+matching.
 
 Scenes: a random planar cubic Bezier curve (a few hundred pixels across in the images) placed in
 3-D with a random plane orientation, seen by two random cameras (perspective pinhole or

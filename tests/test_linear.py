@@ -7,8 +7,8 @@ import pytest
 from curverecon.generated import lean_polynomial
 
 from curverecon.errors import CurveReconError
-from curverecon.solvers.linear import frame_matrix, min_frames, n_columns, solve_linear
 from curverecon.simulate import make_scene
+from curverecon.solvers.linear import frame_matrix, min_frames, n_columns, solve_linear
 
 
 def test_minimum_frames_is_columns_minus_one():

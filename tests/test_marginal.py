@@ -7,10 +7,10 @@ import pytest
 from curverecon.generated import measurement_model
 from test_conventions import canonical_parameters
 
-from curverecon.refine import marginal
-from curverecon.refine.marginal import refine_marginal, shape_information, solve_poses, volume_terms
 from curverecon.model.observations import wrap_line_angle
 from curverecon.model.pose import normalise
+from curverecon.refine import marginal
+from curverecon.refine.marginal import refine_marginal, shape_information, solve_poses, volume_terms
 from curverecon.refine.ml import crlb, refine
 from curverecon.simulate import make_scene
 

@@ -9,8 +9,8 @@ from test_conventions import canonical_parameters
 
 from curverecon.model.observations import wrap_angle, wrap_line_angle
 from curverecon.model.pose import normalise, rotations, translations
-from curverecon.solvers.pose import poses_from_shape
 from curverecon.simulate import make_scene
+from curverecon.solvers.pose import poses_from_shape
 
 
 @pytest.fixture(scope="module")

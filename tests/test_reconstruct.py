@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from curverecon.errors import CurveReconError
-from curverecon.solvers.linear import min_frames
 from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
+from curverecon.solvers.linear import min_frames
 
 
 def _rel_err(shape, truth):

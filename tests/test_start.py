@@ -6,7 +6,6 @@ import numpy as np
 from curverecon.generated import frame_equations
 from test_conventions import canonical_parameters
 
-from curverecon.simulate import make_scene
 from curverecon.robust.search import (
     _frame_terms,
     branch_candidates,
@@ -14,6 +13,7 @@ from curverecon.robust.search import (
     reduced_cost,
     robust_start,
 )
+from curverecon.simulate import make_scene
 
 
 def test_branches_solve_equation_10():

@@ -84,7 +84,8 @@ def parse_view(view: Mapping[str, object] | FlatView, projection: str, index: in
     """Validate one view (a JSON-like mapping or a :class:`FlatView`) and return a FlatView.
 
     The curve is reversed if its first point is nearer B than A (it must run from A to B).
-    Missing tangents are estimated from the curve with :func:`curverecon.curve.polyline.end_tangents`.
+    Missing tangents are estimated from the curve with
+    :func:`curverecon.curve.polyline.end_tangents`.
     """
     name = f"view {index}"
     if isinstance(view, FlatView):
