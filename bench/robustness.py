@@ -9,8 +9,8 @@ pipeline's headline accuracy cell (same scenes as the accuracy table).
 What flagging could reach: each frame has six measurements and five pose parameters, so a frame
 shows only the part of its error that no pose can absorb.  "Detectable at the true shape" counts
 the true outlier frames whose chi2, with the shape held at the truth and the frame's pose at its
-best over the branches of (10) (``start.switch_branches``), is above the pipeline's outlier
-threshold (``reconstruct.OUTLIER_P``, chi2 with one degree of freedom): an oracle that knows the
+best over the branches of (10) (``switch_branches``), is above the pipeline's outlier
+threshold (``OutlierOptions.false_alarm``, chi2(1): an oracle that knows the
 shape, which the pipeline has to estimate from data the outliers pull.
 """
 
@@ -25,7 +25,8 @@ from scipy.stats import chi2 as chi2_dist
 
 from bench.common import SUCCESS_DEG, make, shape_errors, true_poses, worst_angle_deg
 from curverecon.errors import CurveReconError
-from curverecon.pipeline import OUTLIER_P, reconstruct
+from curverecon.options import OutlierOptions
+from curverecon.pipeline import reconstruct
 from curverecon.refine.ml import standardised_residuals
 from curverecon.robust.search import switch_branches
 
@@ -94,7 +95,7 @@ def _detectable(
     best = switch_branches(obs, shape, poses, w8)
     r = standardised_residuals(shape, best, obs.measurements(), w8)
     frame_chi2 = np.sum(r * r, axis=1)
-    return int(np.sum(true_out & (frame_chi2 > chi2_dist.isf(OUTLIER_P, 1))))
+    return int(np.sum(true_out & (frame_chi2 > chi2_dist.isf(OutlierOptions().false_alarm, 1))))
 
 
 def summarise_records(records: list[dict[str, Any]], fraction: float) -> dict[str, Any]:

@@ -1,18 +1,52 @@
 """curverecon: recover a rigid smooth 3-D curve from orthographic images of it moving freely when
 only two points A, B are traceable (after M. A. Klopotek, section 3).
 
-Library entry points (NumPy arrays in, dataclasses out; lengths in input units, angles in radians):
+The pipeline's stages, in the order the data passes through them (docs/architecture.md):
+``model`` (observations, conventions) -> ``solvers`` (closed-form solvers) -> ``robust``
+(hypotheses, outlier frames) -> ``refine`` (maximum and marginal likelihood) -> ``curve``
+(polylines, section 4, the curve bundle); :func:`reconstruct` chains them.
 
-- :class:`curverecon.model.observations.Observations`  per-frame A', B' and tangent directions
-- :func:`curverecon.pipeline.reconstruct`      the full pipeline (method "auto" or "linear")
-- :func:`curverecon.solvers.linear.solve_linear`          the paper's linearisation alone
-- :func:`curverecon.robust.search.robust_start`           start without the truth (global search)
-- :func:`curverecon.refine.ml.refine`               maximum likelihood (Schur-complement LM)
-- :func:`curverecon.refine.ml.crlb`                 the Cramer-Rao bound of the shape
-- :func:`curverecon.simulate.make_scene`          independent synthetic scenes with the truth
+``curverecon.refine.refine`` is maximum likelihood, ``curverecon.refine.crlb`` the bound.
+
+Library units: lengths in input units, angles in radians; files use degrees.
 """
 
 from curverecon.errors import CurveReconError
+from curverecon.model.observations import Observations
+from curverecon.model.reconstruction import Alternative, Reconstruction
+from curverecon.options import (
+    BranchOptions,
+    CurveOptions,
+    OutlierOptions,
+    ReconstructOptions,
+    SearchOptions,
+)
+from curverecon.pipeline import reconstruct
+from curverecon.refine import RefineResult, crlb, refine_marginal
+from curverecon.simulate import Scene, make_scene
+from curverecon.solvers.flat import match_flat
+from curverecon.solvers.linear import solve_linear
+from curverecon.solvers.pose import poses_from_shape
 
 __version__ = "0.1.0"
-__all__ = ["CurveReconError", "__version__"]
+__all__ = [
+    "Alternative",
+    "BranchOptions",
+    "CurveOptions",
+    "CurveReconError",
+    "Observations",
+    "OutlierOptions",
+    "ReconstructOptions",
+    "Reconstruction",
+    "RefineResult",
+    "Scene",
+    "SearchOptions",
+    "__version__",
+    "crlb",
+    "make_scene",
+    "match_flat",
+    "poses_from_shape",
+    "reconstruct",
+    "refine_marginal",
+    "solve_linear",
+]

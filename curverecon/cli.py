@@ -79,6 +79,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _cmd_reconstruct(args: argparse.Namespace) -> int:
     from curverecon.io import load_observations, write_json
+    from curverecon.options import CurveOptions, ReconstructOptions
     from curverecon.pipeline import reconstruct
 
     if not (math.isfinite(args.point_sigma) and args.point_sigma > 0):
@@ -86,79 +87,21 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
     if not (math.isfinite(args.tangent_sigma) and args.tangent_sigma > 0):
         raise CurveReconError("--tangent-sigma must be a positive number")
     obs = load_observations(args.input)
-    rec = reconstruct(obs, args.method, args.point_sigma, args.tangent_sigma, args.estimator)
-    curve3d = None
-    bundle_info = None
-    curve_warnings: list[str] = []
-    if obs.curves is not None:
-        from curverecon.curve.section4 import reconstruct_curve
-        from curverecon.pipeline import (
-            refit_branches_with_curves,
-            resolve_branches_with_curves,
-        )
-
-        bundle = args.curve_bundle == "on" and rec.method == "auto"
-        try:
-            if rec.branch_alternatives is not None:
-                # fixed-shape branch switches first, then the other equally good optima
-                # (alternative shapes, joint refits from the other sign of tau); each change is
-                # kept only if the recovered curve reprojects clearly better (reconstruct.py)
-                rec, res = resolve_branches_with_curves(rec, obs.curves, reconstruct_curve)
-                rec, res = refit_branches_with_curves(
-                    rec, obs, reconstruct_curve, args.point_sigma, args.tangent_sigma, curve=res
-                )
-            else:
-                res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
-        except CurveReconError as exc:
-            if not bundle:
-                raise
-            # e.g. a degenerate shape whose poses all look along one direction: the bundle
-            # starts from frame 0's polyline and searches every frame's pose again
-            res = None
-            curve_warnings.append(f"section 4 failed on the end-point answer ({exc})")
-        if bundle:
-            from curverecon.curve.bundle import refine_reconstruction
-            from curverecon.io import read_json
-
-            frames = read_json(args.input)["frames"]
-            given = all(
-                all(key in f for key in ("A", "B", "tangent_A", "tangent_B")) for f in frames
-            )
-            rec, curve3d, bundle_info = refine_reconstruction(
-                rec,
-                obs,
-                None if res is None else res.points,
-                use_given=given,
-                point_sigma=args.point_sigma,
-                tangent_sigma_deg=args.tangent_sigma,
-                n_out=None if res is None else len(res.points),
-            )
-        else:
-            curve3d = np.asarray(res.points, float)
-            curve_warnings.extend(res.warnings)
-    out = rec.to_json_dict()
-    if curve3d is not None:
-        out["curve3d"] = curve3d.tolist()
-    if bundle_info is not None:
-        out["curve_bundle"] = bundle_info
-        out["warnings"] = list(out["warnings"]) + curve_warnings
-    for w in list(rec.warnings) + curve_warnings:
+    options = ReconstructOptions(
+        method=args.method,
+        estimator=args.estimator,
+        point_sigma=args.point_sigma,
+        tangent_sigma_deg=args.tangent_sigma,
+        curve=CurveOptions(bundle=args.curve_bundle == "on"),
+    )
+    rec = reconstruct(obs, options=options)
+    for w in rec.warnings:
         _warn(w)
-    write_json(args.output, out)
+    write_json(args.output, rec.to_json_dict())
     if args.plot:
-        from curverecon.plot import feature_polyline, plot_reconstruction
+        from curverecon.plot import plot_reconstruction_file
 
-        features_only = curve3d is None
-        if features_only:  # no polylines: draw what was reconstructed, A, B and the tangents
-            curve3d = feature_polyline(*(v[0] for v in rec.points_3d()))
-        plot_reconstruction(
-            args.plot,
-            obs.curves,
-            curve3d,
-            rec.rotations(),
-            rec.translations(),
-            features_only=features_only,
-        )
+        plot_reconstruction_file(args.plot, rec, obs)
     return 0
 
 

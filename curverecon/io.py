@@ -143,7 +143,8 @@ def observations_from_dict(data: Any) -> Observations:
     if not frames:
         raise CurveReconError('"frames" is empty')
     keep = None if any(c is None for c in curves) else curves
-    return Observations(np.array(a), np.array(b), np.array(ta), np.array(tb), keep)
+    given = all(all(k in f for k in ("A", "B", "tangent_A", "tangent_B")) for f in frames)
+    return Observations(np.array(a), np.array(b), np.array(ta), np.array(tb), keep, given)
 
 
 def _end_tangents(curve: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:

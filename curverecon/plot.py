@@ -149,3 +149,21 @@ def plot_reconstruction(
         raise CurveReconError(f"cannot write plot {path}: {exc.strerror or exc}") from None
     finally:
         plt.close("all")
+
+
+def plot_reconstruction_file(path: str, rec, obs) -> None:
+    """Draw a :class:`curverecon.model.reconstruction.Reconstruction` of ``obs`` to a PNG file:
+    its ``curve3d`` over every frame's polyline, or, without polylines, the features that were
+    reconstructed (A, B and the end tangents)."""
+    curve3d = rec.curve3d
+    features_only = curve3d is None
+    if features_only:
+        curve3d = feature_polyline(*(v[0] for v in rec.points_3d()))
+    plot_reconstruction(
+        path,
+        obs.curves,
+        curve3d,
+        rec.rotations(),
+        rec.translations(),
+        features_only=features_only,
+    )

@@ -179,7 +179,8 @@ def jacobian(wrt: tuple[sp.Symbol, ...], params: tuple[sp.Expr, ...] = ALL_PARAM
 # Second derivatives, contracted with the residuals.  The Hessian of chi2 / 2 over all nine
 # parameters of a frame is J^T J + sum_k r_k d2 r_k (r_k standardised residuals, r_k = w_k (m_k -
 # measured_k)); Gauss-Newton drops the second term, Newton's method (``curverecon.refine.ml``)
-# and the Laplace volume of the marginal likelihood (``curverecon.refine.marginal``) need it.  One generated
+# and the Laplace volume of the marginal likelihood (``curverecon.refine.marginal``) need it.
+# One generated
 # function returns sum_k u_k d2 m_k / dx_i dx_j for per-frame weights u_k (the runtime passes
 # u_k = w_k r_k), so the six 9 x 9 Hessians are never formed one by one.
 # Angles: d2 psi = d(first derivative) with the first derivative in the quotient form above.

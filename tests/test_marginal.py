@@ -9,6 +9,7 @@ from test_conventions import canonical_parameters
 
 from curverecon.model.observations import wrap_line_angle
 from curverecon.model.pose import normalise
+from curverecon.options import BranchOptions
 from curverecon.refine import marginal
 from curverecon.refine.marginal import refine_marginal, shape_information, solve_poses, volume_terms
 from curverecon.refine.ml import crlb, refine
@@ -123,11 +124,11 @@ def test_mixture_answer_is_a_local_minimum_of_the_mixture_f(seed):
     """With each frame's other branch of (10) as a second mixture component (the pipeline's
     default): the value reported is the mixture F written out directly, and steps of a tenth
     of a standard deviation along each axis of the shape do not go lower."""
-    from curverecon.pipeline import _second_branches
+    from curverecon.robust.branches import second_branches
 
     sc, _, _, meas, ml, _ = _fits(seed)
     kappa = ml.chi2 / (meas.shape[0] - 4)
-    alt = _second_branches(sc.observations, ml, W8, kappa)
+    alt = second_branches(sc.observations, ml, W8, kappa, BranchOptions())
     assert np.isfinite(alt).all(axis=1).sum() >= 3  # frames with a competing branch
     mg = refine_marginal(meas, ml.shape, ml.poses, 1.0, TS, ml.chi2, alt)
     assert mg is not None and mg.converged
@@ -268,7 +269,8 @@ def test_pipeline_takes_the_basin_whose_marginal_optimum_is_highest():
     """
     from bench.common import make, true_poses
     from bench.config import full
-    from curverecon.pipeline import _second_branches, reconstruct
+    from curverecon.pipeline import reconstruct
+    from curverecon.robust.branches import second_branches
 
     cfg = full()
     sc = make(cfg.seed, "accuracy", (13, 196), 20, point_sigma=1.0, tangent_sigma_deg=1.0)
@@ -284,7 +286,7 @@ def test_pipeline_takes_the_basin_whose_marginal_optimum_is_highest():
 
     def second(shape, poses):  # each frame's other branch, as the pipeline takes it
         fit = refine(sc.observations, shape, poses, 1.0, TS, max_iter=0, covariance=False)
-        return _second_branches(sc.observations, fit, W8, kappa)
+        return second_branches(sc.observations, fit, W8, kappa, BranchOptions())
 
     f_answer = _f_mixture(rec.shape, rec.poses, second(rec.shape, rec.poses), meas, kappa)
     for alt in ml.alternatives:

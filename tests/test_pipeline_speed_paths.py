@@ -1,9 +1,9 @@
 """The pipeline's shortcuts: each must give the answer the full search gives.
 
-- exact stage (``start.EXACT_STAGE_STARTS``): with at least 5 frames the best grid minima are
+- exact stage (``exact_stage_starts``): with at least 5 frames the best grid minima are
   searched first and an exact fit ends the search;
 - restarts and single-frame branch flips are skipped once the best fit is exact
-  (``start.EXACT_COST``): nothing can beat it by the margin they require;
+  (``SearchOptions.exact_cost``): nothing can beat it by the margin they require;
 - with 4 frames every start fits exactly: the exact stage is not used and the other exact
   shapes are still reported as alternatives.
 """
@@ -13,10 +13,15 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import curverecon.pipeline as reconstruct_module
+import curverecon.refine.answer as answer_module
+import curverecon.robust.branches as branches_module
 import curverecon.robust.search as start_module
+from curverecon.options import ReconstructOptions, SearchOptions
 from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
+
+SEARCH = SearchOptions()
+NO_EXACT_STAGE = ReconstructOptions(search=SearchOptions(exact_stage_min_frames=10**6))
 
 
 def _rel_err(shape, truth):
@@ -58,12 +63,11 @@ def test_exact_stage_ends_the_search_with_the_exact_answer(monkeypatch, seed):
     assert _rel_err(rec.shape, sc.truth.shape) < 1e-9
     assert rec.chi2 < 1e-16
     # only the first grid minima were polished, and no restarts ran
-    assert polished == [start_module.EXACT_STAGE_STARTS]
-    assert max(batches) <= start_module.EXACT_STAGE_STARTS
+    assert polished == [SEARCH.exact_stage_starts]
+    assert max(batches) <= SEARCH.exact_stage_starts
     # the full search (exact stage off) gives the same shape
-    monkeypatch.setattr(start_module, "EXACT_STAGE_MIN_FRAMES", 10**6)
-    full = reconstruct(sc.observations)
-    assert len(polished) == 2 and polished[1] > start_module.EXACT_STAGE_STARTS
+    full = reconstruct(sc.observations, options=NO_EXACT_STAGE)
+    assert len(polished) == 2 and polished[1] > SEARCH.exact_stage_starts
     assert _rel_err(full.shape, rec.shape) < 1e-9
 
 
@@ -73,10 +77,9 @@ def test_noisy_scene_falls_through_the_exact_stage(monkeypatch):
     batches = _count_batches(monkeypatch)
     rec = reconstruct(sc.observations, point_sigma=1.0, tangent_sigma_deg=1.0)
     # the first minima, then the rest; the restarts ran (around each of 3 centres)
-    assert len(polished) == 2 and polished[0] == start_module.EXACT_STAGE_STARTS
-    assert max(batches) >= 3 * start_module.RESTARTS_FEW
-    monkeypatch.setattr(start_module, "EXACT_STAGE_MIN_FRAMES", 10**6)
-    full = reconstruct(sc.observations, point_sigma=1.0, tangent_sigma_deg=1.0)
+    assert len(polished) == 2 and polished[0] == SEARCH.exact_stage_starts
+    assert max(batches) >= 3 * SEARCH.restarts_few
+    full = reconstruct(sc.observations, point_sigma=1.0, options=NO_EXACT_STAGE)
     assert np.allclose(full.shape, rec.shape, rtol=1e-8, atol=1e-10)
     assert abs(full.chi2 - rec.chi2) < 1e-8 * (1 + rec.chi2)
 
@@ -86,17 +89,18 @@ def test_four_frames_skip_restarts_but_list_the_other_exact_shapes(monkeypatch):
     polished = _count_polished(monkeypatch)
     batches = _count_batches(monkeypatch)
     flips = []
-    orig_flip = reconstruct_module.branch_alternatives
+    orig_flip = answer_module.branch_alternatives
 
     def counting_alternatives(*args, **kwargs):
         flips.append(1)
         return orig_flip(*args, **kwargs)
 
-    monkeypatch.setattr(reconstruct_module, "branch_alternatives", counting_alternatives)
+    monkeypatch.setattr(answer_module, "branch_alternatives", counting_alternatives)
+    monkeypatch.setattr(branches_module, "branch_alternatives", counting_alternatives)
     rec = reconstruct(sc.observations)
     # the full grid search (no exact stage with 4 frames), but no restarts and no flips
-    assert len(polished) == 1 and polished[0] > start_module.EXACT_STAGE_STARTS
-    assert max(batches) < start_module.RESTARTS_FEW
+    assert len(polished) == 1 and polished[0] > SEARCH.exact_stage_starts
+    assert max(batches) < SEARCH.restarts_few
     assert len(flips) == 1  # the answer's own branch alternatives only
     assert rec.chi2 < 1e-16
     # several shapes fit exactly: they are reported, each an exact fit, one of them the truth
@@ -105,10 +109,10 @@ def test_four_frames_skip_restarts_but_list_the_other_exact_shapes(monkeypatch):
     shapes = [rec.shape] + [alt.shape for alt in rec.alternatives]
     assert min(_rel_err(s, sc.truth.shape) for s in shapes) < 1e-9
     # the same answer and alternatives as with the restarts forced (they cannot change anything)
-    monkeypatch.setattr(start_module, "EXACT_COST", -1.0)
-    monkeypatch.setattr(reconstruct_module, "EXACT_COST", -1.0)
-    forced = reconstruct(sc.observations)
-    assert max(batches) in (3 * start_module.RESTARTS_FEW, 3 * start_module.RESTARTS_IMPLAUSIBLE)
+    forced = reconstruct(
+        sc.observations, options=ReconstructOptions(search=SearchOptions(exact_cost=-1.0))
+    )
+    assert max(batches) in (3 * SEARCH.restarts_few, 3 * SEARCH.restarts_implausible)
     assert _rel_err(forced.shape, rec.shape) < 1e-9
     assert len(forced.alternatives) == len(rec.alternatives)
 

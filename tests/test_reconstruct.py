@@ -151,7 +151,7 @@ def test_curves_choose_the_branch_of_ambiguous_frames():
     disagrees with the truth: the resolver must switch those ambiguous frames, and only those."""
     from types import SimpleNamespace
 
-    from curverecon.pipeline import resolve_branches_with_curves
+    from curverecon.curve.branches import resolve_branches_with_curves
 
     sc = make_scene(np.random.default_rng(1), 20, 1.0, 1.0)
     rec = reconstruct(sc.observations)
@@ -175,12 +175,12 @@ def test_curves_choose_the_branch_of_ambiguous_frames():
 
 def test_alternatives_warning_says_whether_they_differ():
     """Alternatives within 2 std are 'local optima of the same answer'; farther ones are not."""
-    from curverecon.pipeline import Alternative, _alternatives_warning
+    from curverecon.model.reconstruction import Alternative, alternatives_warning
 
     best = np.array([200.0, 0.5, 0.7, 1.0])
     std = np.array([2.0, 0.01, 0.01, 0.01])
     near = Alternative(best + np.array([3.0, 0.015, -0.01, 0.0]), np.zeros((4, 5)), 5.0, std)
     far = Alternative(best + np.array([0.0, 0.3, 0.0, 0.0]), np.zeros((4, 5)), 5.0, std)
-    assert "agree within two standard deviations" in _alternatives_warning(best, std, [near])
-    assert "distinct shapes" in _alternatives_warning(best, std, [near, far])
-    assert "distinct shapes" in _alternatives_warning(best, None, [near])
+    assert "agree within two standard deviations" in alternatives_warning(best, std, [near])
+    assert "distinct shapes" in alternatives_warning(best, std, [near, far])
+    assert "distinct shapes" in alternatives_warning(best, None, [near])

@@ -133,8 +133,11 @@ def test_pose_solve_reaches_the_pose_from_a_start_degrees_off(seed):
     misfitting by more than ``RESCUE_CHI2`` to that minimum or below."""
     from test_conventions import canonical_parameters
 
+    from curverecon.options import SearchOptions
     from curverecon.refine.ml import optimise_poses
-    from curverecon.robust.search import RESCUE_CHI2, switch_branches
+    from curverecon.robust.search import switch_branches
+
+    RESCUE_CHI2 = SearchOptions().rescue_chi2
 
     sc = make_scene(np.random.default_rng(seed), 400, point_sigma=1.0, tangent_sigma_deg=1.0)
     shape, poses = canonical_parameters(sc.truth)

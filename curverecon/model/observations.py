@@ -58,6 +58,8 @@ class Observations:
         a, b: (N, 2) image positions of A' and B' (input units).
         tangent_a, tangent_b: (N, 2) image directions of the projected tangents at A and B.
         curves: optional list of N polylines (K_i, 2), each ordered from A' to B'.
+        ends_given: False when some frame's A', B' or tangents were taken from its polyline
+            (the input did not give them): then they are not measurements of their own.
 
     Construction validates every frame (finite numbers, A' != B', tangents not zero and not
     perpendicular to A'B') and raises :class:`CurveReconError` with a one-line message.
@@ -68,6 +70,7 @@ class Observations:
     tangent_a: np.ndarray
     tangent_b: np.ndarray
     curves: list[np.ndarray] | None = field(default=None)
+    ends_given: bool = True
 
     def __post_init__(self) -> None:
         self.a = _as_xy("A", self.a)
@@ -186,7 +189,12 @@ class Observations:
         idx = np.arange(self.n_frames)[index]
         curves = None if self.curves is None else [self.curves[i] for i in idx]
         return Observations(
-            self.a[idx], self.b[idx], self.tangent_a[idx], self.tangent_b[idx], curves
+            self.a[idx],
+            self.b[idx],
+            self.tangent_a[idx],
+            self.tangent_b[idx],
+            curves,
+            self.ends_given,
         )
 
     # ----------------------------------------------------------------- checks

@@ -25,16 +25,18 @@ distinct shapes get a short batched ML refinement (``refine.refine_batch``, pose
 grid's branch per frame) -> the best few are refined to convergence -> every frame tries the
 other branches of (10) with the shape fixed (``switch_branches``) -> random restarts around the
 best two by robust cost (three, and more restarts, with few frames or an implausible chi2; with
-plausible noisy data screened by Gauss-Newton, ``SCREEN_ITERATIONS``, and only the
-``RESTART_FINALISTS`` best refined with the Newton phase).
+plausible noisy data screened by Gauss-Newton, ``o.screen_iterations``, and only the
+``o.restart_finalists`` best refined with the Newton phase).
 More than 40 frames: the search runs on 40 evenly spread frames and the candidates are refined
-on all (``robust_start``); more than ``MEDIUM_FRAMES``: on that many first, and only those that
+on all (``robust_start``); more than ``o.medium_frames``: on that many first, and only those that
 stay near the best go on to all.
 
-Shortcuts that cannot change the answer's fit: with at least ``EXACT_STAGE_MIN_FRAMES`` frames
-the best ``EXACT_STAGE_STARTS`` grid minima are polished and refined first, and if one of them
+Shortcuts that cannot change the answer's fit: with at least ``o.exact_stage_min_frames`` frames
+the best ``o.exact_stage_starts`` grid minima are polished and refined first, and if one of them
 fits exactly (noise-free data) the other minima are not searched; the restarts are skipped when
-the best fit is already exact (``EXACT_COST``: they could not beat it by their margin).
+the best fit is already exact (``o.exact_cost``: they could not beat it by their margin).
+
+Tuned numbers (``o.*`` in the text) are the fields of :class:`curverecon.options.SearchOptions`.
 
 Symmetries let the grid cover alpha, beta in (0, 90) degrees and phi in [0, 180] only
 (docs/CONVENTIONS.md); c = max(c') / cos(gamma) with gamma in [0, 80] degrees.
@@ -49,70 +51,8 @@ from scipy import ndimage
 
 from curverecon.model.observations import Observations, wrap_angle
 from curverecon.model.pose import normalise
+from curverecon.options import SearchOptions
 from curverecon.refine.ml import POSE_HALVINGS, RefineResult, optimise_poses, refine_batch
-
-EXACT_COST = 1e-9
-"""A (robust) chi2 at or below this is an exact fit: nothing can beat it by the relative 1e-9
-margin the searches require, so the restarts (``search_start``) and the single-frame branch
-flips (``reconstruct._flip_ambiguous_frames``) are skipped."""
-
-CANDIDATES = 16
-"""Grid minima refined briefly (``search_start``) with 12 or more frames."""
-
-CANDIDATES_FEW = 48
-"""... with 5 to 11 frames."""
-
-CANDIDATES_MINIMAL = 16
-"""... with 4 frames (every start fits exactly: the candidates are the exact shapes found)."""
-
-RESTARTS = 32
-"""Random restarts per centre (``search_start``) with 12 or more frames and a plausible chi2."""
-
-RESTARTS_FEW = 96
-"""... with fewer than 12 frames (and a plausible chi2)."""
-
-RESTARTS_IMPLAUSIBLE = 96
-"""... when the best chi2 is implausibly high (outlier frames, a missed minimum) or far below its
-degrees of freedom but not exact (``NEAR_EXACT_CHI2``: nearly noise-free data, where an exact fit
-missed by the search is probably near)."""
-
-NEAR_EXACT_CHI2 = 0.05
-"""chi2 per degree of freedom below which a fit that is not exact counts as nearly noise-free."""
-
-SCREEN_ITERATIONS = 15
-"""Gauss-Newton iterations (``refine_batch(..., newton_phase=False)``) that screen the random
-restarts of plausible noisy data (``search_start``); the ``RESTART_FINALISTS`` best by robust
-cost are then refined from their starts to convergence with the Newton phase."""
-
-SCREEN_FTOL = 1e-6
-"""Relative predicted decrease at which a screening iteration counts as converged."""
-
-RESTART_FINALISTS = 8
-"""Screened restarts refined to convergence from their starts (``search_start``)."""
-
-EXACT_STAGE_STARTS = 12
-"""Grid minima searched first for an exact fit (``search_start``)."""
-
-EXACT_STAGE_MIN_FRAMES = 5
-"""... from this many frames on (with 4 frames every start fits exactly: no test of the data)."""
-
-RESCUE_CHI2 = 9.0
-"""A frame whose chi2 is still above this after the branches of (10) (``switch_branches``) is
-re-solved from a grid of starts (``RESCUE_DELTAS``)."""
-
-RESCUE_DELTAS = 12
-"""Values of delta in that grid (every 30 degrees), each with both signs of tau."""
-
-MEDIUM_FRAMES = 400
-"""Above this many frames ``robust_start`` screens its candidates on this many evenly spread
-frames before refining on all."""
-
-MEDIUM_KEEP_COST = 16.0
-"""... and keeps those whose robust cost there is within this of the best (four times
-``reconstruct.ALTERNATIVE_DCHI2``, the window in which a candidate can still matter)."""
-
-EXACT_REDUCED_COST = 1e-20
-"""A pose-free (reduced) cost at or below this counts as an exact fit of the exact stage."""
 
 
 @dataclass
@@ -407,6 +347,7 @@ def switch_branches(
     poses: np.ndarray,
     w8: np.ndarray,
     rescue: bool = False,
+    options: SearchOptions | None = None,
 ) -> np.ndarray:
     """Per frame, the best of the current pose and the four branches of (10), shape fixed.
 
@@ -444,15 +385,20 @@ def switch_branches(
     best = np.where(f[ki, best, ni] < f[:, 0] - 1e-9 * (1.0 + f[:, 0]), best, 0)
     out = allp[ki, best, ni]
     if rescue:
-        out = _rescue_poses(obs, shapes, out, f[ki, best, ni], w8)
+        out = _rescue_poses(obs, shapes, out, f[ki, best, ni], w8, options or SearchOptions())
     return out[0] if single else out
 
 
 def _rescue_poses(
-    obs: Observations, shapes: np.ndarray, poses: np.ndarray, f: np.ndarray, w8: np.ndarray
+    obs: Observations,
+    shapes: np.ndarray,
+    poses: np.ndarray,
+    f: np.ndarray,
+    w8: np.ndarray,
+    o: SearchOptions,
 ) -> np.ndarray:
-    """Poses (K, N, 5) with every frame whose chi2 ``f`` (K, N) is still above ``RESCUE_CHI2``
-    re-solved from a grid of starts (``RESCUE_DELTAS`` values of delta, both signs of tau at its
+    """Poses (K, N, 5) with every frame whose chi2 ``f`` (K, N) is still above ``o.rescue_chi2``
+    re-solved from a grid of starts (``o.rescue_deltas`` values of delta, both signs of tau at its
     current magnitude), shape fixed; a frame takes the best if it fits better.
 
     Where (10) has no real solution for the shape (c' >= c with noise, or the tangent at B out
@@ -460,24 +406,24 @@ def _rescue_poses(
     minimum: on a 4642-frame test scene, chi2 64 at delta 0 where the pose at delta -30 (the
     other sign of tau) gives 3.4, and the frame was flagged as an outlier.
     """
-    kk, nn = np.nonzero(f > RESCUE_CHI2)
+    kk, nn = np.nonzero(f > o.rescue_chi2)
     if kk.size == 0:
         return poses
-    deltas = np.linspace(-np.pi, np.pi, RESCUE_DELTAS, endpoint=False)
+    deltas = np.linspace(-np.pi, np.pi, o.rescue_deltas, endpoint=False)
     base = poses[kk, nn]  # (M, 5)
-    starts = np.repeat(base[:, None], 2 * RESCUE_DELTAS, axis=1)  # (M, 2D, 5)
+    starts = np.repeat(base[:, None], 2 * o.rescue_deltas, axis=1)  # (M, 2D, 5)
     starts[..., 0] = np.tile(deltas, 2)[None]
-    tau = np.abs(base[:, 1])[:, None] * np.repeat([1.0, -1.0], RESCUE_DELTAS)[None]
+    tau = np.abs(base[:, 1])[:, None] * np.repeat([1.0, -1.0], o.rescue_deltas)[None]
     starts[..., 1] = tau
-    m = kk.size * 2 * RESCUE_DELTAS
-    meas = np.repeat(obs.measurements()[nn], 2 * RESCUE_DELTAS, axis=0)
-    rows_shape = np.repeat(shapes[kk], 2 * RESCUE_DELTAS, axis=0)
+    m = kk.size * 2 * o.rescue_deltas
+    meas = np.repeat(obs.measurements()[nn], 2 * o.rescue_deltas, axis=0)
+    rows_shape = np.repeat(shapes[kk], 2 * o.rescue_deltas, axis=0)
     sol, res = optimise_poses(rows_shape, starts.reshape(m, 5), meas, w8, 8)
-    fr = np.sum(res * res, axis=1).reshape(kk.size, 2 * RESCUE_DELTAS)
+    fr = np.sum(res * res, axis=1).reshape(kk.size, 2 * o.rescue_deltas)
     j = np.argmin(fr, axis=1)
     better = fr[np.arange(kk.size), j] < f[kk, nn] - 1e-9 * (1.0 + f[kk, nn])
     out = np.array(poses)
-    sol = sol.reshape(kk.size, 2 * RESCUE_DELTAS, 5)
+    sol = sol.reshape(kk.size, 2 * o.rescue_deltas, 5)
     out[kk[better], nn[better]] = sol[np.arange(kk.size), j][better]
     return out
 
@@ -529,28 +475,32 @@ def robust_start(
     obs: Observations,
     point_sigma: float = 1.0,
     tangent_sigma: float = np.radians(1.0),
-    max_frames: int = 40,
+    options: SearchOptions | None = None,
     **kwargs,
 ) -> list[Candidate]:
     """Refined candidates from the global search, best (lowest robust cost) first.
 
     With more than ``max_frames`` frames the search runs on ``max_frames`` evenly spread frames
     (its cost grows with the frame count) and its candidates are then refined on all frames.
-    With more than ``MEDIUM_FRAMES`` frames they are refined on that many evenly spread frames
-    first, and only those within ``MEDIUM_KEEP_COST`` of the best there go on to all frames
+    With more than ``o.medium_frames`` frames they are refined on that many evenly spread frames
+    first, and only those within ``o.medium_keep_cost`` of the best there go on to all frames
     (the others would lose by far more on all frames; this saves most of the time of a long
     sequence).  Other keyword arguments go to :func:`search_start`.
     """
+    o = options or SearchOptions()
     n = obs.n_frames
+    max_frames = o.max_search_frames
     if n <= max_frames:
-        return search_start(obs, point_sigma, tangent_sigma, **kwargs)
-    cands = search_start(obs.subset(_spread(n, max_frames)), point_sigma, tangent_sigma, **kwargs)
-    if n > MEDIUM_FRAMES and len(cands) > 1:
+        return search_start(obs, point_sigma, tangent_sigma, options=o, **kwargs)
+    cands = search_start(
+        obs.subset(_spread(n, max_frames)), point_sigma, tangent_sigma, options=o, **kwargs
+    )
+    if n > o.medium_frames and len(cands) > 1:
         cands = _refined_on(
-            obs.subset(_spread(n, MEDIUM_FRAMES)), cands, point_sigma, tangent_sigma
+            obs.subset(_spread(n, o.medium_frames)), cands, point_sigma, tangent_sigma, o
         )
-        cands = [c for c in cands if c.robust_cost <= cands[0].robust_cost + MEDIUM_KEEP_COST]
-    return _refined_on(obs, cands, point_sigma, tangent_sigma)
+        cands = [c for c in cands if c.robust_cost <= cands[0].robust_cost + o.medium_keep_cost]
+    return _refined_on(obs, cands, point_sigma, tangent_sigma, o)
 
 
 def _spread(n: int, m: int) -> np.ndarray:
@@ -559,7 +509,11 @@ def _spread(n: int, m: int) -> np.ndarray:
 
 
 def _refined_on(
-    obs: Observations, cands: list[Candidate], point_sigma: float, tangent_sigma: float
+    obs: Observations,
+    cands: list[Candidate],
+    point_sigma: float,
+    tangent_sigma: float,
+    o: SearchOptions,
 ) -> list[Candidate]:
     """The candidates' shapes refined (maximum likelihood) on the frames of ``obs``: each frame
     starts on its best branch of (10) for the shape; best (lowest robust cost) first."""
@@ -571,16 +525,16 @@ def _refined_on(
         meas, shapes, poses, point_sigma, tangent_sigma, max_iter=60
     )
     # frames left on a wrong pose at the best candidate's refined shape (among thousands a few
-    # are): those above ``RESCUE_CHI2`` try every branch and a grid of starts (``rescue``),
+    # are): those above ``o.rescue_chi2`` try every branch and a grid of starts (``rescue``),
     # and the candidate is refitted if any moved.  (On a 4642-frame test scene three frames at
     # chi2 500-1400 made the fit's chi2 implausible and sent it to the trimmed refits, which
     # then flagged good frames.)
     fc = np.sum(r * r, axis=2)
     k = int(np.argmin([robust_cost(f) for f in fc]))
-    bad = np.flatnonzero(fc[k] > RESCUE_CHI2)
+    bad = np.flatnonzero(fc[k] > o.rescue_chi2)
     if bad.size:
         pk = np.array(p[k])
-        pk[bad] = switch_branches(obs.subset(bad), g[k], p[k, bad], w8, rescue=True)
+        pk[bad] = switch_branches(obs.subset(bad), g[k], p[k, bad], w8, rescue=True, options=o)
         if np.any(pk != p[k]):
             g2, p2, r2, chi22, it2, conv2 = refine_batch(
                 meas, g[k : k + 1], pk[None], point_sigma, tangent_sigma, max_iter=60
@@ -611,40 +565,44 @@ def search_start(
     extra_shapes: list[np.ndarray] | None = None,
     n_restarts: int | None = None,
     n_restart_centres: int | None = None,
+    options: SearchOptions | None = None,
 ) -> list[Candidate]:
     """Refined candidates from the global grid search, best (lowest robust cost) first.
 
     The ``n_candidates`` best grid minima (plus ``extra_shapes``) get a short ML refinement,
     all at once (``refine.refine_batch``); the ``n_final`` best distinct ones are refined to
-    convergence.  Exact stage (at least ``EXACT_STAGE_MIN_FRAMES`` frames): the best
-    ``EXACT_STAGE_STARTS`` grid minima go first; those that polish to a pose-free cost
-    <= ``EXACT_REDUCED_COST`` are refined, and if the best ML chi2 is
-    <= ``EXACT_COST`` their candidates are returned (nothing can fit better; the other shapes
+    convergence.  Exact stage (at least ``o.exact_stage_min_frames`` frames): the best
+    ``o.exact_stage_starts`` grid minima go first; those that polish to a pose-free cost
+    <= ``o.exact_reduced_cost`` are refined, and if the best ML chi2 is
+    <= ``o.exact_cost`` their candidates are returned (nothing can fit better; the other shapes
     returned are other exact fits only); otherwise the search continues as if the stage had not
     been (the same candidates).
 
     Args:
         obs: observations (at least 4 frames).
         point_sigma, tangent_sigma: noise (input units; radians) used by the ML refinement.
-        n_candidates: number of grid minima refined briefly (default ``CANDIDATES``,
-            ``CANDIDATES_FEW`` below 12 frames, ``CANDIDATES_MINIMAL`` with 4).
+        n_candidates: number of grid minima refined briefly (default ``o.candidates``,
+            ``o.candidates_few`` below 12 frames, ``o.candidates_minimal`` with 4).
         n_final: number of distinct candidates refined to convergence.
         spec: grid resolution.
         extra_shapes: further start shapes (e.g. from the linearisation).
-        n_restarts: random restarts around each of the best candidates (default ``RESTARTS``;
-            ``RESTARTS_FEW`` with fewer than 12 frames; ``RESTARTS_IMPLAUSIBLE`` when the best
-            chi2 is implausibly high or nearly but not exactly zero, ``NEAR_EXACT_CHI2``); none
-            once the best fit is exact (``EXACT_COST``).
+        n_restarts: random restarts around each of the best candidates (default ``o.restarts``;
+            ``o.restarts_few`` with fewer than 12 frames; ``o.restarts_implausible`` when the best
+            chi2 is implausibly high or nearly but not exactly zero, ``o.near_exact_chi2``); none
+            once the best fit is exact (``o.exact_cost``).
         n_restart_centres: around how many of the best candidates (by robust cost) the random
             restarts are drawn (default 2; 3 with fewer than 12 frames or an implausible chi2).
     Returns:
         Candidates sorted by robust cost; each ``result.shape`` normalised (alpha, beta in
         [0, pi/2], phi in [0, pi]); ``result.covariance`` is None.
     """
+    o = options or SearchOptions()
     n = obs.n_frames
     few = n < 12
     if n_candidates is None:
-        n_candidates = CANDIDATES_MINIMAL if n <= 4 else (CANDIDATES_FEW if few else CANDIDATES)
+        n_candidates = (
+            o.candidates_minimal if n <= 4 else (o.candidates_few if few else o.candidates)
+        )
     spec = spec or GridSpec.for_frames(n)
     n_search = (4 if few else 2) * n_candidates
     trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
@@ -667,23 +625,24 @@ def search_start(
             n_final,
             n_restarts,
             n_restart_centres,
+            o,
         )
 
-    # Exact stage (noise-free data, at least EXACT_STAGE_MIN_FRAMES frames): the best
-    # EXACT_STAGE_STARTS grid minima first; if some fit exactly (reduced cost ~0) they alone are
-    # refined, and if the best ML chi2 is <= EXACT_COST nothing can fit better: the search ends
+    # Exact stage (noise-free data, at least o.exact_stage_min_frames frames): the best
+    # o.exact_stage_starts grid minima first; if some fit exactly (reduced cost ~0) they alone are
+    # refined, and if the best ML chi2 is <= o.exact_cost nothing can fit better: the search ends
     # with those exact candidates.  Otherwise the search runs as without this stage (the first
     # minima's polish is reused).
-    m = EXACT_STAGE_STARTS
+    m = o.exact_stage_starts
     x0, h0 = _grid_starts(obs, spec, n_search)
-    if n < EXACT_STAGE_MIN_FRAMES or x0.shape[0] <= m:
+    if n < o.exact_stage_min_frames or x0.shape[0] <= m:
         xs, fs = polish(x0, h0)
         return finish(xs, fs)
     xs1, fs1 = polish(x0[:m], h0[:m])
-    exact = fs1 <= EXACT_REDUCED_COST
+    exact = fs1 <= o.exact_reduced_cost
     if exact.any():
         out = finish(xs1[exact], fs1[exact])
-        if out and out[0].robust_cost <= EXACT_COST:
+        if out and out[0].robust_cost <= o.exact_cost:
             return out
     xs2, fs2 = polish(x0[m:], h0[m:])
     return finish(np.concatenate([xs1, xs2]), np.concatenate([fs1, fs2]))
@@ -726,6 +685,7 @@ def _refine_candidates(
     n_final: int,
     n_restarts: int | None,
     n_restart_centres: int | None,
+    o: SearchOptions,
 ) -> list[Candidate]:
     """The ML part of :func:`search_start` from polished grid minima ``xs`` (gamma, alpha, beta,
     phi) with reduced costs ``fs``: short batched refinement of the best distinct ones (and
@@ -789,18 +749,18 @@ def _refine_candidates(
     # Local restarts around the best candidates (few frames: many shallow minima nearby).
     dof = max(n - 4, 1)
     implausible = np.min(chi2) > dof + 5.0 * np.sqrt(2.0 * dof) + 10.0
-    near_exact = np.min(chi2) < NEAR_EXACT_CHI2 * dof  # nearly noise-free: search harder
+    near_exact = np.min(chi2) < o.near_exact_chi2 * dof  # nearly noise-free: search harder
     if n_restarts is None:
         n_restarts = (
-            RESTARTS_IMPLAUSIBLE
+            o.restarts_implausible
             if implausible or near_exact
-            else (RESTARTS_FEW if few else RESTARTS)
+            else (o.restarts_few if few else o.restarts)
         )
     # A restart replaces a candidate only if its robust cost is below the best one's by a
     # relative 1e-9: impossible (costs are >= 0) once the best fit is exact (noise-free data,
     # or 4 frames, where every refined start fits exactly) - the restarts are then skipped.
     rc = np.array([robust_cost(f) for f in np.sum(r * r, axis=2)])
-    if n_restarts > 0 and np.min(rc) > EXACT_COST:
+    if n_restarts > 0 and np.min(rc) > o.exact_cost:
         # ranked by the robust cost (as the candidates are): with outlier frames the raw chi2
         # can prefer a wrong shape that spreads the outliers' misfit over all frames
         rng = np.random.default_rng(12345)
@@ -818,7 +778,7 @@ def _refine_candidates(
         starts = np.concatenate(starts)
         sp = poses_from_branches(obs, starts)
         # Plausible noisy data: the restarts are screened by Gauss-Newton alone (cheap
-        # iterations that keep a start's basin); the ``RESTART_FINALISTS`` best by robust cost
+        # iterations that keep a start's basin); the ``o.restart_finalists`` best by robust cost
         # are then refined from their starts as every restart is otherwise (Newton phase, to
         # convergence): the same results whenever the best restart is among them.
         # Implausible or nearly noise-free data (a missed minimum, an exact fit to find): no
@@ -831,13 +791,13 @@ def _refine_candidates(
                 sp,
                 point_sigma,
                 tangent_sigma,
-                max_iter=SCREEN_ITERATIONS,
-                ftol=SCREEN_FTOL,
+                max_iter=o.screen_iterations,
+                ftol=o.screen_ftol,
                 drop_factor=3.0,
                 newton_phase=False,
             )
             rc3 = np.array([robust_cost(f) for f in np.sum(r3 * r3, axis=2)])
-            fin = np.sort(np.argsort(rc3, kind="stable")[:RESTART_FINALISTS])
+            fin = np.sort(np.argsort(rc3, kind="stable")[: o.restart_finalists])
         g3, p3, r3, chi23, it3, conv3 = refine_batch(
             meas,
             starts[fin],

@@ -1,0 +1,260 @@
+"""Pose branches chosen by the curve: where the end points and tangents fit two branches of
+(10) about equally well, the frames' polylines tell them apart.
+
+``resolve_branches_with_curves`` switches single frames with the shape fixed;
+``refit_branches_with_curves`` chooses among equally good maximum-likelihood optima.  Both score
+a trial by the total reprojection distance of the section-4 curve (``curve.section4``) over the
+frames.  Tuned numbers: :class:`curverecon.options.CurveOptions`.
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+import math
+
+import numpy as np
+
+from curverecon.generated import frame_equations
+from curverecon.model.observations import Observations
+from curverecon.model.pose import normalise, rotations, translations
+from curverecon.model.reconstruction import Alternative, Reconstruction
+from curverecon.options import CurveOptions
+from curverecon.refine.ml import refine, refine_batch
+from curverecon.robust.search import branch_alternatives
+
+
+def resolve_branches_with_curves(
+    rec: Reconstruction,
+    curves: list[np.ndarray],
+    reconstruct_curve,
+    o: CurveOptions | None = None,
+) -> tuple[Reconstruction, object]:
+    """Use the frames' polylines to choose the pose branch of ambiguous frames.
+
+    The end points and tangents alone fit two branches of (10) about equally well in some frames
+    (other branch within ``o.flip_dchi2``, ``Reconstruction.ambiguous_frames``).  The whole
+    curve tells them apart: a frame on the wrong branch makes the recovered 3-D curve reproject
+    badly onto the polylines.  Greedy search: in each round every ambiguous frame is tried on
+    its other branch and the single switch that lowers the total reprojection distance (sum of
+    ``frame_residual`` over the inlier frames) most is kept, if it lowers it by at least
+    ``o.flip_gain``; repeat until no switch helps.
+
+    The total is used, not the switched frame's own residual, because the curve is built along
+    frame 0's lines of sight: frame 0 always reprojects well, and when frame 0 itself is on the
+    wrong branch it is the *other* frames that reproject badly (switching frame 0 repairs them).
+    The curve stays in frame 0's camera coordinates (with frame 0's chosen pose).  The shape is
+    kept.
+
+    Args:
+        rec: an "auto" reconstruction with branch alternatives.
+        curves: the frames' polylines (A' to B').
+        reconstruct_curve: ``curverecon.curve.section4.reconstruct_curve`` (its result has
+            ``frame_residual``, the per-frame median reprojection distance).
+    Returns:
+        (reconstruction, curve result) - the input reconstruction if nothing changed.
+    """
+    o = o or CurveOptions()
+    res = reconstruct_curve(curves, rec.rotations(), rec.translations())
+    fr = getattr(res, "frame_residual", None)
+    if (
+        fr is None
+        or rec.branch_alternatives is None
+        or rec.branch_alternative_chi2 is None
+        or rec.frame_chi2 is None
+    ):
+        return rec, res
+    dchi2 = rec.branch_alternative_chi2 - rec.frame_chi2
+    cand = [int(i) for i in np.flatnonzero(np.isfinite(dchi2) & (dchi2 < o.flip_dchi2))]
+    if not cand:
+        return rec, res
+    inl = np.asarray(rec.inliers, bool)
+
+    def total(r) -> float:
+        f = np.asarray(getattr(r, "frame_residual", None), float)
+        return float(np.sum(f[inl])) if f.shape == inl.shape else np.inf
+
+    search = _coarse(reconstruct_curve, o)
+    switched = np.zeros(len(rec.poses), bool)
+    best_total = (
+        total(res) if search is reconstruct_curve else total(search(curves, *_rt(rec.poses)))
+    )
+    for _ in range(o.flip_max_switches):
+        round_best = None
+        for i in cand:
+            trial = switched.copy()
+            trial[i] = ~trial[i]
+            poses = np.where(trial[:, None], rec.branch_alternatives, rec.poses)
+            t = total(search(curves, *_rt(poses)))
+            if round_best is None or t < round_best[0]:
+                round_best = (t, i)
+        t, i = round_best
+        if not t < (1.0 - o.flip_gain) * best_total:
+            break
+        switched[i] = ~switched[i]
+        best_total = t
+    take = [int(i) for i in np.flatnonzero(switched)]
+    if not take:
+        return rec, res
+    poses = np.array(rec.poses)
+    poses[take] = rec.branch_alternatives[take]
+    alt = np.array(rec.branch_alternatives)
+    alt[take] = rec.poses[take]
+    fchi2 = np.array(rec.frame_chi2)
+    achi2 = np.array(rec.branch_alternative_chi2)
+    fchi2[take], achi2[take] = rec.branch_alternative_chi2[take], rec.frame_chi2[take]
+    warnings = list(rec.warnings) + [
+        f"frames {take}: pose branch chosen by the curve (their end points and tangents fit "
+        "two branches about equally well)"
+    ]
+    new = Reconstruction(
+        rec.shape,
+        poses,
+        rec.std,
+        rec.inliers,
+        rec.alternatives,
+        warnings,
+        rec.method,
+        rec.chi2,
+        fchi2,
+        alt,
+        achi2,
+    )
+    return new, reconstruct_curve(curves, new.rotations(), new.translations())
+
+
+def _rt(poses: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return rotations(poses), translations(poses)
+
+
+def _coarse(reconstruct_curve, o: CurveOptions):
+    """A cheaper variant of ``reconstruct_curve`` for the branch search (fewer samples, no
+    smoothing, fixed dummy end tangents so that the coplanarity check - irrelevant to
+    ``frame_residual`` - does not estimate them from every polyline) when it accepts those
+    keywords; otherwise the callable itself."""
+    try:
+        params = inspect.signature(reconstruct_curve).parameters
+    except (TypeError, ValueError):
+        return reconstruct_curve
+    if {"n_samples", "smooth", "tangents"} <= set(params):
+        dummy = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+        return functools.partial(
+            reconstruct_curve, n_samples=o.search_samples, smooth=False, tangents=dummy
+        )
+    return reconstruct_curve
+
+
+def refit_branches_with_curves(
+    rec: Reconstruction,
+    obs: Observations,
+    reconstruct_curve,
+    point_sigma: float = 1.0,
+    tangent_sigma_deg: float = 1.0,
+    curve=None,
+    o: CurveOptions | None = None,
+) -> tuple[Reconstruction, object]:
+    """Among about equally good maximum-likelihood optima, take the one the curve fits best.
+
+    First the other shapes that fit about equally well (``rec.alternatives``; they usually
+    differ from the answer in the pose branch of several frames at once): if one makes the
+    recovered curve reproject much better (total ``frame_residual`` lower by
+    ``o.refit_gain``), it is refitted and becomes the answer (the old answer becomes an
+    alternative).  Then joint refits with single frames started on the other sign of tau:
+
+    ``resolve_branches_with_curves`` switches frames with the shape held fixed.  With noisy end
+    points and tangents the maximum-likelihood fit can also have a nearby local optimum in which
+    one frame (often frame 0, whose pose fixes the coordinates of ``curve3d``) has the other sign
+    of tau and the shape and the other poses move a little: its chi2 is about as low, but with the
+    shape held fixed that branch fits badly, so it is not among the branch alternatives.  Here
+    every frame in turn is started on the other sign of tau (delta from (10) and (11) for the
+    current shape) and the shape and all poses are refitted jointly (one batched refinement);
+    refits whose chi2 is within ``o.refit_dchi2`` of the answer's are scored by the total
+    curve reprojection distance (sum of ``frame_residual``), and the best is kept if it lowers
+    that total by at least ``o.refit_gain``.  Up to ``o.refit_rounds`` rounds.
+
+    Only for "auto" reconstructions without outlier frames (otherwise returned unchanged).
+    ``curve``: the curve result for ``rec`` if already computed (saves one reconstruction).
+
+    Returns:
+        (reconstruction, curve result) - the input reconstruction if nothing changed.
+    """
+    o = o or CurveOptions()
+    res = curve
+    if res is None:
+        res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
+    if rec.method != "auto" or rec.chi2 is None or not np.all(rec.inliers):
+        return rec, res
+    ps, ts = float(point_sigma), math.radians(tangent_sigma_deg)
+    w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
+    search = _coarse(reconstruct_curve, o)
+    n = obs.n_frames
+
+    def total(poses: np.ndarray) -> float:
+        f = np.asarray(getattr(search(obs.curves, *_rt(poses)), "frame_residual", None), float)
+        return float(np.sum(f)) if f.shape == (n,) else np.inf
+
+    shape, poses = rec.shape, np.array(rec.poses)
+    best_total = total(poses)
+    fit = None
+    alternatives = list(rec.alternatives)
+    # The other shapes that fit about equally well (``rec.alternatives``, each with its own pose
+    # branches in many frames at once - out of reach of single-frame switches): the curve picks.
+    scored_alts = [(total(a.poses), j) for j, a in enumerate(alternatives)]
+    if scored_alts and min(scored_alts)[0] < (1.0 - o.refit_gain) * best_total:
+        j = min(scored_alts)[1]
+        trial = refine(obs, alternatives[j].shape, alternatives[j].poses, ps, ts, covariance=True)
+        trial_shape, trial_poses = normalise(trial.shape, trial.poses)
+        t = total(trial_poses)
+        if t < (1.0 - o.refit_gain) * best_total:
+            alternatives[j] = Alternative(rec.shape, rec.poses, float(rec.chi2), rec.std)
+            fit, shape, poses, best_total = trial, trial_shape, trial_poses, t
+    for _ in range(o.refit_rounds):
+        c, alpha, beta, phi = (float(v) for v in shape)
+        with np.errstate(all="ignore"):
+            cos_d, sin_d = frame_equations.pose_from_shape(
+                c, np.tan(alpha), np.tan(beta), phi, obs.cp, obs.dp, obs.ep, -np.sin(poses[:, 1])
+            )
+        delta = np.arctan2(np.broadcast_to(sin_d, (n,)), np.broadcast_to(cos_d, (n,)))
+        frames = np.flatnonzero(np.isfinite(delta))
+        if frames.size == 0:
+            break
+        starts = np.repeat(poses[None], frames.size, axis=0)
+        starts[np.arange(frames.size), frames, 0] = delta[frames]
+        starts[np.arange(frames.size), frames, 1] = -poses[frames, 1]
+        shapes = np.repeat(np.asarray(shape, float)[None], frames.size, axis=0)
+        g, p, _, chi2, _, _ = refine_batch(obs, shapes, starts, ps, ts, max_iter=60)
+        cands = [k for k in range(frames.size) if chi2[k] < rec.chi2 + o.refit_dchi2]
+        scored = [(total(p[k]), k) for k in cands]
+        if not scored:
+            break
+        t, k = min(scored)
+        if not t < (1.0 - o.refit_gain) * best_total:
+            break
+        trial = refine(obs, g[k], p[k], ps, ts, covariance=True)
+        trial_shape, trial_poses = normalise(trial.shape, trial.poses)
+        t = total(trial_poses)  # the full refinement may move on: check again
+        if not (t < (1.0 - o.refit_gain) * best_total and trial.chi2 < rec.chi2 + o.refit_dchi2):
+            break
+        fit, shape, poses, best_total = trial, trial_shape, trial_poses, t
+    if fit is None:
+        return rec, res
+    alt_poses, alt_chi2 = branch_alternatives(obs, shape, poses, w8)
+    std = fit.std if fit.std is not None and np.all(np.isfinite(fit.std)) else rec.std
+    warnings = list(rec.warnings) + [
+        "the curve chose between nearby maximum-likelihood optima (pose branches refitted "
+        f"jointly; chi2 {rec.chi2:.2f} -> {fit.chi2:.2f})"
+    ]
+    new = Reconstruction(
+        shape,
+        poses,
+        std,
+        rec.inliers,
+        alternatives,
+        warnings,
+        rec.method,
+        fit.chi2,
+        fit.frame_chi2,
+        alt_poses,
+        alt_chi2,
+    )
+    return new, reconstruct_curve(obs.curves, new.rotations(), new.translations())

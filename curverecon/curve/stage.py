@@ -1,0 +1,78 @@
+"""The curve stage: the whole 3-D curve from every frame's polyline, given the end-point answer.
+
+With polylines in every frame: where a frame fits two pose branches about equally well, the
+curve chooses (``curve.branches``); section 4 reconstructs the non-traceable points
+(``curve.section4``); then, for ``method="auto"`` with ``CurveOptions.bundle``, the curve
+bundle fits the poses and one 3-D curve to every polyline together and the shape comes from
+the fitted curve (``curve.bundle``).  ``curve3d`` is in frame 0's camera coordinates, A at z = 0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from curverecon.curve import section4
+from curverecon.curve.branches import refit_branches_with_curves, resolve_branches_with_curves
+from curverecon.curve.bundle import refine_reconstruction
+from curverecon.errors import CurveReconError
+from curverecon.model.observations import Observations
+from curverecon.model.reconstruction import Reconstruction
+from curverecon.options import ReconstructOptions
+
+
+def fit_curve(
+    rec: Reconstruction, obs: Observations, options: ReconstructOptions
+) -> Reconstruction:
+    """``rec`` with ``curve3d`` (and, with the bundle, the bundle's shape, poses and
+    ``curve_bundle`` summary); ``rec`` itself when the frames carry no polylines."""
+    if obs.curves is None:
+        return rec
+    o = options.curve
+    reconstruct_curve = section4.reconstruct_curve
+    bundle = o.bundle and rec.method == "auto"
+    warnings: list[str] = []
+    try:
+        if rec.branch_alternatives is not None:
+            # fixed-shape branch switches first, then the other equally good optima
+            # (alternative shapes, joint refits from the other sign of tau); each change is
+            # kept only if the recovered curve reprojects clearly better
+            rec, res = resolve_branches_with_curves(rec, obs.curves, reconstruct_curve, o)
+            rec, res = refit_branches_with_curves(
+                rec,
+                obs,
+                reconstruct_curve,
+                options.point_sigma,
+                options.tangent_sigma_deg,
+                curve=res,
+                o=o,
+            )
+        else:
+            res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
+    except CurveReconError as exc:
+        if not bundle:
+            raise
+        # e.g. a degenerate shape whose poses all look along one direction: the bundle
+        # starts from frame 0's polyline and searches every frame's pose again
+        res = None
+        warnings.append(f"section 4 failed on the end-point answer ({exc})")
+    if not bundle:
+        return replace(
+            rec,
+            curve3d=np.asarray(res.points, float),
+            warnings=list(rec.warnings) + list(res.warnings),
+        )
+    rec, curve3d, info = refine_reconstruction(
+        rec,
+        obs,
+        None if res is None else res.points,
+        use_given=obs.ends_given,
+        point_sigma=options.point_sigma,
+        tangent_sigma_deg=options.tangent_sigma_deg,
+        n_out=None if res is None else len(res.points),
+    )
+    return replace(rec, curve3d=curve3d, curve_bundle=info, warnings=list(rec.warnings) + warnings)
+
+
+__all__ = ["fit_curve"]

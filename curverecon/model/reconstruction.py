@@ -1,0 +1,201 @@
+"""The answer of a reconstruction: shape, poses, uncertainty, alternatives, the curve.
+
+Library units: lengths in input units, angles in radians; ``to_json_dict`` writes the
+``curverecon.reconstruction/1`` document (degrees; docs/file-formats.md).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from curverecon.generated import measurement_model
+from curverecon.model.observations import Observations, wrap_line_angle
+from curverecon.model.pose import rotations, translations
+
+
+@dataclass
+class Alternative:
+    """Another shape that fits the data about as well as the answer."""
+
+    shape: np.ndarray
+    poses: np.ndarray
+    chi2: float
+    std: np.ndarray | None = None
+
+
+@dataclass
+class Reconstruction:
+    """The answer.
+
+    Attributes:
+        shape: (4,) c (input units), alpha, beta, phi (radians), normalised.
+        poses: (N, 5) delta, tau, theta, tx, ty per frame (radians, input units).
+        std: (4,) standard deviations of c, alpha, beta, phi from the covariance, or None.
+        inliers: (N,) False for frames found not to fit (excluded from the shape estimate).
+        alternatives: other shapes fitting equally well (best first).
+        warnings: human-readable warnings (also printed by the command line).
+        method: "auto" or "linear".
+        chi2: sum of squared standardised residuals over the inlier frames (None for linear).
+        frame_chi2: (N,) per-frame chi2 (None for linear).
+        branch_alternatives: (N, 5) per frame the best pose on another branch of (10) (other
+            sign of tau or another delta) for the same shape, or None.
+        branch_alternative_chi2: (N,) its chi2 (inf if none).  Frames where it is within
+            ``ambiguous_dchi2`` of ``frame_chi2`` are ambiguous from the end points and tangents
+            alone (``ambiguous_frames``); a curve reconstruction may tell them apart.
+        estimator: "marginal", "ml" or "curve-bundle", the estimate the shape is (None for
+            linear); "ml" also where the marginal step does not apply (noise-free data, fewer
+            than 5 frames).
+        curve3d: (M, 3) the whole curve in frame 0's camera coordinates (A at z = 0), when the
+            frames carry polylines; None otherwise.
+        curve_bundle: the curve bundle's summary (the output's ``curve_bundle`` key), or None.
+        ambiguous_dchi2: a frame whose other branch fits within this chi2 of its pose is
+            ambiguous (``BranchOptions.ambiguous_dchi2``).
+    """
+
+    shape: np.ndarray
+    poses: np.ndarray
+    std: np.ndarray | None
+    inliers: np.ndarray
+    alternatives: list[Alternative] = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
+    method: str = "auto"
+    chi2: float | None = None
+    frame_chi2: np.ndarray | None = None
+    branch_alternatives: np.ndarray | None = None
+    branch_alternative_chi2: np.ndarray | None = None
+    estimator: str | None = None
+    curve3d: np.ndarray | None = None
+    curve_bundle: dict | None = None
+    ambiguous_dchi2: float = 4.0
+
+    @property
+    def c(self) -> float:
+        return float(self.shape[0])
+
+    @property
+    def alpha(self) -> float:
+        return float(self.shape[1])
+
+    @property
+    def beta(self) -> float:
+        return float(self.shape[2])
+
+    @property
+    def phi(self) -> float:
+        return float(self.shape[3])
+
+    def rotations(self) -> np.ndarray:
+        """(N, 3, 3) curve-to-camera rotations R_z(theta) R_y(tau) R_x(delta)."""
+        return rotations(self.poses)
+
+    def translations(self) -> np.ndarray:
+        """(N, 3) translations (tx, ty, 0): A at z = 0."""
+        return translations(self.poses)
+
+    def points_3d(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(A3, B3, tangent_A3, tangent_B3), each (N, 3), camera coordinates, A at z = 0."""
+        out = measurement_model.points_3d(*self.shape, *self.poses.T)
+        return tuple(np.asarray(v, float) for v in out)
+
+    def ambiguous_frames(self) -> list[int]:
+        """Frames whose pose another branch of (10) fits about as well (see the attributes)."""
+        if self.branch_alternative_chi2 is None or self.frame_chi2 is None:
+            return []
+        amb = self.branch_alternative_chi2 - self.frame_chi2 < self.ambiguous_dchi2
+        return [int(i) for i in np.flatnonzero(amb)]
+
+    def outlier_frames(self) -> list[int]:
+        return [int(i) for i in np.flatnonzero(~self.inliers)]
+
+    def to_json_dict(self) -> dict:
+        """The ``curverecon.reconstruction/1`` document (degrees; extra keys beyond the contract:
+        per-frame theta_deg, tx, ty, inlier, chi2; top-level method, std, chi2, outlier_frames,
+        alternatives, warnings; curve3d and curve_bundle when there are polylines)."""
+        a3, b3, ta3, tb3 = self.points_3d()
+        frames = []
+        for i in range(len(self.poses)):
+            d, t, th, tx, ty = self.poses[i]
+            frame = {
+                "delta_deg": math.degrees(d),
+                "tau_deg": math.degrees(t),
+                "A3": a3[i].tolist(),
+                "B3": b3[i].tolist(),
+                "tangent_A3": ta3[i].tolist(),
+                "tangent_B3": tb3[i].tolist(),
+                "theta_deg": math.degrees(th),
+                "inlier": bool(self.inliers[i]),
+            }
+            if self.frame_chi2 is not None:
+                frame["chi2"] = float(self.frame_chi2[i])
+            if self.branch_alternatives is not None:
+                ad, at = self.branch_alternatives[i, :2]
+                frame["branch_alternative"] = {
+                    "delta_deg": math.degrees(ad),
+                    "tau_deg": math.degrees(at),
+                    "chi2": float(self.branch_alternative_chi2[i]),
+                }
+            frames.append(frame)
+        out = {"format": "curverecon.reconstruction/1", **shape_dict(self.shape)}
+        out["frames"] = frames
+        out["method"] = self.method
+        out["estimator"] = self.estimator
+        out["std"] = None if self.std is None else shape_dict(self.std)
+        out["chi2"] = self.chi2
+        out["outlier_frames"] = self.outlier_frames()
+        out["ambiguous_frames"] = self.ambiguous_frames()
+        out["alternatives"] = [
+            {
+                **shape_dict(alt.shape),
+                "chi2": alt.chi2,
+                "std": None if alt.std is None else shape_dict(alt.std),
+            }
+            for alt in self.alternatives
+        ]
+        out["warnings"] = list(self.warnings)
+        if self.curve3d is not None:
+            out["curve3d"] = np.asarray(self.curve3d, float).tolist()
+        if self.curve_bundle is not None:
+            out["curve_bundle"] = self.curve_bundle
+        return out
+
+
+def alternatives_warning(
+    shape: np.ndarray, std: np.ndarray | None, alternatives: list[Alternative]
+) -> str:
+    """One line saying how many shapes fit about equally well and whether they really differ.
+
+    Alternatives within two standard deviations (of the best fit's covariance) in every parameter
+    are local optima of the same answer; farther ones mean the frames do not determine the shape.
+    """
+    n = len(alternatives) + 1
+    if std is not None and all(
+        np.all(np.abs(alt.shape - shape) <= 2.0 * std) for alt in alternatives
+    ):
+        return (
+            f"{n} local optima fit the data about equally well but agree within two standard "
+            "deviations; the best is returned, the others are listed in alternatives"
+        )
+    return (
+        f"{n} distinct shapes fit the data about equally well (these frames do not determine the "
+        "shape uniquely; more frames or more varied motion would); the best is returned, the "
+        "others are listed in alternatives"
+    )
+
+
+def shape_dict(shape: np.ndarray) -> dict:
+    c, a, b, p = (float(v) for v in shape)
+    return {
+        "c": c,
+        "alpha_deg": math.degrees(a),
+        "beta_deg": math.degrees(b),
+        "phi_deg": math.degrees(p),
+    }
+
+
+def angle_residuals_deg(rec: Reconstruction, obs: Observations) -> np.ndarray:
+    """(N, 2) tangent-angle residuals of a reconstruction (degrees), for diagnostics."""
+    pred = measurement_model.predict(*rec.shape, *rec.poses.T)
+    return np.degrees(wrap_line_angle(pred[:, 4:6] - obs.measurements()[:, 4:6]))

@@ -1,0 +1,195 @@
+"""Options of every stage, with their defaults (as PoseLib's ``RansacOptions`` / ``BundleOptions``).
+
+Every tuned number of the pipeline lives here, passed down from :func:`curverecon.reconstruct`
+(``ReconstructOptions``) to the stage that uses it.  Each default's comment says what it trades
+and what chose it.  "headline" is the bench cell of ``python -m bench.headline`` (1 px, 1 degree,
+20 frames, 200 scenes); "noise-free" the bench's 10,000 noise-free scenes of 4-6 frames;
+"robustness" its outlier-frame scenes; "scaling" its long sequences (bench/REPORT.md).
+
+Units: chi2 values are sums of squared standardised residuals (dimensionless); angles in
+radians unless a name says ``_deg``; lengths in input units (pixels).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass
+class SearchOptions:
+    """The global search over the shape (``robust/search.py``), which makes the hypotheses."""
+
+    candidates: int = 16
+    """Grid minima refined briefly with 12 or more frames.  More costs time about linearly.
+    The figure that chose 16 is not recorded; the headline cell (100 % success) runs on it."""
+
+    candidates_few: int = 48
+    """... with 5 to 11 frames, where the cost has more shallow minima (the 6-frame cell, 61 %
+    success, is where the search misses most)."""
+
+    candidates_minimal: int = 16
+    """... with 4 frames: every start fits exactly, the candidates are the exact shapes found."""
+
+    restarts: int = 32
+    """Random restarts per centre with 12 or more frames and a plausible chi2 (headline)."""
+
+    restarts_few: int = 96
+    """... with fewer than 12 frames (6- and 10-frame cells)."""
+
+    restarts_implausible: int = 96
+    """... when the best chi2 is implausibly high (outlier frames, a missed minimum) or nearly
+    but not exactly zero (``near_exact_chi2``; noise-free cells)."""
+
+    near_exact_chi2: float = 0.05
+    """chi2 per degree of freedom below which a fit that is not exact counts as nearly
+    noise-free (search harder; flip pairs and triples of frames).  Noise-free 6-frame rate."""
+
+    exact_cost: float = 1e-9
+    """A (robust) chi2 at or below this is an exact fit: nothing can beat it by the relative 1e-9
+    margin the searches require, so restarts and branch flips are skipped (time only)."""
+
+    exact_reduced_cost: float = 1e-20
+    """A pose-free cost at or below this counts as an exact fit in the exact stage."""
+
+    exact_stage_starts: int = 12
+    """Grid minima searched first for an exact fit (noise-free: saves the rest of the search)."""
+
+    exact_stage_min_frames: int = 5
+    """... from this many frames on (with 4 frames every start fits exactly)."""
+
+    screen_iterations: int = 15
+    """Gauss-Newton iterations that screen the random restarts of plausible noisy data; the
+    ``restart_finalists`` best are then refined to convergence (time per headline scene)."""
+
+    screen_ftol: float = 1e-6
+    """Relative predicted decrease at which a screening iteration counts as converged."""
+
+    restart_finalists: int = 8
+    """Screened restarts refined to convergence (headline: 0.143 s per reconstruction)."""
+
+    rescue_chi2: float = 9.0
+    """A frame whose chi2 is still above this after the branches of (10) is re-solved from a
+    grid of starts before it can be called an outlier (scaling: 12 -> 2 false outliers on the
+    4,642-frame scene)."""
+
+    rescue_deltas: int = 12
+    """Values of delta in that grid (every 30 degrees), each with both signs of tau."""
+
+    max_search_frames: int = 40
+    """The search runs on this many evenly spread frames; the candidates are refined on all
+    (its cost grows with the frame count; scaling)."""
+
+    medium_frames: int = 400
+    """Above this many frames the candidates are screened on this many spread frames first
+    (with the one-trial marginal line search, scaling's 10,000 frames: 24.1 s -> 9.0 s)."""
+
+    medium_keep_cost: float = 16.0
+    """... keeping those within this robust cost of the best (four times the alternatives'
+    window, ``BranchOptions.alternative_dchi2``)."""
+
+    linear_seed_gap: float = 1e-3
+    """The linearisation seeds the search (from 45 frames) only if its two smallest singular
+    values differ this much (nearly noise-free data; at realistic noise it is unusable)."""
+
+
+@dataclass
+class OutlierOptions:
+    """The outlier-frame test (``robust/outliers.py``)."""
+
+    false_alarm: float = 2e-4
+    """False-alarm probability per frame (chi2, one degree of freedom).  Lower flags fewer
+    outliers (robustness: 53.5 % of 10 % outliers flagged); higher flags good frames of long
+    sequences (scaling: 2 of 4,642 flagged, as 2e-4 predicts)."""
+
+    cauchy_k: float = 4.0
+    """Scale (standard deviations per frame) of the robust reweighting before the test."""
+
+    trim_steps: int = 2
+    """Concentration steps of the trimmed refits when the fit's chi2 is implausible (the
+    trimmed refits took robustness at 30 % outliers from 33 to 49 % success, commit 2a48dc8)."""
+
+    leverage_floor: float = 0.05
+    """Least 1 - leverage in the studentised chi2 (a frame that alone fixes a shape direction)."""
+
+
+@dataclass
+class BranchOptions:
+    """Pose branches of (10) and equally good optima (``robust/branches.py``, the pipeline)."""
+
+    ambiguous_dchi2: float = 4.0
+    """A frame whose other branch fits within this chi2 of its pose is reported ambiguous."""
+
+    flip_dchi2: float = 4.0
+    """Frames whose other branch fits within this chi2 (shape fixed) are tried on it."""
+
+    flip_max_frames: int = 12
+    """... only with at most this many inlier frames (with more, the others pin the shape)."""
+
+    flip_combo_max: int = 64
+    """Nearly noise-free fits: at most this many pairs and triples of frames switched together
+    (noise-free 5-6 frame rates)."""
+
+    alternative_dchi2: float = 4.0
+    """Shapes whose chi2 is within this of the best count as fitting equally well."""
+
+    mixture_dchi2: float = 40.0
+    """A frame's other branch joins the marginal likelihood's mixture if its chi2 is within
+    this many noise scales of the frame's fit (headline phi RMSE/CRLB 1.23 -> 1.12)."""
+
+
+@dataclass
+class CurveOptions:
+    """The curve stages (``curve/``): branch choice by the curve, section 4, the bundle."""
+
+    bundle: bool = True
+    """Fit the poses and one 3-D curve to every frame's polyline (``curve/bundle.py``)."""
+
+    flip_dchi2: float = 4.0
+    """Frames whose other branch fits within this chi2 of their pose are tried on it by the
+    curve; farther branches are excluded by the end points and tangents alone."""
+
+    flip_gain: float = 0.03
+    """A branch switch is kept only if it lowers the total curve reprojection by this fraction."""
+
+    flip_max_switches: int = 6
+    """At most this many single-frame switches (greedy rounds) per reconstruction."""
+
+    search_samples: int = 60
+    """Curve samples per trial reconstruction in the branch search (time only)."""
+
+    refit_dchi2: float = 4.0
+    """A joint refit with one frame on its mirrored branch is a candidate if its chi2 is within
+    this of the answer's."""
+
+    refit_gain: float = 0.2
+    """... and kept only if it lowers the total curve reprojection by this fraction (a larger
+    margin than ``flip_gain``: it moves the maximum-likelihood answer itself)."""
+
+    refit_rounds: int = 1
+    """At most this many accepted refits (a second round changed nothing; costs a batch)."""
+
+
+METHODS = ("auto", "linear")
+ESTIMATORS = ("marginal", "ml")
+
+
+@dataclass
+class ReconstructOptions:
+    """Everything :func:`curverecon.reconstruct` can be told.
+
+    Attributes:
+        method: "auto" (search, refinement, outliers, curve) or "linear" (the paper's
+            linearisation alone; at least ``solvers.linear.min_frames()`` frames).
+        estimator: "marginal" (poses integrated out; less biased at realistic noise) or "ml".
+        point_sigma: image point noise (input units).
+        tangent_sigma_deg: tangent direction noise (degrees).
+    """
+
+    method: str = "auto"
+    estimator: str = "marginal"
+    point_sigma: float = 1.0
+    tangent_sigma_deg: float = 1.0
+    search: SearchOptions = field(default_factory=SearchOptions)
+    outliers: OutlierOptions = field(default_factory=OutlierOptions)
+    branches: BranchOptions = field(default_factory=BranchOptions)
+    curve: CurveOptions = field(default_factory=CurveOptions)

@@ -1,0 +1,170 @@
+"""Outlier frames: which frames do not fit the best hypothesis, and the fit without them.
+
+The test is on each frame's studentised chi2 (chi2 / (1 - leverage), ``refine.ml.frame_leverages``)
+against the chi2(1) quantile of ``OutlierOptions.false_alarm``, scaled up if the noise looks
+larger than stated (median-scaled).  Before it: a frame-level Cauchy reweighting so that outliers
+stand out, and, when the fit's chi2 is implausible, trimmed refits (least trimmed squares'
+concentration steps) so that outlier frames cannot mask themselves.  Then the worst frame above
+the threshold is dropped and the fit redone until none is left; a frame is first re-solved
+from a grid of pose starts (a good frame left on a wrong pose is not an outlier).
+
+Tuned numbers: :class:`curverecon.options.OutlierOptions`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.stats import chi2 as chi2_dist
+
+from curverecon.errors import CurveReconError
+from curverecon.model.observations import Observations
+from curverecon.options import OutlierOptions, SearchOptions
+from curverecon.refine.ml import (
+    RefineResult,
+    frame_leverages,
+    refine,
+    standardised_residuals,
+)
+from curverecon.robust.search import robust_start, switch_branches
+
+MEDIAN_CHI2_1 = 0.4549364231195724
+"""Median of chi2 with one degree of freedom."""
+
+
+def find_outlier_frames(
+    obs: Observations,
+    fit: RefineResult,
+    ps: float,
+    ts: float,
+    o: OutlierOptions | None = None,
+    search: SearchOptions | None = None,
+) -> tuple[np.ndarray, RefineResult]:
+    """(N,) inlier mask and the maximum-likelihood fit on the inliers (no covariance).
+
+    Args:
+        obs: all frames; fit: the best hypothesis refined on all frames.
+        ps, ts: point noise (input units) and tangent noise (radians).
+    At most (N - 5) // 2 frames are flagged.
+    """
+    o = o or OutlierOptions()
+    search = search or SearchOptions()
+    n = obs.n_frames
+    w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
+    # Robust fit (frame-level Cauchy reweighting) so that outlier frames stand out; with an
+    # implausible chi2, trimmed refits; then the outlier test on the unweighted, studentised
+    # per-frame chi2: drop the worst frame above the threshold, refit, repeat.
+    start_chi2 = fit.chi2
+    st = studentised(obs, fit, w8, o)
+    robust_rounds = 3 if np.max(st) > threshold(st, o) else 0
+    for _ in range(robust_rounds):
+        scale2 = o.cauchy_k**2 * max(1.0, float(np.median(st)) / MEDIAN_CHI2_1)
+        weights = 1.0 / (1.0 + st / scale2)
+        poses_sw = switch_branches(obs, fit.shape, fit.poses, w8, rescue=True, options=search)
+        fit = refine(obs, fit.shape, poses_sw, ps, ts, covariance=False, frame_weights=weights)
+        st = studentised(obs, fit, w8, o)
+    inliers = np.ones(n, dtype=bool)
+    max_out = max(0, (n - 5) // 2)
+    dof = max(n - 4, 1)
+    if max_out > 0 and start_chi2 > dof + 5.0 * math.sqrt(2.0 * dof) + 10.0:
+        inliers, fit = trimmed_inliers(obs, fit, ps, ts, w8, max_out, o, search)
+    rescued = 0
+    while True:
+        idx = np.flatnonzero(inliers)
+        st = studentised(obs.subset(inliers), fit, w8, o)
+        j = int(np.argmax(st))
+        thr = threshold(st, o)
+        if st[j] <= thr or (~inliers).sum() >= max_out:
+            break
+        # a frame on a wrong pose (a minimum of its own that no branch of (10) led out of)
+        # is not an outlier: its pose re-solved from a grid of starts first, and kept if
+        # that brings it under the threshold (``search.switch_branches(..., rescue=True)``)
+        one = obs.subset(np.array([idx[j]]))
+        pj = switch_branches(one, fit.shape, fit.poses[j : j + 1], w8, rescue=True, options=search)
+        if rescued < n and not np.array_equal(pj, fit.poses[j : j + 1]):
+            rj = standardised_residuals(fit.shape, pj, one.measurements(), w8)
+            chi2_j = float(np.sum(rj * rj))
+            if chi2_j < fit.frame_chi2[j] and chi2_j <= thr:
+                poses = np.array(fit.poses)
+                poses[j] = pj[0]
+                fit = refine(obs.subset(inliers), fit.shape, poses, ps, ts, covariance=False)
+                rescued += 1
+                continue
+        inliers[idx[j]] = False
+        keep = np.arange(idx.size) != j
+        fit = refine(obs.subset(inliers), fit.shape, fit.poses[keep], ps, ts, covariance=False)
+    return inliers, fit
+
+
+def trimmed_inliers(
+    obs: Observations,
+    fit: RefineResult,
+    ps: float,
+    ts: float,
+    w8: np.ndarray,
+    max_out: int,
+    o: OutlierOptions,
+    search: SearchOptions,
+) -> tuple[np.ndarray, RefineResult]:
+    """Outlier frames by trimmed refits (least trimmed squares' concentration steps).
+
+    When the best fit's chi2 is implausible, outlier frames have pulled the shape, every frame's
+    misfit has grown, and the median-scaled threshold hides them (masking).  So: refit the shape
+    on all but the ``max_out`` frames of largest studentised chi2; test every frame against that
+    fit, the left-out ones by their deleted residual (their pose fitted to the trimmed shape,
+    chi2 / (1 + h), h = tr(S_kept^-1 S_i)) and the others by chi2 / (1 - l); flag those above
+    the threshold; repeat from the new shape (``o.trim_steps``).  Returns the inliers (at least
+    N - ``max_out``) and the fit on them; all frames and ``fit`` itself when none is flagged.
+    """
+    n = obs.n_frames
+    meas = obs.measurements()
+    shape, poses = fit.shape, np.array(fit.poses)
+    flagged = np.zeros(n, bool)
+    base = float(chi2_dist.isf(o.false_alarm, 1))
+    for step in range(o.trim_steps):
+        trial = refine(obs, shape, poses, ps, ts, max_iter=0, covariance=False)
+        st = studentised(obs, trial, w8, o)
+        keep = np.zeros(n, bool)
+        keep[np.argsort(st, kind="stable")[: n - max_out]] = True
+        tf = refine(obs.subset(keep), shape, poses[keep], ps, ts, covariance=False)
+        if step == 0:  # the kept frames searched again: the outliers may have moved the basin
+            try:
+                cands = robust_start(obs.subset(keep), ps, ts, options=search)
+            except CurveReconError:  # e.g. the kept frames alone are degenerate: keep tf
+                cands = []
+            if cands and cands[0].result.chi2 < tf.chi2:
+                tf = cands[0].result
+        poses[keep] = tf.poses
+        poses = switch_branches(obs, tf.shape, poses, w8, options=search)
+        poses[keep] = tf.poses
+        r = standardised_residuals(tf.shape, poses, meas, w8)
+        chi2 = np.sum(r * r, axis=1)
+        lev = frame_leverages(tf.shape, poses, meas, w8, among=keep)
+        t2 = np.where(keep, chi2 / np.maximum(1.0 - lev, o.leverage_floor), chi2 / (1.0 + lev))
+        scale = max(1.0, float(np.median(t2)) / MEDIAN_CHI2_1)
+        over = t2 > base * scale
+        worst = np.argsort(-t2, kind="stable")[:max_out]
+        flagged = np.zeros(n, bool)
+        flagged[worst[over[worst]]] = True
+        shape = tf.shape
+    if not flagged.any():  # nothing found: the fit stays as it was
+        return np.ones(n, bool), fit
+    inl = ~flagged
+    return inl, refine(obs.subset(inl), shape, poses[inl], ps, ts, covariance=False)
+
+
+def studentised(
+    obs: Observations, fit: RefineResult, w8: np.ndarray, o: OutlierOptions
+) -> np.ndarray:
+    """(N,) per-frame chi2 / (1 - leverage) (``refine.frame_leverages``): what the outlier test
+    compares with its threshold, so that a frame that pins the shape cannot hide its misfit."""
+    lev = frame_leverages(fit.shape, fit.poses, obs.measurements(), w8)
+    return fit.frame_chi2 / np.maximum(1.0 - lev, o.leverage_floor)
+
+
+def threshold(frame_chi2: np.ndarray, o: OutlierOptions) -> float:
+    """Per-frame chi2 threshold: chi2(1) quantile, scaled up if the noise looks larger."""
+    base = float(chi2_dist.isf(o.false_alarm, 1))
+    scale = max(1.0, float(np.median(frame_chi2)) / MEDIAN_CHI2_1)
+    return base * scale
