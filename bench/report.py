@@ -517,7 +517,7 @@ def _markdown(cfg: Config, sections: dict[str, Any], command: str, started: str)
         "determined and marked so.  The refinement from the truth uses the true shape and poses "
         "as its start (the best a local method can do); the default pipeline never sees the truth. "
         "The default pipeline's answer is the marginal-likelihood estimate (every frame's pose "
-        "integrated out, `curverecon/marginal.py`); the refinement from the truth is maximum "
+        "integrated out, `refine/marginal.py`); the refinement from the truth is maximum "
         "likelihood, and in a few cells 'marginal likelihood from the truth' takes that fit on to "
         "the marginal estimate, so the two estimators compare on the same scenes and start. "
         "Maximum likelihood has five pose parameters per frame for six measurements; at these "

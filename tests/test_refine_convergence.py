@@ -10,7 +10,7 @@ from curverecon.generated import measurement_model
 from test_conventions import canonical_parameters
 
 from bench.common import make, true_poses
-from curverecon.refine.ml import _curvature, _lin_batch, _weights, refine, standardised_residuals
+from curverecon.refine.ml import _lin_batch, _weights, curvature, refine, standardised_residuals
 from curverecon.simulate import make_scene
 
 TS = math.radians(1.0)
@@ -94,7 +94,7 @@ def test_noise_free_data_converge_to_the_truth_exactly(n_frames, seed):
 
 
 def test_second_order_term_matches_finite_differences():
-    """_curvature is sum_k r_k d2 r_k: J^T J + it is the Hessian of chi2 / 2."""
+    """curvature is sum_k r_k d2 r_k: J^T J + it is the Hessian of chi2 / 2."""
     sc = make_scene(np.random.default_rng(8), 3, 2.0, 3.0)
     shape, poses = canonical_parameters(sc.truth)
     meas = sc.observations.measurements()
@@ -122,7 +122,7 @@ def test_second_order_term_matches_finite_differences():
         hess[:, j] = (jp.T @ rp.ravel() - jm.T @ rm.ravel()) / (2 * e[j])
     hess = 0.5 * (hess + hess.T)
     model = jac.T @ jac
-    s = _curvature(x[None, :4], x[4:].reshape(1, n, 5), r, w8)[0]
+    s = curvature(x[None, :4], x[4:].reshape(1, n, 5), r, w8)[0]
     for i in range(n):
         idx = np.r_[0:4, 4 + 5 * i : 9 + 5 * i]
         model[np.ix_(idx, idx)] += s[i]
@@ -146,7 +146,7 @@ def test_frame_search_finds_lower_minima(idx):
 
 def test_normal_blocks_are_those_of_the_plain_formulation():
     """The fused blocks of the iteration (one J^T J product per frame, the second-order term
-    added entry by entry) equal, to the bit, the separate products plus :func:`_curvature`."""
+    added entry by entry) equal, to the bit, the separate products plus :func:`curvature`."""
     from curverecon.refine.ml import _lin_aug, _normal_blocks
 
     obs, shape, poses = _headline(9)
@@ -164,7 +164,7 @@ def test_normal_blocks_are_those_of_the_plain_formulation():
             u0, v0, w0 = np.sum(jgt @ jg, axis=1), jlt @ jl, jgt @ jl
             np.testing.assert_array_equal(dv, np.einsum("knii->kni", v0))
             np.testing.assert_array_equal(du, np.einsum("kii->ki", u0))
-            s = _curvature(g, p, r, w8)
+            s = curvature(g, p, r, w8)
             s[~newton] = 0.0
             v0 += s[..., 4:, 4:]
             w0 += s[..., :4, 4:]

@@ -48,7 +48,7 @@ but for the volume terms (``_gradient``):
     dF/dg = sum_i [ dchi2_i/dg / kappa + dL_i/dg + dL_i/dp_i dp_i/dg ],   L_i = volume term,
 
 chi2's own pose derivative vanishing at the best pose; dp_i/dg = -H_pp^-1 H_pg from the
-frame's full Hessian of chi2_i / 2 over shape and pose (J^T J plus ``refine._curvature``, the
+frame's full Hessian of chi2_i / 2 over shape and pose (J^T J plus ``refine.curvature``, the
 second-order term; it matches differences of re-solved poses, where Gauss-Newton's -V^-1 W^T is
 off by tens of percent on frames seen near broadside).  L's total derivative along each axis
 is a central difference with the poses moved along dp/dg, not re-solved (their error is of
@@ -81,7 +81,7 @@ import numpy as np
 
 from curverecon.generated import measurement_model
 from curverecon.model.observations import wrap_angle, wrap_line_angle
-from curverecon.refine.ml import _curvature, _split, schur_information
+from curverecon.refine.ml import curvature, schur_information, split_params
 
 VOLUME_STEP = 1e-3
 """Central-difference step of the volume terms' gradient, in standard deviations of the shape."""
@@ -160,7 +160,7 @@ def _positive_definite(m: np.ndarray) -> np.ndarray:
 
 def _residuals(g: np.ndarray, p: np.ndarray, meas: np.ndarray, w8: np.ndarray) -> np.ndarray:
     """(K, N, 6) standardised residuals for shapes (K, 4) and poses (K, N, 5)."""
-    return _standardise(measurement_model.predict(*_split(g, p)), meas, w8)
+    return _standardise(measurement_model.predict(*split_params(g, p)), meas, w8)
 
 
 def _standardise(pred: np.ndarray, meas: np.ndarray, w8: np.ndarray) -> np.ndarray:
@@ -175,7 +175,7 @@ def _linearise(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Standardised residuals (K, N, 6) and Jacobians over shape (K, N, 6, 4) and pose
     (K, N, 6, 5) for shapes (K, 4) and poses (K, N, 5)."""
-    pred, jg, jl = measurement_model.predict_with_jacobians(*_split(g, p))
+    pred, jg, jl = measurement_model.predict_with_jacobians(*split_params(g, p))
     return _standardise(pred, meas, w8), jg * w8[:, None], jl * w8[:, None]
 
 
@@ -183,7 +183,7 @@ def _solve(
     g: np.ndarray, p: np.ndarray, meas: np.ndarray, w8: np.ndarray, n_iter: int, tol: float
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """:func:`solve_poses`, returning as well the shape Jacobians (K, N, 6, 4) and the
-    second-order term (``_curvature``, (K, N, 9, 9)) at the poses found (computed once there:
+    second-order term (``curvature``, (K, N, 9, 9)) at the poses found (computed once there:
     the volume terms and the gradient use it too)."""
     r, jg, jl = _linearise(g, p, meas, w8)
     f = np.sum(r * r, axis=-1)
@@ -196,9 +196,9 @@ def _solve(
         v = np.einsum("...ki,...kj->...ij", jl, jl)
         v = v + 1e-12 * np.trace(v, axis1=-2, axis2=-1)[..., None, None] * eye5
         # Newton where the full Hessian (with the residuals' second derivatives, refine's
-        # analytic ``_curvature``) is positive definite, Gauss-Newton elsewhere: near the fold
+        # analytic ``curvature``) is positive definite, Gauss-Newton elsewhere: near the fold
         # tau = 0 Gauss-Newton alone converges slowly, and F's volume term is sensitive there
-        curv = _curvature(g, p, r, w8)
+        curv = curvature(g, p, r, w8)
         hess = v + curv[..., 4:, 4:]
         floor = 1e-9 * np.trace(v, axis1=-2, axis2=-1)  # least eigenvalue for Newton
         newton = _positive_definite(hess - floor[..., None, None] * eye5)
@@ -228,7 +228,7 @@ def _solve(
         if not active.any():
             break
     r, jg, jl = _linearise(g, p, meas, w8)
-    return p, r, jg, jl, _curvature(g, p, r, w8)
+    return p, r, jg, jl, curvature(g, p, r, w8)
 
 
 def solve_poses(
@@ -259,12 +259,12 @@ def volume_terms(
     """log det H - 2 log|cos tau| of every frame, (K, N): Laplace volume and Haar prior.
 
     H is the Hessian of the frame's chi2 / 2 over its pose, J^T J + sum_k r_k d2 r_k (the
-    second-order part from ``refine._curvature``), or J^T J alone where H is not positive
+    second-order part from ``refine.curvature``), or J^T J alone where H is not positive
     definite.  (With J^T J alone the estimate of c over-corrects: mean error -0.7 of its bound
     against -0.3 with H, on the bench's 1 px / 1 deg, 20-frame scenes.)  Shapes (K, 4), poses
     (K, N, 5), standardised residuals (K, N, 6) and pose Jacobians (K, N, 6, 5).
     """
-    return _volume(p, jl, _curvature(g, p, r, w8))
+    return _volume(p, jl, curvature(g, p, r, w8))
 
 
 def _volume(p: np.ndarray, jl: np.ndarray, curv: np.ndarray) -> np.ndarray:
@@ -319,7 +319,7 @@ def _gradient(
     At one shape g (4,) with every frame's best pose p (N, 5) and ``lin`` = (residuals (N, 6),
     shape Jacobians (N, 6, 4), pose Jacobians (N, 6, 5), second-order term (N, 9, 9)) there.
     The pose follows the shape: dp/dg = -H_pp^-1 H_pg, H the frame's full Hessian of chi2 / 2
-    over (shape, pose), J^T J plus the second-order term (``_curvature``: exact, unlike
+    over (shape, pose), J^T J plus the second-order term (``curvature``: exact, unlike
     Gauss-Newton's -V^-1 W^T, which is off by tens of percent on frames seen near broadside).
     Then
       - chi2 part: dchi2/dp = 0 at the best pose, so d(chi2 / kappa) = 2 J_g^T r / kappa;

@@ -24,7 +24,7 @@ same kernels: the results are identical to the bit (tests/test_refine_convergenc
 Two phases per start.  Far from a minimum the model is Gauss-Newton (convex; its short steps
 keep the start's basin, as plain LM always did).  Once an accepted Gauss-Newton step predicts a
 decrease below ``NEWTON_SWITCH`` times chi2 the model becomes Newton's: the blocks get the
-second-order term sum_k r_k d2 r_k (``_curvature``, analytic: B' = A' + c cos(tau) (cos theta,
+second-order term sum_k r_k d2 r_k (``curvature``, analytic: B' = A' + c cos(tau) (cos theta,
 sin theta) and the two projected tangent angles).  Gauss-Newton alone crawls here: frames with
 c' close to c sit at the fold tau = 0 of c cos(tau), where that term dwarfs the Gauss-Newton term
 in tau, so Gauss-Newton overshoots, zig-zags and creeps along the curved valley (c against
@@ -331,7 +331,7 @@ def schur_covariance(jg: np.ndarray, jl: np.ndarray) -> np.ndarray | None:
         return None
 
 
-def _split(g: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
+def split_params(g: np.ndarray, p: np.ndarray) -> list[np.ndarray]:
     """Arguments of the generated functions for batched shapes (K, 4) and poses (K, N, 5)."""
     return [g[:, i : i + 1] for i in range(4)] + [p[..., i] for i in range(5)]
 
@@ -354,7 +354,7 @@ def _lin_aug(
     Jacobian columns: d/d(delta, tau, theta, tx, ty), then d/d(c, alpha, beta, phi) (the pose
     first).  Residuals: prediction - observation, angles wrapped, times ``w8``.
     """
-    pred, jg, jl = measurement_model.predict_with_jacobians(*_split(g, p))
+    pred, jg, jl = measurement_model.predict_with_jacobians(*split_params(g, p))
     r = pred - meas
     # wrap_line_angle's operations, inlined with fewer temporaries (same values)
     y = np.mod(r[..., 4:6] + np.pi / 2, np.pi)
@@ -376,7 +376,7 @@ def _lin_batch(g, p, meas, w8):
 
 
 def _curvature_map() -> np.ndarray:
-    """(17, 81) map of the terms of :func:`_curvature` onto a flattened symmetric 9x9 block."""
+    """(17, 81) map of the terms of :func:`curvature` onto a flattened symmetric 9x9 block."""
     # parameters: c 0, alpha 1, beta 2, phi 3, delta 4, tau 5, theta 6, tx 7, ty 8
     pairs = (
         ((0, 5),),  # B': c-tau
@@ -502,10 +502,10 @@ def _split_view(terms: np.ndarray) -> np.ndarray:
 
 
 def _curvature_terms(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray) -> np.ndarray:
-    """(K, N, 20) the distinct terms of :func:`_curvature` (rows of :func:`_curvature_map`).
+    """(K, N, 20) the distinct terms of :func:`curvature` (rows of :func:`_curvature_map`).
 
     Columns 0-16 as in :func:`_curvature_map`; 17-19 the sums of the entries that take several
-    terms, in :func:`_curvature`'s order: delta-tau t7 + t13, delta-delta t10 + t16, tau-tau
+    terms, in :func:`curvature`'s order: delta-tau t7 + t13, delta-delta t10 + t16, tau-tau
     (t2 + t5) + t11.
     """
     c = g[:, 0, None]
@@ -540,7 +540,7 @@ def _curvature_terms(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray
     return terms
 
 
-def _curvature(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray) -> np.ndarray:
+def curvature(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray) -> np.ndarray:
     """Second-order term sum_k r_k d2 r_k of the residuals of every frame, (K, N, 9, 9).
 
     Over (c, alpha, beta, phi, delta, tau, theta, tx, ty).  Gauss-Newton drops it; here it is
@@ -560,7 +560,7 @@ def _curvature(g: np.ndarray, p: np.ndarray, r: np.ndarray, w8: np.ndarray) -> n
 
 # Where the refinement adds the second-order term: the used blocks V (pose x pose) and W (shape
 # x pose) of each frame's 9x9 block in the pose-first order (flat positions), and U summed over
-# the frames; the values are those of :func:`_curvature` (columns of :func:`_curvature_terms`).
+# the frames; the values are those of :func:`curvature` (columns of :func:`_curvature_terms`).
 _CURVATURE_VW = (
     np.array([10, 20, 11, 19, 1, 9, 0, 46, 47, 64, 73, 63, 72, 55, 54]),
     np.array([19, 3, 4, 4, 17, 17, 18, 0, 1, 6, 7, 9, 10, 12, 15]),
@@ -576,9 +576,9 @@ def _add_curvature(
 ) -> None:
     """Add the second-order term to the blocks h (K, N, 9, 9) (V, W) and u (K, 4, 4), in place.
 
-    Only its ~20 non-zero entries (of 81 per frame, :func:`_curvature`) are gathered from the
+    Only its ~20 non-zero entries (of 81 per frame, :func:`curvature`) are gathered from the
     terms and added, with one indexed addition for the frames' blocks and one for U; the values
-    and the order of every sum are those of adding :func:`_curvature` (bit-identical).
+    and the order of every sum are those of adding :func:`curvature` (bit-identical).
     """
     terms = _curvature_terms(g, p, r, w8)
     k, n = terms.shape[:2]
