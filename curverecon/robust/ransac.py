@@ -1,0 +1,126 @@
+"""A generic LO-RANSAC loop (as PoseLib's ``robust/ransac_impl.h`` structures it).
+
+An estimator draws a minimal sample and returns every model it determines
+(``generate_models``), scores a model on all the data (``score_model``: a robust cost, lower is
+better, and the number of inliers), and polishes a model on its inliers (``refine_model``, the
+local optimisation).  The loop keeps the best model; whenever a sample improves on it, the new
+best is refined at once (LO) and re-scored.  It stops adaptively once it has drawn k samples in
+all, where k is the number that draws at least one all-inlier sample with probability
+``success_prob`` at the best model's inlier ratio (times ``dyn_num_trials_mult``), between
+``min_iterations`` and ``max_iterations``.
+
+The loop knows nothing about curves (tests/test_ransac.py runs it on a line-fitting
+estimator); the curve's estimator draws four-frame samples for the minimal solver.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Generic, Protocol, TypeVar
+
+import numpy as np
+
+Model = TypeVar("Model")
+
+
+class Estimator(Protocol[Model]):
+    """What the loop needs of an estimator (PoseLib's calling convention)."""
+
+    sample_size: int
+    """Number of data items in a minimal sample."""
+
+    num_data: int
+    """Number of data items."""
+
+    def generate_models(self, sample: np.ndarray) -> list[Model]:
+        """Every model the minimal sample (indices into the data) determines."""
+        ...
+
+    def score_model(self, model: Model) -> tuple[float, int]:
+        """(robust cost on all the data, lower is better; number of inliers)."""
+        ...
+
+    def refine_model(self, model: Model) -> Model:
+        """The model polished on its inliers (local optimisation)."""
+        ...
+
+
+@dataclass
+class RansacOptions:
+    """Options of :func:`lo_ransac` (defaults as PoseLib's ``RansacOptions`` where they apply).
+
+    Attributes:
+        max_iterations: hard cap on samples (a cap on time with few inliers).
+        min_iterations: samples drawn at least, whatever the inlier ratio (guards against an
+            early lucky but wrong best model).
+        success_prob: probability that some sample was all inliers when the loop stops.
+        dyn_num_trials_mult: safety factor on the adaptive number of samples.
+        seed: the sampler's seed (same input, same output).
+    """
+
+    max_iterations: int = 1000
+    min_iterations: int = 20
+    success_prob: float = 0.9999
+    dyn_num_trials_mult: float = 3.0
+    seed: int = 0
+
+
+@dataclass
+class RansacStats(Generic[Model]):
+    """What :func:`lo_ransac` did: samples drawn, models scored, refinements, best inliers."""
+
+    iterations: int = 0
+    models: int = 0
+    refinements: int = 0
+    num_inliers: int = 0
+    inlier_ratio: float = 0.0
+    cost: float = math.inf
+    history: list[float] = field(default_factory=list)
+
+
+def required_iterations(inlier_ratio: float, sample_size: int, o: RansacOptions) -> int:
+    """Samples needed to draw one all-inlier sample with probability ``o.success_prob``."""
+    if inlier_ratio >= 1.0:
+        return o.min_iterations
+    p_good = inlier_ratio**sample_size
+    if p_good <= 0.0:
+        return o.max_iterations
+    k = math.log(1.0 - o.success_prob) / math.log1p(-p_good)
+    k = int(math.ceil(o.dyn_num_trials_mult * k))
+    return int(min(max(k, o.min_iterations), o.max_iterations))
+
+
+def lo_ransac(
+    estimator: Estimator[Model], options: RansacOptions | None = None
+) -> tuple[Model | None, RansacStats]:
+    """The best model (refined) and the loop's statistics; None if no sample gave a model."""
+    o = options or RansacOptions()
+    rng = np.random.default_rng(o.seed)
+    stats: RansacStats = RansacStats()
+    best: Model | None = None
+    n, m = estimator.num_data, estimator.sample_size
+    if n < m:
+        return None, stats
+    limit = o.max_iterations
+    while stats.iterations < limit:
+        stats.iterations += 1
+        sample = np.sort(rng.choice(n, size=m, replace=False))
+        improved = False
+        for model in estimator.generate_models(sample):
+            stats.models += 1
+            cost, inl = estimator.score_model(model)
+            if cost < stats.cost:
+                best, stats.cost, stats.num_inliers = model, cost, inl
+                improved = True
+        if improved and best is not None:
+            # local optimisation of the new best, kept if it scores better
+            stats.refinements += 1
+            refined = estimator.refine_model(best)
+            cost, inl = estimator.score_model(refined)
+            if cost < stats.cost:
+                best, stats.cost, stats.num_inliers = refined, cost, inl
+            stats.inlier_ratio = stats.num_inliers / n
+            limit = required_iterations(stats.inlier_ratio, m, o)
+        stats.history.append(stats.cost)
+    return best, stats

@@ -1,0 +1,95 @@
+"""The generic LO-RANSAC loop on an estimator it knows nothing special about: a 2-D line fitted
+to points with gross outliers (the answer checked against the line the inliers were drawn on)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from curverecon.robust.ransac import RansacOptions, lo_ransac, required_iterations
+
+
+class LineEstimator:
+    """Lines n . x = d (|n| = 1) through two points; truncated squared distance as the cost."""
+
+    sample_size = 2
+
+    def __init__(self, points: np.ndarray, threshold: float) -> None:
+        self.points = points
+        self.num_data = len(points)
+        self.threshold = threshold
+
+    def generate_models(self, sample):
+        p, q = self.points[sample]
+        t = q - p
+        if np.hypot(*t) == 0:
+            return []
+        n = np.array([-t[1], t[0]]) / np.hypot(*t)
+        return [(n, float(n @ p))]
+
+    def _dist(self, model):
+        n, d = model
+        return np.abs(self.points @ n - d)
+
+    def score_model(self, model):
+        r = self._dist(model)
+        return float(np.sum(np.minimum(r, self.threshold) ** 2)), int(np.sum(r < self.threshold))
+
+    def refine_model(self, model):
+        inl = self.points[self._dist(model) < self.threshold]
+        c = inl.mean(axis=0)
+        _, _, vt = np.linalg.svd(inl - c)
+        n = vt[-1]
+        return (n, float(n @ c))
+
+
+def _scene(seed: int, n: int, outlier_ratio: float):
+    rng = np.random.default_rng(seed)
+    angle = rng.uniform(0, np.pi)
+    n_true = np.array([np.cos(angle), np.sin(angle)])
+    d_true = rng.uniform(-5, 5)
+    t = rng.uniform(-50, 50, n)
+    pts = d_true * n_true + t[:, None] * np.array([-n_true[1], n_true[0]])
+    pts += rng.normal(0, 0.1, pts.shape)
+    out = rng.random(n) < outlier_ratio
+    pts[out] = rng.uniform(-60, 60, (out.sum(), 2))
+    return pts, n_true, d_true, out
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_finds_the_line_among_half_outliers(seed):
+    pts, n_true, d_true, out = _scene(seed, 200, 0.5)
+    model, stats = lo_ransac(LineEstimator(pts, 0.5), RansacOptions(seed=seed))
+    n, d = model
+    sign = np.sign(n @ n_true)
+    assert math.degrees(math.acos(min(1.0, abs(n @ n_true)))) < 0.2
+    assert abs(sign * d - d_true) < 0.05
+    assert stats.num_inliers >= 0.95 * np.sum(~out)
+    assert stats.refinements >= 1 and stats.iterations < RansacOptions().max_iterations
+
+
+def test_adaptive_stopping_draws_fewer_samples_with_more_inliers():
+    few = lo_ransac(LineEstimator(_scene(4, 200, 0.05)[0], 0.5))[1]
+    many = lo_ransac(LineEstimator(_scene(4, 200, 0.6)[0], 0.5))[1]
+    assert few.iterations < many.iterations
+    assert few.iterations == required_iterations(few.inlier_ratio, 2, RansacOptions())
+
+
+def test_same_input_same_output_and_too_little_data():
+    pts = _scene(5, 100, 0.3)[0]
+    a = lo_ransac(LineEstimator(pts, 0.5))
+    b = lo_ransac(LineEstimator(pts, 0.5))
+    assert np.array_equal(a[0][0], b[0][0]) and a[1].history == b[1].history
+    assert lo_ransac(LineEstimator(pts[:1], 0.5)) == (
+        None,
+        lo_ransac(LineEstimator(pts[:1], 0.5))[1],
+    )
+
+
+def test_required_iterations_formula():
+    o = RansacOptions(min_iterations=1, max_iterations=10**9, dyn_num_trials_mult=1.0)
+    # (1 - w^m)^k <= 1 - p: w = 0.5, m = 2, p = 0.9999 -> k = ceil(log(1e-4) / log(0.75)) = 33
+    assert required_iterations(0.5, 2, o) == 33
+    assert required_iterations(0.0, 2, o) == o.max_iterations
