@@ -209,7 +209,7 @@ def test_residual_curvature_matches_finite_differences() -> None:
     frames = _frames(n=8, seed=5)
     u = rng.normal(size=(8, 6)) * np.array([1.0, 1.0, 1.0, 1.0, 40.0, 40.0])
     args = [np.full(8, v) for v in SHAPE] + list(frames)
-    curvature = mm.curvature(*args, *u.T)
+    curvature = mm.residual_curvature(*args, *u.T)
     assert curvature.shape == (8, 9, 9)
     np.testing.assert_array_equal(curvature, np.swapaxes(curvature, 1, 2))
 
@@ -226,7 +226,7 @@ def test_residual_curvature_matches_finite_differences() -> None:
         np.testing.assert_allclose(curvature[:, :, k], numeric, rtol=0, atol=1e-6 * scale)
     # theta turns every image direction rigidly and tx, ty move only points: those rows vanish
     # when only the angles are weighted
-    angles_only = mm.curvature(*args, *(u * [0, 0, 0, 0, 1, 1]).T)
+    angles_only = mm.residual_curvature(*args, *(u * [0, 0, 0, 0, 1, 1]).T)
     np.testing.assert_array_equal(angles_only[:, 6:, :], 0.0)
 
 
