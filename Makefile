@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
 
-.PHONY: setup derive test demo bench lint format clean
+.PHONY: setup derive test fuzz demo bench lint format clean
 
 setup: $(STAMP)
 
@@ -21,6 +21,10 @@ derive: $(STAMP)
 ## test: the whole test suite (includes the generated-code staleness check)
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
+
+## fuzz: the property-based tests with a large randomised budget (tests/conftest.py)
+fuzz: $(STAMP)
+	HYPOTHESIS_PROFILE=fuzz $(BIN)/python -m pytest -q tests/test_fuzz.py --hypothesis-show-statistics
 
 ## demo: reconstruct the bundled example and write demo-output/
 demo: $(STAMP)

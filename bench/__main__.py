@@ -196,7 +196,15 @@ def main(argv: list[str] | None = None) -> int:
         "--full-counts", action="store_true", help="run the required counts whatever the budget"
     )
     parser.add_argument("--no-progress", action="store_true")
+    parser.add_argument(
+        "--only",
+        choices=sorted(EXTRA_SECTIONS),
+        help="run one added section alone and merge its keys into the report",
+    )
     args = parser.parse_args(argv)
+    if args.only:
+        merge_section(args.out, args.only, run_section(args.only, args.quick))
+        return 0
     # The linearisation overflows on noisy data (expected, counted as its errors): keep stderr
     # for progress.  Workers are forked and inherit the filter.
     warnings.filterwarnings("ignore", category=RuntimeWarning)
@@ -237,7 +245,46 @@ def main(argv: list[str] | None = None) -> int:
     )
     paths = report.write(args.out, cfg, sections, command=command, started=started, t_start=t_start)
     _log(f"wrote {', '.join(str(p) for p in paths)} in {time.time() - t_start:.0f} s")
+    for name in sorted(EXTRA_SECTIONS):
+        merge_section(args.out, name, run_section(name, args.quick))
     return 0
+
+
+EXTRA_SECTIONS = {"fuzz": "bench.fuzz", "scale": "bench.scale"}
+"""Sections with a module of their own (``run(quick) -> dict`` of report keys); each also runs
+alone: ``python -m bench --only NAME`` or ``python -m bench.NAME``."""
+
+
+def run_section(name: str, quick: bool) -> dict[str, Any]:
+    import importlib
+
+    _log(f"section {name}")
+    t0 = time.time()
+    result = importlib.import_module(EXTRA_SECTIONS[name]).run(quick)
+    result[f"{name}_section_seconds"] = round(time.time() - t0, 1)
+    result[f"{name}_section_started"] = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    return result
+
+
+def merge_section(out: Path, name: str, result: dict[str, Any]) -> None:
+    """Add a section's keys to ``report.json`` (the others kept) and its table to REPORT.md."""
+    import json
+
+    out.mkdir(parents=True, exist_ok=True)
+    path = out / "report.json"
+    doc = json.loads(path.read_text()) if path.exists() else {}
+    doc.update(result)
+    doc.setdefault("sections", {})[name] = sorted(result)
+    path.write_text(json.dumps(doc, indent=1) + "\n")
+    md = out / "REPORT.md"
+    text = md.read_text() if md.exists() else "# Benchmark report\n"
+    head, *parts = text.split("\n## Section: ")
+    kept = {p.split("\n", 1)[0]: p for p in parts}
+    rows = "\n".join(f"| `{k}` | {v} |" for k, v in sorted(result.items()))
+    kept[name] = f"{name}\n\n| key | value |\n|---|---|\n{rows}\n"
+    body = "".join(f"\n## Section: {kept[k].rstrip()}\n" for k in sorted(kept))
+    md.write_text(head.rstrip("\n") + "\n" + body)
+    _log(f"merged section {name} into {path}")
 
 
 if __name__ == "__main__":

@@ -14,6 +14,10 @@ import numpy as np
 
 from curverecon.errors import CurveReconError
 
+MAX_SIMULATED_FRAMES = 10_000_000
+"""``simulate --frames`` above this would need more memory than a machine has (about 1 kB a
+frame with polylines)."""
+
 
 class _Parser(argparse.ArgumentParser):
     """argparse with one-line errors (status 2, no usage dump)."""
@@ -52,6 +56,9 @@ def build_parser() -> argparse.ArgumentParser:
         "--tangent-sigma", type=float, default=1.0, help="tangent direction noise (degrees)"
     )
     rec.add_argument("--plot", help="also draw the reconstruction to this PNG file")
+    rec.add_argument(
+        "--quiet", action="store_true", help="no progress bar (shown only on a terminal anyway)"
+    )
     rec.add_argument(
         "--curve-bundle",
         choices=["on", "off"],
@@ -93,6 +100,7 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
         point_sigma=args.point_sigma,
         tangent_sigma_deg=args.tangent_sigma,
         curve=CurveOptions(bundle=args.curve_bundle == "on"),
+        progress=sys.stderr.isatty() and not args.quiet,
     )
     rec = reconstruct(obs, options=options)
     for w in rec.warnings:
@@ -111,6 +119,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
     if args.frames < 1:
         raise CurveReconError("--frames must be at least 1")
+    if args.frames > MAX_SIMULATED_FRAMES:
+        raise CurveReconError(f"--frames must be at most {MAX_SIMULATED_FRAMES}")
+    if args.seed < 0:
+        raise CurveReconError("--seed must be a non-negative integer")
     for name in ("point_noise", "tangent_noise", "outlier_fraction"):
         v = getattr(args, name)
         if not (math.isfinite(v) and v >= 0):
@@ -158,6 +170,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             return handler(args)
     except CurveReconError as exc:
         print(f"curverecon: error: {exc}", file=sys.stderr)
+        return 2
+    except MemoryError:
+        print("curverecon: error: not enough memory for this input", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("curverecon: error: interrupted", file=sys.stderr)

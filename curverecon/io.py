@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from curverecon.curve.polyline import bin_average
 from curverecon.errors import CurveReconError
 from curverecon.model.observations import Observations
 
@@ -39,6 +40,8 @@ def read_json(path: str | Path) -> Any:
         raise CurveReconError(f"{path} is not UTF-8 text") from exc
     try:
         return json.loads(text, parse_constant=_reject_constant)
+    except RecursionError as exc:  # the decoder recurses once per nesting level
+        raise CurveReconError(f"JSON in {path} is nested too deeply") from exc
     except json.JSONDecodeError as exc:
         raise CurveReconError(
             f"malformed JSON in {path}: {exc.msg} (line {exc.lineno} column {exc.colno})"
@@ -99,6 +102,12 @@ def _polyline(frame: dict, i: int) -> np.ndarray:
     return arr
 
 
+MAX_POLYLINE_POINTS = 1000
+"""A polyline with more points is averaged down to this many (``curve.polyline.bin_average``):
+the curve bundle's time grows with the points (200,000 points in one frame: 73 s against 5 s),
+while 1,000 points resolve a curve of a few hundred pixels to a fraction of a pixel."""
+
+
 def observations_from_dict(data: Any) -> Observations:
     """Observations from a parsed ``curverecon.observations/1`` document.
 
@@ -122,10 +131,14 @@ def observations_from_dict(data: Any) -> Observations:
     if not isinstance(frames, list):
         raise CurveReconError('"frames" must be a list')
     a, b, ta, tb, curves = [], [], [], [], []
+    long: list[int] = []  # frames whose polylines were averaged down
     for i, frame in enumerate(frames):
         if not isinstance(frame, dict):
             raise CurveReconError(f"frame {i} must be a JSON object")
         curve = _polyline(frame, i) if "curve" in frame else None
+        if curve is not None and len(curve) > MAX_POLYLINE_POINTS:
+            curve = bin_average(curve, MAX_POLYLINE_POINTS)
+            long.append(i)
         curves.append(curve)
         for key in ("A", "B"):
             if key not in frame and curve is None:
@@ -144,7 +157,13 @@ def observations_from_dict(data: Any) -> Observations:
         raise CurveReconError('"frames" is empty')
     keep = None if any(c is None for c in curves) else curves
     given = all(all(k in f for k in ("A", "B", "tangent_A", "tangent_B")) for f in frames)
-    return Observations(np.array(a), np.array(b), np.array(ta), np.array(tb), keep, given)
+    warnings = []
+    if long:
+        warnings.append(
+            f"frames {long}: polylines of more than {MAX_POLYLINE_POINTS} points averaged "
+            f"down to {MAX_POLYLINE_POINTS} (equal arc-length bins)"
+        )
+    return Observations(np.array(a), np.array(b), np.array(ta), np.array(tb), keep, given, warnings)
 
 
 def _end_tangents(curve: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:

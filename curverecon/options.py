@@ -183,12 +183,15 @@ class ReconstructOptions:
         estimator: "marginal" (poses integrated out; less biased at realistic noise) or "ml".
         point_sigma: image point noise (input units).
         tangent_sigma_deg: tangent direction noise (degrees).
+        progress: show a progress bar on stderr (the command: when stderr is a terminal and
+            not ``--quiet``).
     """
 
     method: str = "auto"
     estimator: str = "marginal"
     point_sigma: float = 1.0
     tangent_sigma_deg: float = 1.0
+    progress: bool = False
     search: SearchOptions = field(default_factory=SearchOptions)
     outliers: OutlierOptions = field(default_factory=OutlierOptions)
     branches: BranchOptions = field(default_factory=BranchOptions)

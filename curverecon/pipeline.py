@@ -31,6 +31,7 @@ from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise
 from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ESTIMATORS, METHODS, ReconstructOptions, SearchOptions
+from curverecon.progress import StageProgress
 from curverecon.refine.answer import final_estimate
 from curverecon.refine.ml import refine
 from curverecon.robust.alternatives import equally_good_fits
@@ -39,6 +40,9 @@ from curverecon.robust.outliers import find_outlier_frames
 from curverecon.robust.search import robust_start
 from curverecon.solvers.linear import frame_matrix, min_frames, solve_linear
 from curverecon.solvers.pose import poses_from_shape
+
+STAGES = ("hypotheses", "maximum likelihood", "alternatives", "final estimate", "curve")
+"""The pipeline's stages as the progress bar names them."""
 
 
 def reconstruct(
@@ -79,23 +83,34 @@ def reconstruct(
     if not (opts.point_sigma > 0 and opts.tangent_sigma_deg > 0):
         raise CurveReconError("point and tangent standard deviations must be positive")
     obs.require_reconstructable()
+    progress = StageProgress(STAGES, opts.progress)
     if opts.method == "linear":
         rec = _reconstruct_linear(obs)
     else:
-        rec = reconstruct_end_points(obs, opts)
-    return fit_curve(rec, obs, opts)
+        rec = reconstruct_end_points(obs, opts, progress)
+    progress.step(STAGES[-1])
+    rec = fit_curve(rec, obs, opts)
+    progress.close()
+    if obs.warnings:
+        rec = replace(rec, warnings=list(obs.warnings) + list(rec.warnings))
+    return rec
 
 
-def reconstruct_end_points(obs: Observations, opts: ReconstructOptions) -> Reconstruction:
+def reconstruct_end_points(
+    obs: Observations, opts: ReconstructOptions, progress: StageProgress | None = None
+) -> Reconstruction:
     """Steps 1-5 of the pipeline: the answer from A', B' and the tangents alone."""
+    progress = progress or StageProgress(STAGES, False)
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
     w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
     # 1. hypotheses
+    progress.step("hypotheses")
     seeds = _linear_seed(obs, opts.search)
     cands = robust_start(obs, ps, ts, options=opts.search, extra_shapes=seeds)
     if not cands:
         raise CurveReconError("no shape fits the data (the search found no candidate)")
     # 2.-3. maximum likelihood, outlier frames, pose branches
+    progress.step("maximum likelihood")
     inliers, fit = find_outlier_frames(obs, cands[0].result, ps, ts, opts.outliers, opts.search)
     final = refine(obs.subset(inliers), fit.shape, fit.poses, ps, ts, covariance=True)
     if inliers.sum() <= opts.branches.flip_max_frames:
@@ -109,8 +124,10 @@ def reconstruct_end_points(obs: Observations, opts: ReconstructOptions) -> Recon
             "c; the answer is near, not exactly at, the optimum)"
         )
     # 4. equally good fits
+    progress.step("alternatives")
     fits = equally_good_fits(obs, inliers, cands, final, ps, ts, opts.branches)
     # 5. the final estimate
+    progress.step("final estimate")
     rec = final_estimate(
         obs,
         inliers,

@@ -296,7 +296,7 @@ def test_run_match_flat_round_trip(tmp_path):
 @pytest.mark.parametrize(
     "content, message",
     [
-        ("{not json", "not valid JSON"),
+        ("{not json", "malformed JSON"),
         ("[1, 2]", "JSON object"),
         ('{"format": "curverecon.observations/1"}', "format"),
         ('{"format": "curverecon.flat-views/1", "projection": "orthographic"}', "views"),

@@ -100,3 +100,29 @@ def test_write_json_replaces_non_finite(tmp_path):
     path = tmp_path / "sub" / "x.json"
     write_json(path, {"a": float("nan"), "b": np.array([1.0, np.inf]), "c": np.bool_(True)})
     assert json.loads(path.read_text()) == {"a": None, "b": [1.0, None], "c": True}
+
+
+def test_long_polyline_is_averaged_down_with_a_warning():
+    """A frame whose polyline has 300,000 noisy points (a circle arc, the truth) loads as 1,000
+    points that stay on the arc (closer than the raw points: each is a mean of ~300), its ends
+    kept, and the loader says so."""
+    from curverecon.io import MAX_POLYLINE_POINTS
+
+    rng = np.random.default_rng(5)
+    scene = make_scene(rng, 5, with_curve=True)
+    doc = observations_to_dict(scene.observations)
+    t = np.linspace(0.0, 2.0, 300_000)
+    arc = np.column_stack([100 + 80 * np.cos(t), 50 + 80 * np.sin(t)])
+    noisy = arc + rng.normal(0.0, 0.5, arc.shape)
+    noisy[0], noisy[-1] = arc[0], arc[-1]
+    doc["frames"][2]["curve"] = noisy.tolist()
+    obs = observations_from_dict(doc)
+    pts = obs.curves[2]
+    assert len(pts) == MAX_POLYLINE_POINTS
+    assert np.array_equal(pts[0], arc[0]) and np.array_equal(pts[-1], arc[-1])
+    radial = np.abs(np.hypot(pts[:, 0] - 100, pts[:, 1] - 50) - 80)
+    assert np.median(radial) < 0.05  # raw points: median 0.34 (0.674 sigma)
+    assert len(obs.warnings) == 1 and "frames [2]" in obs.warnings[0]
+    assert [len(c) for i, c in enumerate(obs.curves) if i != 2] == [
+        len(c) for i, c in enumerate(scene.observations.curves) if i != 2
+    ]

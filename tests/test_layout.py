@@ -74,3 +74,15 @@ def test_stage_folders_are_in_the_order_the_data_passes():
                 assert f"{folder}/{module.name}" in text, module
     order = [text.index(f"`{f}/`") for f in ("model", "solvers", "robust", "refine", "curve")]
     assert order == sorted(order)
+
+
+def test_progress_bar_only_when_asked(capsys):
+    """The library draws the stage bar on stderr only with ``progress=True`` (the command asks
+    when stderr is a terminal and not ``--quiet``); the answer is the same either way."""
+    scene = make_scene(np.random.default_rng(4), 6, point_sigma=0.5, tangent_sigma_deg=0.5)
+    quiet = curverecon.reconstruct(scene.observations)
+    assert capsys.readouterr().err == ""
+    shown = curverecon.reconstruct(scene.observations, options=ReconstructOptions(progress=True))
+    err = capsys.readouterr().err
+    assert "reconstruct:" in err and "hypotheses" in err and "final estimate" in err
+    assert np.array_equal(quiet.shape, shown.shape)

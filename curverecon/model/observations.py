@@ -60,6 +60,8 @@ class Observations:
         curves: optional list of N polylines (K_i, 2), each ordered from A' to B'.
         ends_given: False when some frame's A', B' or tangents were taken from its polyline
             (the input did not give them): then they are not measurements of their own.
+        warnings: what the loader changed or noticed (e.g. a long polyline averaged down);
+            the reconstruction repeats them.
 
     Construction validates every frame (finite numbers, A' != B', tangents not zero and not
     perpendicular to A'B') and raises :class:`CurveReconError` with a one-line message.
@@ -71,6 +73,7 @@ class Observations:
     tangent_b: np.ndarray
     curves: list[np.ndarray] | None = field(default=None)
     ends_given: bool = True
+    warnings: list[str] = field(default_factory=list)
 
     def __post_init__(self) -> None:
         self.a = _as_xy("A", self.a)
@@ -195,6 +198,7 @@ class Observations:
             self.tangent_b[idx],
             curves,
             self.ends_given,
+            list(self.warnings),
         )
 
     # ----------------------------------------------------------------- checks

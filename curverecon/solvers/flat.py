@@ -28,7 +28,6 @@ Y when lines are parallel in the image) need no special case.
 
 from __future__ import annotations
 
-import json
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -484,13 +483,9 @@ def run_match_flat(in_path: str, out_path: str) -> None:
 
     Raises ``CurveReconError`` (one-line message) for unreadable or invalid input.
     """
-    try:
-        with open(in_path, encoding="utf-8") as fh:
-            doc = json.load(fh)
-    except OSError as exc:
-        raise _error(f"cannot read {in_path}: {exc.strerror or exc}") from None
-    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-        raise _error(f"{in_path}: not valid JSON ({exc})") from None
+    from curverecon.io import read_json, write_json
+
+    doc = read_json(in_path)  # unreadable, malformed, too deeply nested, NaN: one-line errors
     if not isinstance(doc, dict):
         raise _error(f"{in_path}: expected a JSON object")
     if doc.get("format") != FORMAT_IN:
@@ -507,9 +502,4 @@ def run_match_flat(in_path: str, out_path: str) -> None:
         "format": FORMAT_OUT,
         "matches": [None if m is None else [float(m[0]), float(m[1])] for m in matches],
     }
-    try:
-        with open(out_path, "w", encoding="utf-8") as fh:
-            json.dump(result, fh, indent=1)
-            fh.write("\n")
-    except OSError as exc:
-        raise _error(f"cannot write {out_path}: {exc.strerror or exc}") from None
+    write_json(out_path, result)

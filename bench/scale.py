@@ -1,0 +1,96 @@
+"""Size figures for ``make bench`` (issue 16): reconstruction time and peak memory against the
+number of frames, and a frame whose polyline has 2,000,000 points.
+
+Each case runs in a child process (``python -m bench.scale --case ...``), so that its peak
+memory is its own: ``resource.getrusage(RUSAGE_SELF).ru_maxrss`` of the child at the end (the
+whole process: Python, NumPy and the scene).  Scenes: ``curverecon.simulate.make_scene`` with
+seed 2, 1 px, 1 degree.  ``python -m bench.scale [--quick]`` prints the figures as JSON.
+"""
+
+from __future__ import annotations
+
+import json
+import resource
+import subprocess
+import sys
+import time
+
+SIZES_FULL = (1000, 10_000, 30_000, 100_000)
+SIZES_QUICK = (1000, 3000)
+
+
+def _case_frames(n: int) -> dict:
+    import numpy as np
+
+    from curverecon.pipeline import reconstruct
+    from curverecon.simulate import make_scene
+
+    sc = make_scene(np.random.default_rng(2), n, point_sigma=1.0, tangent_sigma_deg=1.0)
+    t0 = time.perf_counter()
+    rec = reconstruct(sc.observations)
+    return {"seconds": time.perf_counter() - t0, "outliers": len(rec.outlier_frames())}
+
+
+def _case_polyline(points: int) -> dict:
+    import numpy as np
+
+    from curverecon.io import observations_from_dict, observations_to_dict
+    from curverecon.pipeline import reconstruct
+    from curverecon.simulate import make_scene
+
+    sc = make_scene(
+        np.random.default_rng(3), 12, point_sigma=0.5, tangent_sigma_deg=0.5, with_curve=True
+    )
+    doc = observations_to_dict(sc.observations)
+    c = np.array(doc["frames"][0]["curve"])
+    s = np.r_[0.0, np.cumsum(np.hypot(*np.diff(c, axis=0).T))]
+    t = np.linspace(0.0, s[-1], points)
+    doc["frames"][0]["curve"] = np.column_stack(
+        [np.interp(t, s, c[:, 0]), np.interp(t, s, c[:, 1])]
+    ).tolist()
+    t0 = time.perf_counter()
+    obs = observations_from_dict(doc)
+    t1 = time.perf_counter()
+    reconstruct(obs)
+    return {"load_seconds": t1 - t0, "seconds": time.perf_counter() - t1}
+
+
+def _child(kind: str, n: int) -> dict:
+    proc = subprocess.run(
+        [sys.executable, "-m", "bench.scale", "--case", kind, str(n)],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def run(quick: bool = False) -> dict:
+    sizes = SIZES_QUICK if quick else SIZES_FULL
+    table = {n: _child("frames", n) for n in sizes}
+    poly = _child("polyline", 200_000 if quick else 2_000_000)
+    big = table[max(sizes)]
+    return {
+        f"reconstruct_seconds_{max(sizes)}_frames": round(big["seconds"], 2),
+        f"peak_memory_mb_{max(sizes)}_frames": round(big["peak_mb"], 1),
+        "scale_table": {
+            str(n): {"seconds": round(v["seconds"], 2), "peak_mb": round(v["peak_mb"], 1)}
+            for n, v in table.items()
+        },
+        "scale_seconds_per_1000_frames": {
+            str(n): round(1000 * v["seconds"] / n, 3) for n, v in table.items()
+        },
+        "polyline_2000000_points_seconds": None if quick else round(poly["seconds"], 2),
+        "polyline_2000000_points_load_seconds": None if quick else round(poly["load_seconds"], 2),
+    }
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    if args[:1] == ["--case"]:
+        kind, n = args[1], int(args[2])
+        out = _case_frames(n) if kind == "frames" else _case_polyline(n)
+        out["peak_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+        print(json.dumps(out))
+    else:
+        print(json.dumps(run("--quick" in args), indent=1))
