@@ -42,6 +42,8 @@ def run(quick: bool = False) -> dict:
         "fuzz_seconds": round(seconds, 1),
         "fuzz_profile": env["HYPOTHESIS_PROFILE"],
         "fuzz_tests_passed": proc.returncode == 0,
+        # what failed, if anything (the falsifying example and the assertion)
+        "fuzz_failure": None if proc.returncode == 0 else proc.stdout[-3000:],
     }
 
 
