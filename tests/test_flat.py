@@ -384,3 +384,27 @@ if __name__ == "__main__":  # pragma: no cover
         _write_examples()
     else:
         _figures()
+
+
+def test_huge_coordinates_are_refused_and_huge_tangents_scaled(tmp_path):
+    """Found by tests/test_fuzz.py: coordinates near 1e300 overflowed inside the construction
+    (a traceback); now refused in one line.  A tangent 1e300 long is only a direction: the
+    answer is the one for the same direction of unit length."""
+    doc = json.loads((EXAMPLES / "flat_orthographic.json").read_text())
+    big = json.loads(json.dumps(doc))
+    big["views"][1]["A"] = [v * 1e300 for v in big["views"][1]["A"]]
+    src = tmp_path / "big.json"
+    src.write_text(json.dumps(big))
+    with pytest.raises(CurveReconError, match="coordinates beyond"):
+        run_match_flat(str(src), str(tmp_path / "out.json"))
+    long_t = json.loads(json.dumps(doc))
+    unit_t = json.loads(json.dumps(doc))
+    t = np.array(doc["views"][0]["tangent_A"], float)
+    long_t["views"][0]["tangent_A"] = (t / np.hypot(*t) * 1e300).tolist()
+    unit_t["views"][0]["tangent_A"] = (t / np.hypot(*t)).tolist()
+    answers = []
+    for d in (long_t, unit_t):
+        src.write_text(json.dumps(d))
+        run_match_flat(str(src), str(tmp_path / "out.json"))
+        answers.append(json.loads((tmp_path / "out.json").read_text())["matches"])
+    assert answers[0] == answers[1]

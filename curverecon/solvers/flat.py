@@ -40,6 +40,10 @@ FORMAT_OUT = "curverecon.matches/1"
 PROJECTIONS = ("perspective", "orthographic")
 
 #: |sin| of the angle between the two tangent lines below which they count as parallel (no D).
+MAX_COORDINATE = 1e12
+"""Image coordinates beyond this are refused: no image is that large, and the construction's
+products of coordinates would overflow (found by tests/test_fuzz.py with values near 1e300)."""
+
 MIN_TANGENT_SIN = 1e-3
 #: Samples along view 0's curve used to trace the continuity path (ambiguous crossings).
 CONTINUITY_SAMPLES = 150
@@ -123,12 +127,26 @@ def parse_view(view: Mapping[str, object] | FlatView, projection: str, index: in
         if view.get("tangent_B") is not None
         else tb_est
     )
+    for p, what in ((a, "A"), (b, "B"), (c, "C"), (curve, "curve")):
+        if p is not None and np.max(np.abs(p)) > MAX_COORDINATE:
+            raise _error(f"{name} {what}: coordinates beyond {MAX_COORDINATE:.0e} (not an image)")
     for t, what in ((ta, "tangent_A"), (tb, "tangent_B")):
-        if not np.hypot(*t) > 0:
+        if not np.max(np.abs(t)) > 0:
             raise _error(f"{name} {what}: zero vector")
+    # a direction of any length: one of extreme length scaled to unit length (a 1e308-long
+    # one would overflow); others kept as given, so that results do not move by rounding
+    ta, tb = (_unit_if_extreme(t) for t in (ta, tb))
     if not np.hypot(*(b - a)) > 0:
         raise _error(f"{name}: A and B coincide")
     return FlatView(A=a, B=b, C=c, tangent_A=ta, tangent_B=tb, curve=curve)
+
+
+def _unit_if_extreme(t: np.ndarray) -> np.ndarray:
+    m = float(np.max(np.abs(t)))
+    if 1.0 / MAX_COORDINATE <= m <= MAX_COORDINATE:
+        return t
+    t = t / m
+    return t / np.hypot(*t)
 
 
 def _h(p: np.ndarray) -> np.ndarray:
