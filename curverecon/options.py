@@ -87,6 +87,10 @@ class SearchOptions:
     """... keeping those within this robust cost of the best (four times the alternatives'
     window, ``BranchOptions.alternative_dchi2``)."""
 
+    medium_merge_distance: float = 0.02
+    """... and merging those within this ``shape_distance`` of a better one (one basin: the
+    same threshold that makes two fits one alternative, ``robust.alternatives``)."""
+
     linear_seed_gap: float = 1e-3
     """The linearisation seeds the search (from 45 frames) only if its two smallest singular
     values differ this much (nearly noise-free data; at realistic noise it is unusable)."""

@@ -140,3 +140,30 @@ def test_gamma_grid_power():
     g = np.degrees(spec.gammas())
     assert g[0] == 0.0 and abs(g[-1] - spec.gamma_max_deg) < 1e-12
     assert np.all(np.diff(g) > 0) and np.all(np.diff(np.diff(g)) > 0)  # packed near 0
+
+
+def test_long_sequences_refine_one_candidate_per_basin_on_all_frames():
+    """Above ``medium_frames`` the candidates screened on a few hundred frames are merged by
+    basin (``medium_merge_distance``) before the refinement on all frames: those that go on are
+    pairwise distinct (without merging, four identical ones are), and the answer is the one
+    without merging (here)."""
+    from curverecon.robust.search import robust_start, shape_distance
+
+    # seed 20: without merging, four candidates of one basin (distance 0) go on to all frames
+    sc = make_scene(np.random.default_rng(20), 1200, 1.0, 1.0)
+    opts = SearchOptions(medium_frames=300)
+    cands = robust_start(sc.observations, 1.0, np.radians(1.0), options=opts)
+    shapes = [c.result.shape for c in cands]
+    assert all(
+        shape_distance(a, b) >= opts.medium_merge_distance
+        for i, a in enumerate(shapes)
+        for b in shapes[i + 1 :]
+    )
+    merged = reconstruct(sc.observations, options=ReconstructOptions(search=opts))
+    unmerged = reconstruct(
+        sc.observations,
+        options=ReconstructOptions(
+            search=SearchOptions(medium_frames=300, medium_merge_distance=0.0)
+        ),
+    )
+    assert _rel_err(merged.shape, unmerged.shape) < 1e-6

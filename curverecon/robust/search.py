@@ -500,6 +500,17 @@ def robust_start(
             obs.subset(_spread(n, o.medium_frames)), cands, point_sigma, tangent_sigma, o
         )
         cands = [c for c in cands if c.robust_cost <= cands[0].robust_cost + o.medium_keep_cost]
+        # candidates of one basin (the same shape within ``o.medium_merge_distance``) start
+        # their refinement on all frames from the same poses (every frame's pose comes from the
+        # shape): only the best of them goes on
+        kept: list[Candidate] = []
+        for c in cands:
+            if all(
+                shape_distance(c.result.shape, k.result.shape) >= o.medium_merge_distance
+                for k in kept
+            ):
+                kept.append(c)
+        cands = kept
     return _refined_on(obs, cands, point_sigma, tangent_sigma, o)
 
 
