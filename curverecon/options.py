@@ -1,7 +1,9 @@
 """Options of every stage, with their defaults (as PoseLib's ``RansacOptions`` / ``BundleOptions``).
 
-Every tuned number of the pipeline lives here, passed down from :func:`curverecon.reconstruct`
-(``ReconstructOptions``) to the stage that uses it.  Each default's comment says what it trades
+The tuned numbers of the pipeline's decisions live here, passed down from
+:func:`curverecon.reconstruct` (``ReconstructOptions``) to the stage that uses it.  (The
+numerical settings inside a method, e.g. the Levenberg-Marquardt switch to Newton or the curve
+bundle's spline, are still constants of its module.)  Each default's comment says what it trades
 and what chose it.  "headline" is the bench cell of ``python -m bench.headline`` (1 px, 1 degree,
 20 frames, 200 scenes); "noise-free" the bench's 10,000 noise-free scenes of 4-6 frames;
 "robustness" its outlier-frame scenes; "scaling" its long sequences (bench/REPORT.md).

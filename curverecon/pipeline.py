@@ -139,7 +139,6 @@ def reconstruct_end_points(
         opts.branches,
         opts.search,
     )
-    rec.ambiguous_dchi2 = opts.branches.ambiguous_dchi2
     return rec
 
 

@@ -119,6 +119,7 @@ def resolve_branches_with_curves(
         fchi2,
         alt,
         achi2,
+        ambiguous_dchi2=rec.ambiguous_dchi2,
     )
     return new, reconstruct_curve(curves, new.rotations(), new.translations())
 
@@ -256,5 +257,6 @@ def refit_branches_with_curves(
         fit.frame_chi2,
         alt_poses,
         alt_chi2,
+        ambiguous_dchi2=rec.ambiguous_dchi2,
     )
     return new, reconstruct_curve(obs.curves, new.rotations(), new.translations())

@@ -137,4 +137,5 @@ def final_estimate(
         alt_poses,
         alt_chi2,
         estimator,
+        ambiguous_dchi2=branches.ambiguous_dchi2,
     )
