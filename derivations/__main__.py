@@ -81,6 +81,21 @@ def _polynomial_module(module: str, filename: str) -> str | None:
 
 
 #: (file name, one-line summary, builder) in the order they are generated.
+def _system_module(module: str, filename: str) -> str | None:
+    """Render a PolynomialSystem module (data tables and start solutions) from
+    ``module.minimal_system()``."""
+    build = _optional(module, "minimal_system")
+    if build is None:
+        return None
+    record = build()
+    return render_module(
+        source=module.replace(".", "/") + ".py",
+        doc=record.doc,
+        system=record,
+        filename=f"generated/{filename}",
+    )
+
+
 TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
     (
         "measurement_model.py",
@@ -101,6 +116,12 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         "polynomial_12p.py",
         "the paper's (12'), grouped by observable monomial (derivations/squaring.py)",
         lambda: _polynomial_module("derivations.squaring", "polynomial_12p.py"),
+    ),
+    (
+        "minimal_lean.py",
+        "the four-frame minimal problem and its start system, solved by monodromy "
+        "(derivations/minimal.py)",
+        lambda: _system_module("derivations.minimal", "minimal_lean.py"),
     ),
 )
 

@@ -12,6 +12,14 @@
 - ``lean_polynomial``: single-squaring elimination, grouped by observable monomial
   (derivations/lean.py)
 - ``polynomial_12p``: the paper's (12'), grouped by observable monomial (derivations/squaring.py)
+- ``minimal_lean``: the four-frame minimal problem and its start system, solved by monodromy
+  (derivations/minimal.py)
 """
 
-__all__ = ("measurement_model", "frame_equations", "lean_polynomial", "polynomial_12p")
+__all__ = (
+    "measurement_model",
+    "frame_equations",
+    "lean_polynomial",
+    "polynomial_12p",
+    "minimal_lean",
+)

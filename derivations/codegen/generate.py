@@ -28,7 +28,7 @@ import sympy as sp
 
 from derivations.codegen.config import TEMPLATE_DIR, NumPyConfig
 from derivations.codegen.printer import NumPyCodePrinter
-from derivations.codegen.spec import FunctionSpec, PolynomialColumns
+from derivations.codegen.spec import FunctionSpec, PolynomialColumns, PolynomialSystem
 
 TEMPLATE_NAME = "module.py.jinja"
 TEMPLATE_PATH = "derivations/codegen/templates/" + TEMPLATE_NAME
@@ -362,6 +362,76 @@ def print_polynomial(record: PolynomialColumns, config: NumPyConfig) -> Polynomi
     )
 
 
+@dataclass(frozen=True)
+class SystemCode:
+    """A PolynomialSystem record as tables, ready for ``system.py.jinja``."""
+
+    unknowns_repr: str
+    parameters_repr: str
+    equations_repr: str
+    facts_repr: str
+    n_unknowns: int
+    n_parameters: int
+    n_unknown_monomials: int
+    n_parameter_monomials: int
+    n_terms: int
+    n_solutions: int
+    unknown_rows: tuple[str, ...]
+    parameter_rows: tuple[str, ...]
+    term_rows: tuple[str, ...]
+    coefficient_rows: tuple[str, ...]
+    start_parameter_rows: tuple[str, ...]
+    start_solution_rows: tuple[str, ...]
+
+
+def complex_literal(value: complex, digits: int = 17) -> str:
+    """``complex(re, im)`` with both parts printed to ``digits`` significant digits."""
+    z = complex(value)
+    return f"complex({z.real:.{digits}g}, {z.imag:.{digits}g})"
+
+
+def print_system(record: PolynomialSystem, config: NumPyConfig) -> SystemCode:
+    """Tables of a parametric polynomial system: every term as (equation, parameter monomial,
+    unknown monomial) with its integer coefficient; monomials sorted, so the order is fixed."""
+    gens = tuple(record.unknowns) + tuple(record.parameters)
+    n_u = len(record.unknowns)
+    per_equation = [sp.Poly(sp.expand(e), *gens).terms() for e in record.equations]
+    umons = sorted({m[:n_u] for terms in per_equation for m, _ in terms})
+    pmons = sorted({m[n_u:] for terms in per_equation for m, _ in terms})
+    u_index = {m: i for i, m in enumerate(umons)}
+    p_index = {m: i for i, m in enumerate(pmons)}
+    term_items: list[str] = []
+    coefficient_items: list[str] = []
+    for a, terms in enumerate(per_equation):
+        for m, coeff in sorted(terms):
+            if not coeff.is_Integer:
+                raise ValueError(f"non-integer coefficient {coeff} in {record.name}")
+            term_items.append(f"{a}, {p_index[m[n_u:]]}, {u_index[m[:n_u]]}")
+            coefficient_items.append(str(int(coeff)))
+    width = config.line_length - len(config.indent) - 4
+    return SystemCode(
+        unknowns_repr=repr(tuple(s.name for s in record.unknowns)),
+        parameters_repr=repr(tuple(s.name for s in record.parameters)),
+        equations_repr=repr(tuple(record.equation_names)),
+        facts_repr=_repr_facts(dict(record.facts)),
+        n_unknowns=n_u,
+        n_parameters=len(record.parameters),
+        n_unknown_monomials=len(umons),
+        n_parameter_monomials=len(pmons),
+        n_terms=len(term_items),
+        n_solutions=len(record.start_solutions),
+        unknown_rows=tuple(_pack((", ".join(map(str, m)) for m in umons), width)),
+        parameter_rows=tuple(_pack((", ".join(map(str, m)) for m in pmons), width)),
+        term_rows=tuple(_pack(term_items, width)),
+        coefficient_rows=tuple(_pack(coefficient_items, width)),
+        start_parameter_rows=tuple(complex_literal(z) for z in record.start_parameters),
+        start_solution_rows=tuple(
+            "(" + ", ".join(complex_literal(z) for z in row) + ")"
+            for row in record.start_solutions
+        ),
+    )
+
+
 # ---------------------------------------------------------------------------------------------
 # Rendering and formatting
 # ---------------------------------------------------------------------------------------------
@@ -411,6 +481,7 @@ def render_module(
     functions: Sequence[FunctionSpec] = (),
     constants: dict[str, object] | None = None,
     polynomial: PolynomialColumns | None = None,
+    system: PolynomialSystem | None = None,
     filename: str = "generated/module.py",
     config: NumPyConfig | None = None,
 ) -> str:
@@ -430,6 +501,7 @@ def render_module(
         functions=[print_function(f, config) for f in functions],
         polynomial=polynomial is not None,
         poly=print_polynomial(polynomial, config) if polynomial is not None else None,
+        system=print_system(system, config) if system is not None else None,
     )
     if config.run_ruff_format:
         text = format_python(text, filename)

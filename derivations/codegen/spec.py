@@ -48,3 +48,24 @@ class PolynomialColumns:
     columns: tuple[tuple[tuple[int, int, int], sp.Expr], ...]
     doc: str
     facts: dict[str, object] = field(default_factory=dict)  # degree, term counts... for the report
+
+
+@dataclass(frozen=True)
+class PolynomialSystem:
+    """A square polynomial system with parameters, and every solution at one start point.
+
+    ``equations`` are SymPy expressions, polynomial in ``unknowns`` and ``parameters``.
+    ``start_parameters`` (complex, generic) and ``start_solutions`` (every isolated solution
+    there, one row each) seed the parameter homotopy of ``curverecon.solvers.homotopy``:
+    emitted as data, they let the runtime reach every solution at any other parameter value.
+    """
+
+    name: str
+    unknowns: tuple[sp.Symbol, ...]
+    parameters: tuple[sp.Symbol, ...]
+    equations: tuple[sp.Expr, ...]
+    equation_names: tuple[str, ...]
+    start_parameters: tuple[complex, ...]
+    start_solutions: tuple[tuple[complex, ...], ...]
+    doc: str
+    facts: dict[str, object] = field(default_factory=dict)

@@ -1,0 +1,181 @@
+"""The complete minimal solver: four frames, every shape that fits them exactly (issue 12).
+
+Four frames give four lean equations (``generated/lean_polynomial.py``) in the four unknowns
+(c, tan(alpha), tan(beta), cos(phi)).  ``make derive`` reduces them by their symmetry to a system
+in (C, A, B, P, m) = (c^2, tan^2(alpha), tan^2(beta), cos^2(phi), tan(alpha) tan(beta) cos(phi))
+with 104 complex solutions for generic frames (``generated/minimal_lean.py``; docs/derivation.md
+gives the count, its independent check and the symmetry), and solves it once at generic complex
+parameters.  :func:`solve` tracks those 104 solutions to the given frames
+(:mod:`curverecon.solvers.homotopy`), keeps the real ones that are shapes (C >= c'^2 in every
+frame, A, B >= 0, 0 <= P <= 1), polishes each by Newton's method on the four lean equations in
+float64, and solves every frame's pose for it (:func:`curverecon.solvers.pose.poses_from_shape`).
+
+Conventions: c in input units; alpha, beta in [0, pi/2] and phi in [0, pi], radians (one
+representative per orbit: the signs of tan(alpha), tan(beta) only orient the tangent lines, and
+the mirror image has the same cos(phi) up to that sign; CONTRACT.md).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cache
+
+import numpy as np
+
+from curverecon.errors import CurveReconError
+from curverecon.generated import lean_polynomial, minimal_lean
+from curverecon.model.observations import Observations, wrap_line_angle
+from curverecon.solvers import homotopy
+from curverecon.solvers.pose import poses_from_shape
+
+FRAMES = 4
+
+
+@dataclass(frozen=True)
+class MinimalOptions:
+    """What counts as a real shape among the tracked solutions, and the tracker's options."""
+
+    homotopy: homotopy.HomotopyOptions = field(default_factory=homotopy.HomotopyOptions)
+    real_tolerance: float = 1e-6
+    """Largest |imaginary part| / (1 + |value|) of a solution taken as real.  Tracked endpoints
+    are polished to about 1e-12; complex pairs of real data sit far above this."""
+    bound_tolerance: float = 1e-6
+    """Slack on C >= c'^2, A, B >= 0 and 0 <= P <= 1 (dimensionless, after scaling)."""
+    polish_iterations: int = 6
+    """Newton iterations on the four lean equations in (c, tan alpha, tan beta, cos phi)."""
+    duplicate_frames: float = 1e-9
+    """Two frames whose observables (c', d', e') agree to this (relative) are one view."""
+    tangent_along_chord_deg: float = 1e-6
+    """A tangent within this angle of A'B' makes d' or e' zero: the frame says nothing."""
+
+
+@dataclass
+class MinimalResult:
+    """Every real shape that fits four frames exactly, best first.
+
+    ``shapes[k]`` is (c, alpha, beta, phi) (input units, radians), ``poses[k]`` the four frames'
+    poses (delta, tau, theta, tx, ty) for it, ``residuals[k]`` the RMS tangent-angle misfit of
+    those poses (radians; 0 up to rounding on exact data), ordered ascending.
+    """
+
+    shapes: np.ndarray
+    poses: np.ndarray
+    residuals: np.ndarray
+    n_paths: int
+    n_complex: int
+    """Tracked solutions that are not real (pairs of complex conjugates)."""
+    n_not_shapes: int
+    """Real solutions outside the shape domain (C < c'^2, A < 0, B < 0 or P outside [0, 1])."""
+    n_failed_paths: int
+    """Paths that failed after every retry (counted, never dropped silently)."""
+    failures: dict[str, int]
+    retried_paths: int
+
+    @property
+    def n_real(self) -> int:
+        return int(self.shapes.shape[0])
+
+
+@cache
+def _system() -> homotopy.PolynomialSystem:
+    return homotopy.PolynomialSystem.from_module(minimal_lean)
+
+
+def check_four_frames(obs: Observations, options: MinimalOptions | None = None) -> None:
+    """Raise CurveReconError unless ``obs`` is four frames the minimal problem can use."""
+    o = options or MinimalOptions()
+    if obs.n_frames != FRAMES:
+        raise CurveReconError(f"the minimal solver takes exactly 4 frames, got {obs.n_frames}")
+    for name, rel in (("tangent_A", obs.rel_a), ("tangent_B", obs.rel_b)):
+        along = np.abs(np.sin(wrap_line_angle(rel))) <= np.sin(np.radians(o.tangent_along_chord_deg))
+        if along.any():
+            raise CurveReconError(
+                f"frame {int(np.argmax(along))}: {name} lies along A'B', so the frame's "
+                "tangent carries no depth information"
+            )
+    feats = np.column_stack([obs.cp, obs.dp, obs.ep]) / np.mean(obs.cp)
+    for i in range(FRAMES):
+        for j in range(i + 1, FRAMES):
+            if np.max(np.abs(feats[i] - feats[j])) <= o.duplicate_frames * (
+                1 + np.max(np.abs(feats[i]))
+            ):
+                raise CurveReconError(
+                    f"frames {i} and {j} are the same view up to a rotation about the viewing "
+                    "axis (equal c', d', e'): four different views are needed"
+                )
+
+
+def _lean_newton(
+    shape: np.ndarray, cp: np.ndarray, dp: np.ndarray, ep: np.ndarray, iterations: int
+) -> np.ndarray:
+    """Newton's method on the four lean equations in (c, tan alpha, tan beta, cos phi)."""
+    om = lean_polynomial.observable_matrix(cp, dp, ep)
+    x = shape.astype(float).copy()
+    for _ in range(iterations):
+        f = om @ lean_polynomial.unknown_columns(*x)
+        jac = om @ lean_polynomial.unknown_columns_jacobian(*x)
+        try:
+            step = np.linalg.solve(jac, f)
+        except np.linalg.LinAlgError:
+            break
+        if not np.all(np.isfinite(step)):
+            break
+        x = x - step
+        if np.max(np.abs(step) / (1 + np.abs(x))) < 1e-15:
+            break
+    return x
+
+
+def solve(obs: Observations, options: MinimalOptions | None = None) -> MinimalResult:
+    """Every real shape (c, alpha, beta, phi) that fits the four frames of ``obs`` exactly."""
+    o = options or MinimalOptions()
+    check_four_frames(obs, o)
+    scale = float(np.mean(obs.cp))
+    cp, dp, ep = obs.cp / scale, obs.dp / scale, obs.ep / scale
+    target = np.column_stack([cp, dp, ep]).ravel()
+    tracked = homotopy.track(_system(), target, o.homotopy)
+    x = tracked.solutions
+    ok = np.all(np.isfinite(x), axis=1)
+    real = ok & np.all(np.abs(x.imag) <= o.real_tolerance * (1 + np.abs(x)), axis=1)
+    xr = x[real].real
+    tol = o.bound_tolerance
+    c2, a2, b2, p2, m = xr.T if xr.size else np.zeros((5, 0))
+    inside = (
+        (c2 >= np.max(cp) ** 2 * (1 - tol))
+        & (a2 >= -tol)
+        & (b2 >= -tol)
+        & (p2 >= -tol)
+        & (p2 <= 1 + tol)
+    )
+    shapes, poses, residuals = [], [], []
+    for c2k, a2k, b2k, mk in zip(c2[inside], a2[inside], b2[inside], m[inside], strict=True):
+        ta, tb = np.sqrt(max(a2k, 0.0)), np.sqrt(max(b2k, 0.0))
+        cos_phi = float(np.clip(mk / (ta * tb), -1.0, 1.0)) if ta * tb > 0 else 0.0
+        lean = _lean_newton(
+            np.array([np.sqrt(c2k), ta, tb, cos_phi]), cp, dp, ep, o.polish_iterations
+        )
+        c = abs(lean[0]) * scale
+        shape = np.array(
+            [
+                c,
+                np.arctan(abs(lean[1])),
+                np.arctan(abs(lean[2])),
+                np.arccos(np.clip(np.sign(lean[1] * lean[2]) * lean[3], -1.0, 1.0)),
+            ]
+        )
+        pose, misfit = poses_from_shape(obs, shape)
+        shapes.append(shape)
+        poses.append(pose)
+        residuals.append(float(np.sqrt(np.mean(misfit**2))))
+    order = np.argsort(residuals, kind="stable")
+    return MinimalResult(
+        shapes=np.array(shapes).reshape(-1, 4)[order],
+        poses=np.array(poses).reshape(-1, FRAMES, 5)[order],
+        residuals=np.array(residuals)[order],
+        n_paths=int(x.shape[0]),
+        n_complex=int(np.sum(ok & ~real)),
+        n_not_shapes=int(np.sum(~inside)),
+        n_failed_paths=tracked.n_failed,
+        failures=dict(tracked.failures),
+        retried_paths=tracked.retried,
+    )
