@@ -24,8 +24,8 @@ the reduced system msolve also returns a rational parametrisation: an eliminatin
 the degree of the ideal that is square-free proves the solutions distinct.
 
 A count modulo a prime at random observables equals the count over the complex numbers for
-generic observables unless the prime or the instance is unlucky (then it drops); several
-instances that agree are the evidence.
+generic observables unless the prime or the instance is unlucky, which is rare for a prime near
+2^30; instances that agree (random ones and exact noise-free frames) are the evidence.
 """
 
 from __future__ import annotations
