@@ -166,7 +166,22 @@ def generate(out_dir: Path, docs_dir: Path | None, *, verbose: bool = True) -> l
             )
             if verbose:
                 print(f"derive: reports in {docs_dir.name}/: {time.perf_counter() - start:.1f} s")
+                _print_minimal_count()
     return written
+
+
+def _print_minimal_count() -> None:
+    """One line on the minimal problem's count (already computed for the report; cached)."""
+    facts = _optional("derivations.minimal_count", "minimal_facts")
+    if facts is None:
+        return
+    f = facts()
+    tool = f["tool"]  # type: ignore[index]
+    print(
+        f"derive: minimal problem: {f['count']} solutions, {f['orbits']} orbits, "  # type: ignore[index]
+        f"instances agree: {f['counts_agree']}; msolve {tool['msolve']}, "  # type: ignore[index]
+        f"{f['seconds']:.1f} s"  # type: ignore[index]
+    )
 
 
 def check(out_dir: Path, docs_dir: Path | None) -> list[str]:
