@@ -12,10 +12,11 @@ Reduction (each step a fact checked below, on the lean polynomial's terms):
    solutions: orbits of four.  With A = a^2, B = b^2, P = p^2 and m = a b p, a term is
    A^i B^j P^k or m A^i B^j P^k, and each frame's equation reads F0(C, A, B, P) + m F1 = 0.
    Adding m^2 - A B P = 0 gives a system in (C, A, B, P, m) whose solutions are the orbits.
-   Geometrically an orbit is one shape: alpha and beta are angles between LINES (the tangent
-   lines and AB), so the sign of tan(alpha) or tan(beta) only says which way a line is
-   oriented, and cos(phi) -> -cos(phi) together with one tangent's sign is the mirror image,
-   which no orthographic sequence can tell apart (CONTRACT.md).
+   Geometrically an orbit is one curve (checked on the construction by
+   ``derivations.minimal_count``): (a, -b, -p) is (tan beta, phi) -> (-tan beta, phi + pi),
+   the same tangent line; (-a, b, -p) is the curve turned by pi about AB; so a real orbit has
+   exactly one member with a, b > 0, one candidate shape.  The mirror image (phi, delta, tau)
+   -> (-phi, -delta, -tau) leaves a, b and cos(phi) unchanged: it is the same solution.
 3. Lengths are homogeneous (degree 16 in c, c', d', e'), so the runtime divides all of them by
    one length before solving; C is then dimensionless.
 
@@ -24,8 +25,9 @@ One solution is made by construction (random complex C, A, B, P, m = sqrt(A B P)
 frame's cp_i, dp_i random and ep_i a root of that frame's equation, a quartic in ep_i).
 Monodromy then loops the parameters around random triangles, tracking every known solution with
 the runtime's own tracker (``curverecon.solvers.homotopy``); endpoints not seen before are added
-until the count has not grown for ``STABLE_LOOPS`` loops.  The count is checked against an
-independent Groebner-basis count (``derivations.minimal_count``) where that tool is installed.
+until the count reaches the independent Groebner-basis count of ``derivations.minimal_count``
+(msolve) and one more loop adds nothing, or, without that tool, until ``STABLE_LOOPS`` loops
+add nothing.  The facts record whether the two counts agree.
 Every solution is then polished by Newton's method in mpmath at 30 digits and printed to 17,
 so the emitted data are the same on every machine.
 """
@@ -193,7 +195,8 @@ def monodromy(seed: int = SEED) -> tuple[np.ndarray, np.ndarray, dict[str, objec
     stable = 0
     loops = 0
     opts = homotopy.HomotopyOptions(max_step=0.1, predictor_tolerance=1e-4)
-    while stable < STABLE_LOOPS and loops < MAX_LOOPS:
+    expected = _expected_count()
+    while loops < MAX_LOOPS and stable < (1 if len(sols) == expected else STABLE_LOOPS):
         loops += 1
         q1 = q0 + (rng.normal(size=q0.shape) + 1j * rng.normal(size=q0.shape))
         q2 = q0 + (rng.normal(size=q0.shape) + 1j * rng.normal(size=q0.shape))
@@ -208,8 +211,21 @@ def monodromy(seed: int = SEED) -> tuple[np.ndarray, np.ndarray, dict[str, objec
             stable = 0
         else:
             stable += 1
-    facts = {"monodromy_loops": loops, "monodromy_stable_loops": stable}
+    facts = {
+        "monodromy_loops": loops,
+        "monodromy_count_equals_msolve": len(sols) == expected if expected else None,
+    }
     return q0, sols, facts
+
+
+def _expected_count() -> int | None:
+    """The reduced system's solution count from msolve (derivations.minimal_count), if installed."""
+    from derivations import minimal_count
+
+    try:
+        return int(minimal_count.minimal_facts()["orbits"])  # type: ignore[index]
+    except (ImportError, minimal_count.MsolveMissingError):
+        return None
 
 
 def _mp_system(eqs: tuple[sp.Expr, ...], q0: np.ndarray):  # type: ignore[no-untyped-def]

@@ -29,8 +29,8 @@ EQUATIONS = (
 FACTS = {
     "frames": 4,
     "lean_terms_per_frame": 221,
-    "monodromy_loops": 13,
-    "monodromy_stable_loops": 3,
+    "monodromy_count_equals_msolve": True,
+    "monodromy_loops": 11,
     "seed": 20261125,
     "solutions": 104,
     "solutions_original_variables": 416,
