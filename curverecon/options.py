@@ -16,6 +16,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from curverecon.solvers.homotopy import HomotopyOptions
+
 
 @dataclass
 class SearchOptions:
@@ -179,6 +181,24 @@ METHODS = ("auto", "linear")
 ESTIMATORS = ("marginal", "ml")
 
 
+@dataclass(frozen=True)
+class MinimalOptions:
+    """What counts as a real shape among the tracked solutions, and the tracker's options."""
+
+    homotopy: HomotopyOptions = field(default_factory=HomotopyOptions)
+    real_tolerance: float = 1e-6
+    """Largest |imaginary part| / (1 + |value|) of a solution taken as real.  Tracked endpoints
+    are polished to about 1e-12; complex pairs of real data sit far above this."""
+    bound_tolerance: float = 1e-6
+    """Slack on C >= c'^2, A, B >= 0 and 0 <= P <= 1 (dimensionless, after scaling)."""
+    polish_iterations: int = 6
+    """Newton iterations on the four lean equations in (c, tan alpha, tan beta, cos phi)."""
+    duplicate_frames: float = 1e-9
+    """Two frames whose observables (c', d', e') agree to this (relative) are one view."""
+    tangent_along_chord_deg: float = 1e-6
+    """A tangent within this angle of A'B' makes d' or e' zero: the frame says nothing."""
+
+
 @dataclass
 class ReconstructOptions:
     """Everything :func:`curverecon.reconstruct` can be told.
@@ -202,3 +222,4 @@ class ReconstructOptions:
     outliers: OutlierOptions = field(default_factory=OutlierOptions)
     branches: BranchOptions = field(default_factory=BranchOptions)
     curve: CurveOptions = field(default_factory=CurveOptions)
+    minimal: MinimalOptions = field(default_factory=MinimalOptions)

@@ -7,7 +7,9 @@ It reads like the README's "How it works" (docs/architecture.md draws it):
 2. maximum likelihood on all frames (``refine.ml``) from the best hypothesis;
 3. outlier frames (``robust.outliers``), then, with few frames, single frames tried on their
    other pose branch (``robust.branches``);
-4. every other hypothesis that fits about as well (``robust.alternatives``);
+4. every other hypothesis that fits about as well (``robust.alternatives``); with exactly four
+   frames, every shape that fits them exactly (``robust.four_frames``, from the complete
+   minimal solver ``solvers.minimal``);
 5. the final estimate: the marginal likelihood's optimum among those fits, or maximum
    likelihood (``refine.answer``), with standard deviations and warnings;
 6. with polylines, the curve: branch choice by the curve, section 4 and the curve bundle
@@ -36,8 +38,10 @@ from curverecon.refine.answer import final_estimate
 from curverecon.refine.ml import refine
 from curverecon.robust.alternatives import equally_good_fits
 from curverecon.robust.branches import flip_ambiguous_frames
+from curverecon.robust.four_frames import add_minimal_solutions
 from curverecon.robust.outliers import find_outlier_frames
 from curverecon.robust.search import robust_start
+from curverecon.solvers import minimal
 from curverecon.solvers.linear import frame_matrix, min_frames, solve_linear
 from curverecon.solvers.pose import poses_from_shape
 
@@ -83,6 +87,8 @@ def reconstruct(
     if not (opts.point_sigma > 0 and opts.tangent_sigma_deg > 0):
         raise CurveReconError("point and tangent standard deviations must be positive")
     obs.require_reconstructable()
+    if opts.method == "auto" and obs.n_frames == minimal.FRAMES:
+        minimal.check_four_frames(obs, opts.minimal)
     progress = StageProgress(STAGES, opts.progress)
     if opts.method == "linear":
         rec = _reconstruct_linear(obs)
@@ -139,6 +145,9 @@ def reconstruct_end_points(
         opts.branches,
         opts.search,
     )
+    if obs.n_frames == minimal.FRAMES:
+        # exactly four frames: every shape that fits them exactly, from the minimal solver
+        rec = add_minimal_solutions(rec, obs, ps, ts, opts.minimal)
     return rec
 
 

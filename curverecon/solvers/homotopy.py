@@ -56,8 +56,10 @@ class HomotopyOptions:
     """Steps per path before it is declared failed (a generic path needs tens)."""
     divergence: float = 1e8
     """|x| beyond this (in the system's scaled units) is a solution going to infinity."""
-    retries: int = 3
-    """Fresh random detours tried for each failed or duplicated path before it is reported."""
+    retries: int = 4
+    """Fresh random detours tried for each failed or duplicated path before it is reported
+    (each with half the largest step, a tenth of the predictor tolerance and of the smallest
+    step of the try before)."""
     seed: int = 20261125
     """Seed of the detours: the same input gives the same output."""
 
@@ -524,8 +526,8 @@ def track(
 
     Two paths cannot end at one regular solution, so when two endpoints coincide at least one
     path jumped: both are tracked again.  A retried path follows a fresh random complex detour
-    (the gamma trick) with half the largest step and a tenth of the predictor tolerance; its
-    endpoint is accepted only if no other path ended there.  What still fails after
+    (the gamma trick) with more careful step control at each try (``HomotopyOptions.retries``);
+    its endpoint is accepted only if no other path ended there.  What still fails after
     ``options.retries`` tries is reported in ``TrackResult.failures`` (a jump as 'duplicate')
     and its endpoint set to NaN: never dropped silently.
     """
@@ -539,15 +541,21 @@ def track(
     status[jumped] = -1
     rng = np.random.default_rng(o.seed)
     retried = np.zeros(x.shape[0], dtype=bool)
-    careful = replace(
-        o, max_step=o.max_step / 4, predictor_tolerance=o.predictor_tolerance / 100
-    )
     span = np.linalg.norm(q1 - q0) + 1e-300
-    for _ in range(o.retries):
+    for attempt in range(1, o.retries + 1):
         bad = np.flatnonzero(status != OK)
         if bad.size == 0:
             break
         retried[bad] = True
+        # each retry more careful than the last: smaller steps, tighter predictor, and a
+        # smaller smallest step, so that a path near a singular point can still pass it
+        careful = replace(
+            o,
+            max_step=o.max_step / 2**attempt,
+            predictor_tolerance=o.predictor_tolerance / 10**attempt,
+            min_step=o.min_step / 10**attempt,
+            max_steps=o.max_steps * 2**attempt,
+        )
         detour = rng.normal(size=q0.shape) + 1j * rng.normal(size=q0.shape)
         detour *= 0.25 * span / np.linalg.norm(detour)
         xi, si, ni = track_once(system, q0, q1, system.start_solutions[bad], detour, careful)

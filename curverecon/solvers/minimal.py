@@ -17,7 +17,7 @@ the mirror image has the same cos(phi) up to that sign; CONTRACT.md).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cache
 
 import numpy as np
@@ -25,28 +25,11 @@ import numpy as np
 from curverecon.errors import CurveReconError
 from curverecon.generated import lean_polynomial, minimal_lean
 from curverecon.model.observations import Observations, wrap_line_angle
+from curverecon.options import MinimalOptions
 from curverecon.solvers import homotopy
 from curverecon.solvers.pose import poses_from_shape
 
 FRAMES = 4
-
-
-@dataclass(frozen=True)
-class MinimalOptions:
-    """What counts as a real shape among the tracked solutions, and the tracker's options."""
-
-    homotopy: homotopy.HomotopyOptions = field(default_factory=homotopy.HomotopyOptions)
-    real_tolerance: float = 1e-6
-    """Largest |imaginary part| / (1 + |value|) of a solution taken as real.  Tracked endpoints
-    are polished to about 1e-12; complex pairs of real data sit far above this."""
-    bound_tolerance: float = 1e-6
-    """Slack on C >= c'^2, A, B >= 0 and 0 <= P <= 1 (dimensionless, after scaling)."""
-    polish_iterations: int = 6
-    """Newton iterations on the four lean equations in (c, tan alpha, tan beta, cos phi)."""
-    duplicate_frames: float = 1e-9
-    """Two frames whose observables (c', d', e') agree to this (relative) are one view."""
-    tangent_along_chord_deg: float = 1e-6
-    """A tangent within this angle of A'B' makes d' or e' zero: the frame says nothing."""
 
 
 @dataclass
