@@ -52,23 +52,21 @@ POLISH_DPS = 30
 
 C, A, B, P, M = sp.symbols("C A B P m")
 UNKNOWNS = (C, A, B, P, M)
-PARAMETERS = tuple(
-    sp.Symbol(f"{name}{i}") for i in range(FRAMES) for name in ("cp", "dp", "ep")
-)
+PARAMETERS = tuple(sp.Symbol(f"{name}{i}") for i in range(FRAMES) for name in ("cp", "dp", "ep"))
 
 
 def reduced_term(
     exponents: tuple[int, ...],
 ) -> tuple[int, int, int, int, int]:
     """Exponents of (C, A, B, P, m) for a lean term c^i a^j b^k p^l (step 1 and 2)."""
-    i, j, k, l = exponents
+    i, j, k, n = exponents
     if i % 2:
         raise ValueError("odd power of c in the lean polynomial")
-    parity = {j % 2, k % 2, l % 2}
+    parity = {j % 2, k % 2, n % 2}
     if len(parity) != 1:
         raise ValueError("mixed parity of tan(alpha), tan(beta), cos(phi) exponents")
     odd = parity.pop()
-    return (i // 2, (j - odd) // 2, (k - odd) // 2, (l - odd) // 2, odd)
+    return (i // 2, (j - odd) // 2, (k - odd) // 2, (n - odd) // 2, odd)
 
 
 @cache
@@ -98,9 +96,7 @@ def equations() -> tuple[sp.Expr, ...]:
     cp, dp, ep = sp.symbols("cp dp ep")
     base = frame_equation()
     pa = PARAMETERS
-    eqs = [
-        base.subs({cp: pa[3 * i], dp: pa[3 * i + 1], ep: pa[3 * i + 2]}) for i in range(FRAMES)
-    ]
+    eqs = [base.subs({cp: pa[3 * i], dp: pa[3 * i + 1], ep: pa[3 * i + 2]}) for i in range(FRAMES)]
     eqs.append(M**2 - A * B * P)
     return tuple(eqs)
 
@@ -151,9 +147,7 @@ def _first_solution(rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
     q = []
     for _ in range(FRAMES):
         cpv, dpv = (_round(z) for z in crandn(2) + 1.0)
-        quartic = sp.Poly(
-            sp.expand(base.subs(subs).subs({cp: complex(cpv), dp: complex(dpv)})), ep
-        )
+        quartic = sp.Poly(sp.expand(base.subs(subs).subs({cp: complex(cpv), dp: complex(dpv)})), ep)
         roots = np.roots([complex(c) for c in quartic.all_coeffs()])
         q += [cpv, dpv, _round(roots[np.argmin(np.abs(roots - 1.0))])]
     return np.array(q), x0
@@ -172,8 +166,7 @@ def _new_points(known: np.ndarray, pts: np.ndarray, tol: float = 1e-6) -> np.nda
     for p in pts:
         if not np.all(np.isfinite(p)):
             continue
-        rows = [known] + ([np.array(out)] if out else [])
-        ref = np.vstack(rows) if known.size else (np.array(out) if out else np.zeros((0, pts.shape[1])))
+        ref = np.vstack([known.reshape(-1, pts.shape[1]), np.array(out).reshape(-1, pts.shape[1])])
         if ref.size:
             d = np.linalg.norm(ref - p, axis=1) / (1 + np.linalg.norm(p))
             if d.min() < tol:

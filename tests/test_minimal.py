@@ -14,9 +14,9 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from curverecon.generated import measurement_model, minimal_lean
 
 from curverecon.errors import CurveReconError
-from curverecon.generated import measurement_model, minimal_lean
 from curverecon.io import observations_to_dict
 from curverecon.model.observations import Observations, wrap_line_angle
 from curverecon.options import MinimalOptions
@@ -84,9 +84,7 @@ def test_every_solution_reproduces_the_four_frames(solved) -> None:
         assert np.all(res.shapes[:, 1:3] >= 0) and np.all(res.shapes[:, 1:3] <= np.pi / 2)
         assert np.all((res.shapes[:, 3] >= 0) & (res.shapes[:, 3] <= np.pi))
         # every path is accounted for: real shapes + complex + real non-shapes + failed
-        assert (
-            res.n_real + res.n_complex + res.n_not_shapes + res.n_failed_paths == res.n_paths
-        )
+        assert res.n_real + res.n_complex + res.n_not_shapes + res.n_failed_paths == res.n_paths
 
 
 def test_failed_paths_are_counted_not_dropped() -> None:

@@ -258,7 +258,7 @@ def _time_derivative(us, uv, ue, x, wt, ft):
 
 @numba.njit(**_JIT)
 def _solve(a, b, out):
-    """out = a^-1 b by Gaussian elimination with partial pivoting (a, b copied); False if singular."""
+    """out = a^-1 b by Gaussian elimination with partial pivoting; False if a is singular."""
     n = b.shape[0]
     m = a.copy()
     r = b.copy()
@@ -452,7 +452,7 @@ def _track_paths(
         if st == OK:
             _params_at(q0, q1, d, 1.0, q, dq)
             _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, False)
-            for it in range(3):
+            for _ in range(3):
                 _residual_jacobian(us, uv, ue, x, w, f, jac)
                 if not _solve(jac, f, dx):
                     break
@@ -509,9 +509,7 @@ def _coincide(x: np.ndarray, rows: np.ndarray, others: np.ndarray, tol: float) -
         return out
     a, b = x[rows], x[others]
     dist = np.linalg.norm(a[:, None, :] - b[None, :, :], axis=2)
-    scale = 1.0 + np.minimum(
-        np.linalg.norm(a, axis=1)[:, None], np.linalg.norm(b, axis=1)[None, :]
-    )
+    scale = 1.0 + np.minimum(np.linalg.norm(a, axis=1)[:, None], np.linalg.norm(b, axis=1)[None, :])
     same = rows[:, None] == others[None, :]
     return np.any((dist <= tol * scale) & ~same, axis=1)
 

@@ -70,7 +70,8 @@ def check_four_frames(obs: Observations, options: MinimalOptions | None = None) 
     if obs.n_frames != FRAMES:
         raise CurveReconError(f"the minimal solver takes exactly 4 frames, got {obs.n_frames}")
     for name, rel in (("tangent_A", obs.rel_a), ("tangent_B", obs.rel_b)):
-        along = np.abs(np.sin(wrap_line_angle(rel))) <= np.sin(np.radians(o.tangent_along_chord_deg))
+        limit = np.sin(np.radians(o.tangent_along_chord_deg))
+        along = np.abs(np.sin(wrap_line_angle(rel))) <= limit
         if along.any():
             raise CurveReconError(
                 f"frame {int(np.argmax(along))}: {name} lies along A'B', so the frame's "

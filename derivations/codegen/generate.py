@@ -426,8 +426,7 @@ def print_system(record: PolynomialSystem, config: NumPyConfig) -> SystemCode:
         coefficient_rows=tuple(_pack(coefficient_items, width)),
         start_parameter_rows=tuple(complex_literal(z) for z in record.start_parameters),
         start_solution_rows=tuple(
-            "(" + ", ".join(complex_literal(z) for z in row) + ")"
-            for row in record.start_solutions
+            "(" + ", ".join(complex_literal(z) for z in row) + ")" for row in record.start_solutions
         ),
     )
 
