@@ -3,7 +3,7 @@
 Usage::
 
     python -m bench [--quick] [--out DIR] [--workers N] [--budget SECONDS] [--full-counts]
-    python -m bench --only fuzz|scale [--quick]
+    python -m bench --only fuzz|scale|minimal [--quick]
 
 Writes ``REPORT.md``, ``report.json`` and PNG plots into ``--out`` (default ``bench/``).  The
 speed section runs first in this process (no worker busy); then the scene experiments run on
@@ -253,7 +253,7 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-EXTRA_SECTIONS = {"fuzz": "bench.fuzz", "scale": "bench.scale"}
+EXTRA_SECTIONS = {"fuzz": "bench.fuzz", "scale": "bench.scale", "minimal": "bench.minimal"}
 """Sections with a module of their own (``run(quick) -> dict`` of report keys); each also runs
 alone: ``python -m bench --only NAME`` or ``python -m bench.NAME``."""
 

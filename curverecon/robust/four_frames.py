@@ -19,8 +19,10 @@ from curverecon.refine.ml import refine
 from curverecon.robust.search import shape_distance
 from curverecon.solvers import minimal
 
-SAME_SHAPE = 0.02
-"""``shape_distance`` below which two shapes are one (the threshold of ``alternatives``)."""
+SAME_SHAPE = 1e-6
+"""``shape_distance`` below which a minimal solution is the answer or an alternative already:
+exact fits only (four-frame solutions can lie much closer together than the 0.02 that makes
+two noisy fits one alternative)."""
 
 
 def add_minimal_solutions(

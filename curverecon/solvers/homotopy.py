@@ -56,6 +56,10 @@ class HomotopyOptions:
     """Steps per path before it is declared failed (a generic path needs tens)."""
     divergence: float = 1e8
     """|x| beyond this (in the system's scaled units) is a solution going to infinity."""
+    endgame_start: float = 0.99
+    """A path stalled beyond this t ends by Newton's method at t = 1 (see ``_endgame``)."""
+    endgame_iterations: int = 40
+    """Newton iterations of that endgame (linear convergence at a near-double solution)."""
     retries: int = 4
     """Fresh random detours tried for each failed or duplicated path before it is reported
     (each with half the largest step, a tenth of the predictor tolerance and of the smallest
@@ -210,10 +214,18 @@ def _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, wan
 @numba.njit(**_JIT)
 def _residual_jacobian(us, uv, ue, x, w, f, jac):
     """F = W u(x) and F_x = W du/dx."""
+    _residual_jacobian_t(us, uv, ue, x, w, w, f, jac, f, False)
+
+
+@numba.njit(**_JIT)
+def _residual_jacobian_t(us, uv, ue, x, w, wt, f, jac, ft, want_t):
+    """F = W u(x), F_x = W du/dx and (``want_t``) F_t = Wt u(x), the monomials formed once."""
     n_eq, n_umon = w.shape
     n_var = x.shape[0]
     for a in range(n_eq):
         f[a] = 0.0
+        if want_t:
+            ft[a] = 0.0
         for v in range(n_var):
             jac[a, v] = 0.0
     for k in range(n_umon):
@@ -224,6 +236,8 @@ def _residual_jacobian(us, uv, ue, x, w, f, jac):
                 val *= base
         for a in range(n_eq):
             f[a] += w[a, k] * val
+            if want_t:
+                ft[a] += wt[a, k] * val
         for i in range(us[k], us[k + 1]):
             # d/dx_v of the monomial: e * x_v**(e-1) * prod of the others
             d = 1.0 + 0.0j
@@ -238,22 +252,6 @@ def _residual_jacobian(us, uv, ue, x, w, f, jac):
             v = uv[i]
             for a in range(n_eq):
                 jac[a, v] += w[a, k] * d
-
-
-@numba.njit(**_JIT)
-def _time_derivative(us, uv, ue, x, wt, ft):
-    """F_t = Wt u(x)."""
-    n_eq, n_umon = wt.shape
-    for a in range(n_eq):
-        ft[a] = 0.0
-    for k in range(n_umon):
-        val = 1.0 + 0.0j
-        for i in range(us[k], us[k + 1]):
-            base = x[uv[i]]
-            for _ in range(ue[i]):
-                val *= base
-        for a in range(n_eq):
-            ft[a] += wt[a, k] * val
 
 
 @numba.njit(**_JIT)
@@ -338,6 +336,7 @@ def _track_paths(
     x_end,
     status,
     steps,
+    t_end,
 ):
     """Track every row of ``x_start`` from t = 0 to 1 (see the module docstring)."""
     h0, hmax, hmin, tol_pred, tol_corr, max_steps, divergence = (
@@ -368,6 +367,7 @@ def _track_paths(
     dx = np.empty(n_var, np.complex128)
     for p in range(n_paths):
         x = x_start[p].copy()
+        w_at = -1.0
         t = 0.0
         h = h0
         n_ok = 0
@@ -398,10 +398,12 @@ def _track_paths(
                     ts = t + h
                     for i in range(n_var):
                         y[i] = x[i] + h * k3[i]
-                _params_at(q0, q1, d, ts, q, dq)
-                _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, True)
-                _residual_jacobian(us, uv, ue, y, w, f, jac)
-                _time_derivative(us, uv, ue, y, wt, ft)
+                if ts != w_at:  # W and Wt at ts (stages 2 and 3 share one; stage 1 reuses
+                    # the last accepted step's stage 4)
+                    _params_at(q0, q1, d, ts, q, dq)
+                    _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, True)
+                    w_at = ts
+                _residual_jacobian_t(us, uv, ue, y, w, wt, f, jac, ft, True)
                 kk = k1 if stage == 0 else (k2 if stage == 1 else (k3 if stage == 2 else k4))
                 if not _solve(jac, ft, kk):
                     good = False
@@ -452,6 +454,7 @@ def _track_paths(
         if st == OK:
             _params_at(q0, q1, d, 1.0, q, dq)
             _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, False)
+            w_at = -1.0
             for _ in range(3):
                 _residual_jacobian(us, uv, ue, x, w, f, jac)
                 if not _solve(jac, f, dx):
@@ -464,6 +467,7 @@ def _track_paths(
             x_end[p, i] = x[i]
         status[p] = st
         steps[p] = n_steps
+        t_end[p] = t
 
 
 def _options_vector(o: HomotopyOptions) -> np.ndarray:
@@ -498,8 +502,41 @@ def track_once(
     x_end = np.empty_like(xs)
     status = np.empty(xs.shape[0], np.int64)
     steps = np.empty(xs.shape[0], np.int64)
-    _track_paths(*system._args(), q0, q1, d, xs, _options_vector(o), x_end, status, steps)
+    t_end = np.empty(xs.shape[0], np.float64)
+    _track_paths(*system._args(), q0, q1, d, xs, _options_vector(o), x_end, status, steps, t_end)
+    _endgame(system, q1, x_end, status, t_end, o)
     return x_end, status, steps
+
+
+def _endgame(
+    system: PolynomialSystem,
+    q1: np.ndarray,
+    x: np.ndarray,
+    status: np.ndarray,
+    t_end: np.ndarray,
+    o: HomotopyOptions,
+) -> None:
+    """Paths that stalled close to t = 1 (a near-double solution there: phi near 0 or 180
+    degrees, c' near c) finish by Newton's method at t = 1, which converges there, if slowly."""
+    for p in np.flatnonzero((status == STEP_TOO_SMALL) & (t_end >= o.endgame_start)):
+        y = x[p].copy()
+        for _ in range(o.endgame_iterations):
+            f, jac = system.evaluate(y, q1)
+            try:
+                dx = np.linalg.solve(jac, f)
+            except np.linalg.LinAlgError:
+                break
+            y = y - dx
+            if not np.all(np.isfinite(y)):
+                break
+            if np.linalg.norm(dx) <= 1e-12 * (1 + np.linalg.norm(y)):
+                break
+        if np.all(np.isfinite(y)) and np.linalg.norm(y - x[p]) <= 1e-2 * (1 + np.linalg.norm(y)):
+            f, _ = system.evaluate(y, q1)
+            fy = np.linalg.norm(f)
+            if fy <= 1e-10 * (1 + np.linalg.norm(y)) ** 8:
+                x[p] = y
+                status[p] = OK
 
 
 def _coincide(x: np.ndarray, rows: np.ndarray, others: np.ndarray, tol: float) -> np.ndarray:
@@ -522,8 +559,8 @@ def track(
 ) -> TrackResult:
     """Every start solution of ``system`` tracked to ``target_parameters``, failures retried.
 
-    Two paths cannot end at one regular solution, so when two endpoints coincide at least one
-    path jumped: both are tracked again.  A retried path follows a fresh random complex detour
+    Two paths cannot end at one regular solution, so when two endpoints coincide one path
+    jumped: the endpoint is kept once (it is a solution) and the other path tracked again.  A retried path follows a fresh random complex detour
     (the gamma trick) with more careful step control at each try (``HomotopyOptions.retries``);
     its endpoint is accepted only if no other path ended there.  What still fails after
     ``options.retries`` tries is reported in ``TrackResult.failures`` (a jump as 'duplicate')
@@ -535,8 +572,11 @@ def track(
     x, status, steps = track_once(system, q0, q1, system.start_solutions, None, o)
     everyone = np.arange(x.shape[0])
     ok = np.flatnonzero(status == OK)
-    jumped = ok[_coincide(x, ok, ok, duplicate_tolerance)]
-    status[jumped] = -1
+    # of endpoints that coincide, the first stays (it is a solution either way); the others
+    # jumped and are tracked again
+    for k, i in enumerate(ok[1:], start=1):
+        if _coincide(x, ok[k : k + 1], ok[:k][status[ok[:k]] == OK], duplicate_tolerance)[0]:
+            status[i] = -1
     rng = np.random.default_rng(o.seed)
     retried = np.zeros(x.shape[0], dtype=bool)
     span = np.linalg.norm(q1 - q0) + 1e-300
