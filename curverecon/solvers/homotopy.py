@@ -560,9 +560,11 @@ def track(
     """Every start solution of ``system`` tracked to ``target_parameters``, failures retried.
 
     Two paths cannot end at one regular solution, so when two endpoints coincide one path
-    jumped: the endpoint is kept once (it is a solution) and the other path tracked again.  A retried path follows a fresh random complex detour
-    (the gamma trick) with more careful step control at each try (``HomotopyOptions.retries``);
-    its endpoint is accepted only if no other path ended there.  What still fails after
+    jumped: the endpoint is kept once (it is a solution) and the other path tracked again.
+    A retried path follows a fresh random complex detour (the gamma trick) with more careful
+    step control at each try (``HomotopyOptions.retries``); its endpoint is accepted only if
+    no other path ended there.  Paths that stall just before t = 1 finish by Newton's method
+    there (``_endgame``).  What still fails after
     ``options.retries`` tries is reported in ``TrackResult.failures`` (a jump as 'duplicate')
     and its endpoint set to NaN: never dropped silently.
     """
