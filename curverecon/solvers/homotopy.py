@@ -175,7 +175,7 @@ def _sparse_rows(exponents: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndar
 # compiled kernels
 # ----------------------------------------------------------------------------------------------
 
-_JIT = {"cache": True, "nogil": True, "fastmath": False}
+_JIT = {"cache": True, "nogil": True, "fastmath": {"contract", "reassoc", "arcp", "nsz"}}
 
 
 @numba.njit(**_JIT)
@@ -219,9 +219,22 @@ def _residual_jacobian(us, uv, ue, x, w, f, jac):
 
 @numba.njit(**_JIT)
 def _residual_jacobian_t(us, uv, ue, x, w, wt, f, jac, ft, want_t):
-    """F = W u(x), F_x = W du/dx and (``want_t``) F_t = Wt u(x), the monomials formed once."""
+    """F = W u(x), F_x = W du/dx and (``want_t``) F_t = Wt u(x).
+
+    Powers of every unknown come from one table; each monomial's partial derivative in x_v is
+    e_v x_v^(e_v - 1) times the other factors.
+    """
     n_eq, n_umon = w.shape
     n_var = x.shape[0]
+    max_e = 0
+    for i in range(ue.shape[0]):
+        if ue[i] > max_e:
+            max_e = ue[i]
+    pw = np.empty((n_var, max_e + 1), np.complex128)
+    for v in range(n_var):
+        pw[v, 0] = 1.0
+        for e in range(1, max_e + 1):
+            pw[v, e] = pw[v, e - 1] * x[v]
     for a in range(n_eq):
         f[a] = 0.0
         if want_t:
@@ -231,24 +244,18 @@ def _residual_jacobian_t(us, uv, ue, x, w, wt, f, jac, ft, want_t):
     for k in range(n_umon):
         val = 1.0 + 0.0j
         for i in range(us[k], us[k + 1]):
-            base = x[uv[i]]
-            for _ in range(ue[i]):
-                val *= base
+            val *= pw[uv[i], ue[i]]
         for a in range(n_eq):
             f[a] += w[a, k] * val
             if want_t:
                 ft[a] += wt[a, k] * val
         for i in range(us[k], us[k + 1]):
-            # d/dx_v of the monomial: e * x_v**(e-1) * prod of the others
-            d = 1.0 + 0.0j
+            d = 1.0 * ue[i] + 0.0j
             for i2 in range(us[k], us[k + 1]):
-                base = x[uv[i2]]
-                e = ue[i2]
                 if i2 == i:
-                    d *= e
-                    e -= 1
-                for _ in range(e):
-                    d *= base
+                    d *= pw[uv[i2], ue[i2] - 1]
+                else:
+                    d *= pw[uv[i2], ue[i2]]
             v = uv[i]
             for a in range(n_eq):
                 jac[a, v] += w[a, k] * d
