@@ -558,6 +558,72 @@ def _coincide(x: np.ndarray, rows: np.ndarray, others: np.ndarray, tol: float) -
     return np.any((dist <= tol * scale) & ~same, axis=1)
 
 
+def _deflated_newton(
+    system: PolynomialSystem,
+    q: np.ndarray,
+    x: np.ndarray,
+    roots: np.ndarray,
+    a: np.ndarray,
+    iterations: int = 60,
+) -> np.ndarray | None:
+    """Newton's method on F(x) / prod_r a.(x - r): it cannot converge to a known root r.
+
+    The deflated step is the plain Newton step u = F_x^-1 F scaled by 1 / (1 - sum_r
+    a.u / a.(x - r)) (Sherman-Morrison; Farrell, Birkisson and Funke 2015, with a holomorphic
+    deflation factor so that it applies to complex solutions).  Returns the new root or None.
+    """
+    for _ in range(iterations):
+        f, jac = system.evaluate(x, q)
+        try:
+            u = np.linalg.solve(jac, f)
+        except np.linalg.LinAlgError:
+            return None
+        denom = 1.0 - np.sum((a @ u) / ((x - roots) @ a))
+        step = u / denom
+        x = x - step
+        if not np.all(np.isfinite(x)):
+            return None
+        if np.linalg.norm(step) <= 1e-13 * (1 + np.linalg.norm(x)):
+            return x
+    f, jac = system.evaluate(x, q)
+    ok = np.linalg.norm(np.linalg.solve(jac, f)) <= 1e-9 * (1 + np.linalg.norm(x))
+    return x if ok else None
+
+
+def _recover_twins(
+    system: PolynomialSystem,
+    q1: np.ndarray,
+    x: np.ndarray,
+    status: np.ndarray,
+    rng: np.random.Generator,
+    tol: float,
+) -> int:
+    """Paths that kept landing on another path's endpoint r: r is usually one of two nearly
+    coincident solutions (a near-double root), and the path belongs to the other.  Deflated
+    Newton from next to r, with r and every other known endpoint deflated, finds it; accepted
+    only if it is a new solution.  Returns how many were recovered."""
+    recovered = 0
+    for p in np.flatnonzero(status == -1):
+        ok = np.flatnonzero(status == OK)
+        if ok.size == 0:
+            break
+        r = x[p]
+        near = ok[np.argmin(np.linalg.norm(x[ok] - r, axis=1))]
+        scale = 1.0 + np.linalg.norm(x[near])
+        a = rng.normal(size=r.shape) + 1j * rng.normal(size=r.shape)
+        start = x[near] + 1e-3 * scale * (rng.normal(size=r.shape) + 1j * rng.normal(size=r.shape))
+        close = ok[np.linalg.norm(x[ok] - x[near], axis=1) <= 0.1 * scale]
+        y = _deflated_newton(system, q1, start, x[close], a)
+        if y is None:
+            continue
+        dist = np.linalg.norm(x[ok] - y, axis=1) / (1.0 + np.linalg.norm(y))
+        if dist.min() > tol:
+            x[p] = y
+            status[p] = OK
+            recovered += 1
+    return recovered
+
+
 def track(
     system: PolynomialSystem,
     target_parameters: np.ndarray,
@@ -610,6 +676,7 @@ def track(
         new_ok = bad[si == OK]
         others = everyone[status == OK]
         status[new_ok[_coincide(x, new_ok, others, duplicate_tolerance)]] = -1
+    twins = _recover_twins(system, q1, x, status, rng, duplicate_tolerance)
     failures: dict[str, int] = {}
     for code, name in ((-1, "duplicate"), *enumerate(STATUS_NAMES)):
         n = int(np.sum(status == code))
