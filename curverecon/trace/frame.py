@@ -45,7 +45,7 @@ def _end_point(img: np.ndarray, pts: np.ndarray, options: TraceOptions) -> np.nd
     background along the end's direction (the line is the curve convolved with the blur, so it
     is at half brightness where the curve ends).  None when no such point is found."""
     w = options.width
-    k = min(len(pts) - 1, max(3, int(round(2 * w))))
+    k = min(len(pts) - 1, max(2, int(round(options.end_direction_widths * w))))
     d = pts[0] - pts[k]
     n = float(np.hypot(*d))
     if n == 0:
@@ -53,9 +53,9 @@ def _end_point(img: np.ndarray, pts: np.ndarray, options: TraceOptions) -> np.nd
     d = d / n
     normal = np.array([-d[1], d[0]])
     s = scale_for_width(w)
-    u = np.arange(-2.0 * w, options.end_search_widths * w, 0.05)
+    u = np.arange(-w, options.end_search_widths * w, 0.05)
     prof = smoothed_profile(img, pts[0] + u[:, None] * d, options)
-    inner = pts[k : 3 * k + 1]
+    inner = pts[k : 4 * k + 1]
     side = 2.0 * w + 2.0 * s
     bg = float(
         np.median(
@@ -64,7 +64,7 @@ def _end_point(img: np.ndarray, pts: np.ndarray, options: TraceOptions) -> np.nd
             )
         )
     )
-    peak = float(np.median(prof[u <= -w]))
+    peak = float(np.median(smoothed_profile(img, inner, options)))
     if not peak > bg:
         return None
     half = 0.5 * (peak + bg)

@@ -46,6 +46,9 @@ class TraceOptions:
     # End point: the 50 % point of the intensity along the end's direction, searched this many
     # widths beyond the last centre point (the skeleton stops short of a faint end).
     end_search_widths: float = 3.0
+    # ... along the direction of the last this many widths of centre points (short: ends that
+    # are seen foreshortened turn sharply).
+    end_direction_widths: float = 1.0
     # End identity: a link between consecutive frames is ambiguous when the cost of the other
     # assignment is less than this factor above the chosen one.
     ambiguity_ratio: float = 1.5

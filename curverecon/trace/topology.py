@@ -129,6 +129,25 @@ def _walk_component(comp: np.ndarray, options: TraceOptions) -> Chain:
         if length < 2 and ends[0] == ends[1]:
             continue
         segments.append(_Segment(rc[:, ::-1].astype(float), ends))
+    # a junction left with one segment end (its other branches were spurs, e.g. the fork
+    # that thinning leaves at a blunt end) is no junction: that end is free
+    attached: dict[int, int] = {}
+    for s in segments:
+        for node in s.ends:
+            attached[node] = attached.get(node, 0) + 1
+    for s in segments:
+        lone = [e for e in (0, 1) if s.ends[e] != 0 and attached.get(s.ends[e], 0) == 1]
+        for e in lone:  # grow the segment back through the cut disc, along its longest arm
+            rc = s.pts[:, ::-1].astype(int)
+            extra = np.argwhere(comp & (clusters == s.ends[e]))
+            path = _order_path(np.vstack([rc, extra]))
+            keep_end = rc[-1 if e == 0 else 0]
+            if np.abs(path[0] - keep_end).sum() < np.abs(path[-1] - keep_end).sum():
+                path = path[::-1]
+            if e == 1:
+                path = path[::-1]
+            s.pts = path[:, ::-1].astype(float)
+            s.ends[e] = 0
     free = [(i, e) for i, s in enumerate(segments) for e in (0, 1) if s.ends[e] == 0]
     if len(free) == 0:
         raise TraceFailure("the line has no free ends (closed, or its ends are not visible)")
@@ -192,7 +211,10 @@ def trace_chain(mask: np.ndarray, options: TraceOptions) -> Chain:
     objects = ndimage.find_objects(lab)
     for label in keep:
         sl = objects[label - 1]
-        pad = (slice(max(sl[0].start - 3, 0), sl[0].stop + 3), slice(max(sl[1].start - 3, 0), sl[1].stop + 3))
+        pad = (
+            slice(max(sl[0].start - 3, 0), sl[0].stop + 3),
+            slice(max(sl[1].start - 3, 0), sl[1].stop + 3),
+        )
         sub = lab[pad] == label
         ch = _walk_component(sub, options)
         ch.points = ch.points + [pad[1].start, pad[0].start]
