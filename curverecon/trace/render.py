@@ -203,7 +203,6 @@ def render_frame(
     """
     o = options or RenderOptions()
     f = SUPERSAMPLE
-    n = o.size * f
     curve = np.asarray(curve, float)
     seg = np.hypot(*np.diff(curve, axis=0).T)
     s = np.concatenate([[0.0], np.cumsum(seg)])
@@ -212,11 +211,18 @@ def render_frame(
     px = np.interp(t, s, curve[:, 0])
     py = np.interp(t, s, curve[:, 1])
     step = t[1] - t[0]
+    # only the window around the curve is drawn (the line is zero beyond 5 sigma)
+    pad = int(np.ceil(5 * o.line_sigma)) + 2
+    c0 = int(np.clip(np.floor(px.min()) - pad, 0, o.size))
+    c1 = int(np.clip(np.ceil(px.max()) + pad + 1, c0, o.size))
+    r0 = int(np.clip(np.floor(py.min()) - pad, 0, o.size))
+    r1 = int(np.clip(np.ceil(py.max()) + pad + 1, r0, o.size))
+    nx, ny = (c1 - c0) * f, (r1 - r0) * f
     # sub-pixel grid: sub-pixel m has its centre at pixel coordinate (m + 0.5) / f - 0.5
-    gx, gy = (px + 0.5) * f - 0.5, (py + 0.5) * f - 0.5
+    gx, gy = (px - c0 + 0.5) * f - 0.5, (py - r0 + 0.5) * f - 0.5
     x0, y0 = np.floor(gx).astype(int), np.floor(gy).astype(int)
     fx, fy = gx - x0, gy - y0
-    acc = np.zeros((n + 2, n + 2))
+    acc = np.zeros((ny + 2, nx + 2))
     w = step * f  # line density per sub-pixel length
     for dx, dy, wt in (
         (0, 0, (1 - fx) * (1 - fy)),
@@ -225,12 +231,14 @@ def render_frame(
         (1, 1, fx * fy),
     ):
         xi, yi = x0 + dx + 1, y0 + dy + 1
-        ok = (xi >= 0) & (xi < n + 2) & (yi >= 0) & (yi < n + 2)
+        ok = (xi >= 0) & (xi < nx + 2) & (yi >= 0) & (yi < ny + 2)
         np.add.at(acc, (yi[ok], xi[ok]), w * wt[ok])
     sig = o.line_sigma * f
-    line = gaussian_filter(acc, sig, mode="constant")[1:-1, 1:-1] * np.sqrt(2 * np.pi) * sig
-    line = np.minimum(line, 1.0)
-    line = line.reshape(o.size, f, o.size, f).mean(axis=(1, 3))
+    window = gaussian_filter(acc, sig, mode="constant")[1:-1, 1:-1] * np.sqrt(2 * np.pi) * sig
+    window = np.minimum(window, 1.0)
+    line = np.zeros((o.size, o.size))
+    if nx and ny:
+        line[r0:r1, c0:c1] = window.reshape(ny // f, f, nx // f, f).mean(axis=(1, 3))
     if o.blur > 0:
         line = gaussian_filter(line, o.blur)
     yy, xx = np.mgrid[0 : o.size, 0 : o.size] / max(o.size - 1, 1) - 0.5
