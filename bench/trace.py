@@ -48,7 +48,7 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
     family = FAMILIES[seed % len(FAMILIES)]
     scene = tumbling_scene(rng, 16, family=family)
     options = TraceOptions()
-    curves, truths, errors, skipped, first = [], [], [], 0, None
+    curves, truths, errors, skipped, first, index = [], [], [], 0, None, []
     for k, truth in enumerate(scene.observations.curves):
         img = render_frame(truth, rng) / 255.0
         try:
@@ -58,13 +58,14 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
             continue
         first = k if first is None else first
         curves.append(tr.curve)
+        index.append(k)
         truths.append(truth)
         errors.append(distance_to_polyline(tr.curve, truth)[0])
     out = {"seed": seed, "family": family, "skipped": skipped, "errors": np.concatenate(errors)}
     if len(curves) < 4:
         out.update(end_ok=False, curve_error=np.inf if end_to_end else None)
         return out
-    assignment = assign_ends(curves, options.ambiguity_ratio)
+    assignment = assign_ends(curves, options.ambiguity_ratio, index)
     oriented = [c[::-1] if f else c for c, f in zip(curves, assignment.flip, strict=True)]
     a_is_a = [
         np.hypot(*(c[0] - t[0])) < np.hypot(*(c[0] - t[-1]))

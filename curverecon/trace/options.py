@@ -49,9 +49,7 @@ class TraceOptions:
     # ... along the direction of the last this many widths of centre points (short: ends that
     # are seen foreshortened turn sharply).
     end_direction_widths: float = 1.0
-    # End identity: a link between consecutive frames is ambiguous when the cost of the other
-    # assignment is less than this factor above the chosen one.
+    # End identity (curverecon.trace.ends): a link between consecutive frames is ambiguous when
+    # the other order's continuity cost is less than this factor above the chosen one's
+    # (the reconstruction from the polylines then decides).
     ambiguity_ratio: float = 1.5
-    # Points of the output polyline: one per this many pixels of arc (the polyline is sampled
-    # at about 1 px, so neighbouring points' errors are nearly independent).
-    spacing: float = 1.0

@@ -77,15 +77,11 @@ def curve_points(rng: np.random.Generator, family: str, n: int = 2000) -> np.nda
             ctrl = np.column_stack([np.linspace(0, 1, 6), np.zeros(6), np.zeros(6)])
             ctrl[1:-1] += rng.normal(scale=0.35, size=(4, 3))
             pts = _bezier(ctrl, s)
-        elif family == "loop":
-            a = rng.uniform(0.25, 0.35)
-            t = s
+        elif family == "loop":  # a prolate trochoid: one loop, with a little pitch
+            th = np.pi * (2 * s - 1)
+            d = rng.uniform(0.55, 0.9)
             pts = np.column_stack(
-                [
-                    t - a * np.sin(2 * np.pi * t),
-                    a * (1 - np.cos(2 * np.pi * t)) + rng.uniform(0.1, 0.3) * t,
-                    rng.uniform(0.05, 0.15) * np.sin(np.pi * t),
-                ]
+                [0.4 * th - d * np.sin(th), -d * np.cos(th), rng.uniform(0.05, 0.2) * th]
             )
         else:
             raise CurveReconError(f"unknown curve family {family!r} (one of {', '.join(FAMILIES)})")

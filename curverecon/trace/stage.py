@@ -88,17 +88,18 @@ def trace_inputs(
             f"{MIN_TRACED_FRAMES} are needed{more}"
         )
     curves = [t["curve"] for t in traced]
-    assignment = assign_ends(curves, o.ambiguity_ratio)
-    if assignment.ambiguous and not assignment.decided_by_reconstruction:
-        warnings.append(
-            f"which end is A is ambiguous between {len(assignment.ambiguous)} pairs of "
-            "consecutive frames (frames "
-            + ", ".join(str(traced[k]["index"]) for k in assignment.ambiguous[:10])
-            + "); continuity of shape decided"
+    assignment = assign_ends(curves, o.ambiguity_ratio, [t["index"] for t in traced])
+    if assignment.ambiguous:
+        which = ", ".join(str(traced[k]["index"]) for k in assignment.ambiguous[:10])
+        how = (
+            "the reconstruction from the polylines decided"
+            if assignment.decided_by_reconstruction
+            else "continuity of shape decided"
         )
+        warnings.append(f"which end is A was ambiguous by continuity before frames {which} ({how})")
     frames = []
     for t, f in zip(traced, assignment.flip, strict=True):
-        curve = t["curve"][::-1] if f else t["curve"]
+        curve = np.round(t["curve"][::-1] if f else t["curve"], 4)  # 1e-4 px: far below the noise
         t["curve"] = curve
         ta, tb = end_tangents(curve)
         frames.append(
@@ -107,7 +108,7 @@ def trace_inputs(
                 "B": curve[-1].tolist(),
                 "tangent_A": ta.tolist(),
                 "tangent_B": tb.tolist(),
-                "curve": np.round(curve, 4).tolist(),
+                "curve": curve.tolist(),
                 "index": t["index"],
                 "file": t["file"],
             }

@@ -252,7 +252,7 @@ def _join(chains: list[Chain], options: TraceOptions) -> Chain:
                     if dist > max_gap:
                         continue
                     u = gap / dist if dist > 0 else d_end
-                    if d_end @ u < cos_lim or -(d_q @ u) < cos_lim:
+                    if d_end @ u < cos_lim or d_q @ u < cos_lim:
                         continue
                     if best is None or dist < best[0]:
                         best = (dist, j, at_end, q)
