@@ -140,8 +140,8 @@ def run(quick: bool = False) -> dict:
     import os
 
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-    n_trace, n_e2e = (6, 2) if quick else (24, 9)
-    n_held, n_held_e2e = (3, 1) if quick else (12, 3)
+    n_trace, n_e2e = (6, 2) if quick else (21, 9)
+    n_held, n_held_e2e = (3, 1) if quick else (9, 3)
     main = [_sequence(s, s < n_e2e) for s in range(n_trace)]
     held = [_sequence(1000 + s, s < n_held_e2e) for s in range(n_held)]
     out = _summary(main, "")

@@ -11,10 +11,11 @@ Each traced polyline runs from one end to the other in an order the tracer chose
    the fifth sample: the ends' directions and the spacing near them).  The cheaper order wins.
    A link is ambiguous when the other order costs less than ``ambiguity_ratio`` times as much.
 2. The reconstruction, where continuity is ambiguous.  The frames between ambiguous links form
-   blocks that may each be reversed as a whole; each combination (at most
-   2 ** ``MAX_AMBIGUOUS_LINKS``) is reconstructed with its polylines (``curverecon.reconstruct``:
-   the curve bundle fits one 3-D curve to every frame's polyline), and the one whose curve
-   reprojects closest to the polylines (mean over frames of the RMS distance) wins: a wrong
+   blocks that may each be reversed as a whole.  The continuity order and, link by link, the
+   order with the block after that link reversed (at most ``MAX_AMBIGUOUS_LINKS`` links) are
+   reconstructed with their polylines (``curverecon.reconstruct``: the curve bundle fits one
+   3-D curve to every frame's polyline); a reversal is kept when its curve reprojects closer to
+   the polylines (mean over frames of the RMS distance): a wrong
    order cannot be fitted by one rigid curve.  Frame 0 keeps the tracer's order.
 
 (Per-frame checks at a shape from the end points and tangents alone were tried and dropped:
@@ -24,7 +25,6 @@ as a reversed frame does.)
 
 from __future__ import annotations
 
-import itertools
 from dataclasses import dataclass
 
 import numpy as np
@@ -35,9 +35,8 @@ N_SAMPLES = 48
 """Points per polyline in the shape comparison."""
 
 MAX_AMBIGUOUS_LINKS = 2
-"""At most 2 ** 2 = 4 reconstructions with the curve bundle (about 5-25 s each for 16 frames)
-decide between the ambiguous links' orders; beyond that the continuity answer stands (and the
-command warns)."""
+"""At most 3 reconstructions with the curve bundle (about 5-25 s each for 16 frames) decide the
+ambiguous links; with more, the continuity answer stands (and the command warns)."""
 
 PREDICTION_GAIN = 0.5
 """Share of the last change per frame carried into the prediction.  On 40 rendered sequences
@@ -144,14 +143,12 @@ def assign_ends(
     decided = False
     if use_reconstruction and ambiguous and len(ambiguous) <= MAX_AMBIGUOUS_LINKS:
         if len(curves) >= 4:
-            best, best_score = flip, np.inf
-            for choice in itertools.product((False, True), repeat=len(ambiguous)):
+            best = _score(curves, flip)
+            for k in ambiguous:  # each ambiguous link toggled in turn, kept when it fits better
                 f = flip.copy()
-                for k, c in zip(ambiguous, choice, strict=True):
-                    if c:
-                        f[k:] = ~f[k:]
+                f[k:] = ~f[k:]
                 score = _score(curves, f)
-                if score < best_score:
-                    best, best_score = f, score
-            flip, decided = best, True
+                if score < best:
+                    flip, best = f, score
+            decided = True
     return EndAssignment(flip, ambiguous, decided)
