@@ -202,7 +202,7 @@ def trace_chain(mask: np.ndarray, options: TraceOptions) -> Chain:
         raise TraceFailure("no line found (no ridge above the noise)")
     skel = skeletonize(mask)
     lab, n = ndimage.label(skel, structure=np.ones((3, 3)))
-    sizes = ndimage.sum_labels(skel, lab, index=np.arange(1, n + 1))
+    sizes = np.bincount(lab.ravel(), minlength=n + 1)[1:]
     w = options.width
     keep = [i + 1 for i in np.argsort(-sizes) if sizes[i] >= options.spur_widths * w]
     if not keep:
