@@ -76,7 +76,7 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
     if end_to_end:
         frames = []
         for c in oriented:
-            ta, tb = end_tangents(c)
+            ta, tb = end_tangents(c[1:-1], fit_length=options.tangent_fit_length)
             frames.append(
                 {
                     "A": c[0].tolist(),

@@ -9,7 +9,8 @@ Each traced polyline runs from one end to the other in an order the tracer chose
    doubles the motion).  The cost is the mean distance between corresponding points plus
    ``DIRECTION_WEIGHT`` times the mean change of the end steps (the vectors from each end to
    the fifth sample: the ends' directions and the spacing near them).  The cheaper order wins.
-   A link is ambiguous when the other order costs less than ``ambiguity_ratio`` times as much.
+   A link is ambiguous when the other order costs less than ``ambiguity_ratio`` times as much,
+   or when it spans more than ``MAX_GAP`` frames.
 2. The reconstruction, where continuity is ambiguous.  The frames between ambiguous links form
    blocks that may each be reversed as a whole.  The continuity order and, link by link, the
    order with the block after that link reversed (at most ``MAX_AMBIGUOUS_LINKS`` links) are
@@ -37,6 +38,11 @@ N_SAMPLES = 48
 MAX_AMBIGUOUS_LINKS = 2
 """At most 3 reconstructions with the curve bundle (about 5-25 s each for 16 frames) decide the
 ambiguous links; with more, the continuity answer stands (and the command warns)."""
+
+MAX_GAP = 2
+"""A link across more than one left-out frame is ambiguous whatever its costs (the motion since
+the last traced frame is too large for continuity; a rendered sequence with three frames left
+out of four was ordered wrong with confidence)."""
 
 PREDICTION_GAIN = 0.5
 """Share of the last change per frame carried into the prediction.  On 40 rendered sequences
@@ -99,7 +105,7 @@ def by_continuity(
         same, swap = link_costs(pred, curves[k], centred=True)
         flip[k] = swap < same
         shapes.append(_centred(curves[k][::-1] if flip[k] else curves[k]))
-        if max(same, swap) < ratio * min(same, swap):
+        if max(same, swap) < ratio * min(same, swap) or index[k] - index[k - 1] > MAX_GAP:
             ambiguous.append(k)
     return flip, ambiguous
 

@@ -101,7 +101,9 @@ def trace_inputs(
     for t, f in zip(traced, assignment.flip, strict=True):
         curve = np.round(t["curve"][::-1] if f else t["curve"], 4)  # 1e-4 px: far below the noise
         t["curve"] = curve
-        ta, tb = end_tangents(curve)
+        ta, tb = end_tangents(
+            curve[1:-1] if len(curve) > 8 else curve, fit_length=o.tangent_fit_length
+        )
         frames.append(
             {
                 "A": curve[0].tolist(),
