@@ -251,3 +251,33 @@ def test_fewer_than_four_traced_frames_exit_2(tmp_path, capsys):
 def test_bad_width_exit_2(tmp_path, capsys):
     assert main(["trace", str(tmp_path), "-o", str(tmp_path / "o.json"), "--width", "nan"]) == 2
     assert "--width" in _one_line_error(capsys)
+
+
+@pytest.mark.parametrize(
+    "flags, expect",
+    [
+        (["--family", "spiral"], "--family"),
+        (["--image-size", "8"], "--image-size"),
+        (["--grey-noise", "-1"], "--grey-noise"),
+        (["--step", "nan"], "--step"),
+    ],
+)
+def test_simulate_images_bad_flags_exit_2(tmp_path, capsys, flags, expect):
+    args = ["simulate", "-o", str(tmp_path / "s.json"), "--images", str(tmp_path / "img")]
+    assert main([*args, "--frames", "4", *flags]) == 2
+    assert expect in _one_line_error(capsys)
+
+
+def test_simulated_images_match_the_written_polylines(tmp_path):
+    """``simulate --images``: each PNG is the rendering of the polyline written beside it (the
+    brightest ridge lies on it), in the trace's pixel convention."""
+    out = tmp_path / "s.json"
+    args = ["simulate", "-o", str(out), "--images", str(tmp_path / "img"), "--frames", "4"]
+    assert main([*args, "--image-size", "160", "--grey-noise", "0", "--gradient", "0"]) == 0
+    doc = json.loads(out.read_text())
+    for i, frame in enumerate(doc["frames"]):
+        img = iio.imread(tmp_path / "img" / f"frame_{i:04d}.png").astype(float)
+        c = np.array(frame["curve"])
+        inner = c[len(c) // 4 : 3 * len(c) // 4 : 25]
+        on = img[np.rint(inner[:, 1]).astype(int), np.rint(inner[:, 0]).astype(int)]
+        assert on.min() > 40 + 0.8 * 160
