@@ -131,8 +131,8 @@ def _score(curves: list[np.ndarray], flip: np.ndarray) -> float:
         )
     try:
         rec = reconstruct(observations_from_dict({"format": OBSERVATIONS_FORMAT, "frames": frames}))
-    except CurveReconError:
-        return np.inf
+    except (CurveReconError, ArithmeticError, ValueError, np.linalg.LinAlgError):
+        return np.inf  # an order the reconstruction cannot use does not fit
     if not rec.curve_bundle or "frame_rms_px" not in rec.curve_bundle:
         return np.inf
     return float(np.mean(rec.curve_bundle["frame_rms_px"]))
