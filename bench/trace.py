@@ -140,8 +140,8 @@ def run(quick: bool = False) -> dict:
     import os
 
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
-    n_trace, n_e2e = (6, 2) if quick else (21, 9)
-    n_held, n_held_e2e = (3, 1) if quick else (9, 3)
+    n_trace, n_e2e = (6, 2) if quick else (21, 12)
+    n_held, n_held_e2e = (3, 1) if quick else (9, 4)
     main = [_sequence(s, s < n_e2e) for s in range(n_trace)]
     held = [_sequence(1000 + s, s < n_held_e2e) for s in range(n_held)]
     out = _summary(main, "")
@@ -149,6 +149,11 @@ def run(quick: bool = False) -> dict:
     out["trace_seconds_per_frame_512"] = round(_speed_512(5 if quick else 20), 4)
     missed = [r["seed"] for r in main + held if not r["end_ok"]]
     out["trace_end_identity_missed_seeds"] = missed
+    out["images_curve_error_by_seed"] = {
+        str(r["seed"]): round(float(r["curve_error"]), 5)
+        for r in main + held
+        if r["curve_error"] is not None
+    }
     return out
 
 
