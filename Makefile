@@ -26,11 +26,15 @@ test: $(STAMP)
 fuzz: $(STAMP)
 	HYPOTHESIS_PROFILE=fuzz $(BIN)/python -m pytest -q tests/test_fuzz.py --hypothesis-show-statistics
 
-## demo: reconstruct the bundled example and write demo-output/
+## demo: reconstruct the bundled example; trace the rendered video examples/trace/sequence.mp4 and
+## reconstruct them; write demo-output/
 demo: $(STAMP)
 	mkdir -p demo-output
 	$(BIN)/curverecon reconstruct examples/wire.json -o demo-output/wire.reconstruction.json --plot demo-output/wire.png
 	@echo "wrote demo-output/wire.reconstruction.json and demo-output/wire.png"
+	$(BIN)/curverecon trace examples/trace/sequence.mp4 -o demo-output/trace.observations.json --plot demo-output/trace-overlays
+	$(BIN)/curverecon reconstruct demo-output/trace.observations.json -o demo-output/trace.reconstruction.json --plot demo-output/trace.png
+	@echo "wrote demo-output/trace.observations.json, demo-output/trace-overlays/, demo-output/trace.reconstruction.json and demo-output/trace.png"
 
 ## bench: accuracy, robustness, stability and speed; writes bench/REPORT.md and bench/report.json
 bench: $(STAMP)

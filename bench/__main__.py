@@ -253,7 +253,12 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-EXTRA_SECTIONS = {"fuzz": "bench.fuzz", "scale": "bench.scale", "minimal": "bench.minimal"}
+EXTRA_SECTIONS = {
+    "fuzz": "bench.fuzz",
+    "scale": "bench.scale",
+    "minimal": "bench.minimal",
+    "trace": "bench.trace",
+}
 """Sections with a module of their own (``run(quick) -> dict`` of report keys); each also runs
 alone: ``python -m bench --only NAME`` or ``python -m bench.NAME``."""
 

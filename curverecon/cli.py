@@ -1,4 +1,4 @@
-"""Command line: ``curverecon reconstruct | simulate | match-flat``.
+"""Command line: ``curverecon reconstruct | simulate | match-flat | trace``.
 
 Bad input exits with status 2 and one line ``curverecon: error: <message>`` on stderr.
 """
@@ -77,6 +77,41 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--chord", type=float, nargs=2, default=(100.0, 300.0), metavar=("MIN", "MAX"))
     sim.add_argument("--seed", type=int, default=0)
     sim.add_argument("--with-curve", action="store_true", help="also write projected polylines")
+    sim.add_argument(
+        "--images",
+        metavar="DIR",
+        help="render the scene as PNG frames into DIR (a curve tumbling smoothly through "
+        "--image-size pixel frames; -o and --truth then describe those frames, polylines included)",
+    )
+    sim.add_argument("--image-size", type=int, default=384, help="frame side in pixels (--images)")
+    sim.add_argument(
+        "--family",
+        default="bezier",
+        help="curve of the rendered scene (--images): bezier, helix, wave or loop (often crosses "
+        "itself)",
+    )
+    sim.add_argument(
+        "--step", type=float, default=25.0, help="rotation per frame, degrees (--images)"
+    )
+    sim.add_argument("--grey-noise", type=float, default=8.0, help="image noise sd (--images)")
+    sim.add_argument("--blur", type=float, default=0.0, help="extra blur sigma, px (--images)")
+    sim.add_argument(
+        "--gradient", type=float, default=60.0, help="background rise in grey levels (--images)"
+    )
+
+    tr = sub.add_parser("trace", help="trace the curve in images or a video into observations")
+    tr.add_argument(
+        "inputs", nargs="+", metavar="INPUT", help="image files, one folder or one video"
+    )
+    tr.add_argument("-o", "--output", required=True, help="curverecon.observations/1 JSON")
+    tr.add_argument("--plot", metavar="DIR", help="write an overlay PNG per traced frame to DIR")
+    tr.add_argument(
+        "--dark-curve", action="store_true", help="the curve is darker than the background"
+    )
+    tr.add_argument("--width", type=float, default=3.0, help="line width in pixels (FWHM)")
+    tr.add_argument(
+        "--quiet", action="store_true", help="no progress bar (shown only on a terminal anyway)"
+    )
 
     flat = sub.add_parser("match-flat", help="match points of a planar curve between two views")
     flat.add_argument("input", help="curverecon.flat-views/1 JSON file")
@@ -119,6 +154,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
     if args.frames < 1:
         raise CurveReconError("--frames must be at least 1")
+    if args.images:
+        return _simulate_images(args)
     if args.frames > MAX_SIMULATED_FRAMES:
         raise CurveReconError(f"--frames must be at most {MAX_SIMULATED_FRAMES}")
     if args.seed < 0:
@@ -147,6 +184,65 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _simulate_images(args: argparse.Namespace) -> int:
+    from curverecon.io import observations_to_dict, write_json
+    from curverecon.simulate import truth_to_dict
+    from curverecon.trace.render import (
+        FAMILIES,
+        RenderOptions,
+        render_scene,
+        tumbling_scene,
+        write_images,
+    )
+
+    if args.family not in FAMILIES:
+        raise CurveReconError(f"--family must be one of {', '.join(FAMILIES)}")
+    if not 32 <= args.image_size <= 8192:
+        raise CurveReconError("--image-size must be between 32 and 8192")
+    if args.frames > 10_000:
+        raise CurveReconError("--frames must be at most 10000 with --images")
+    for name in ("step", "grey_noise", "blur", "gradient"):
+        v = getattr(args, name)
+        if not (math.isfinite(v) and v >= 0):
+            raise CurveReconError(f"--{name.replace('_', '-')} must be a non-negative number")
+    rng = np.random.default_rng(args.seed)
+    scene = tumbling_scene(
+        rng, args.frames, family=args.family, size=args.image_size, step_deg=args.step
+    )
+    options = RenderOptions(
+        size=args.image_size, noise=args.grey_noise, blur=args.blur, gradient=args.gradient
+    )
+    write_images(render_scene(scene, rng, options), args.images)
+    write_json(args.output, observations_to_dict(scene.observations))
+    if args.truth:
+        write_json(args.truth, truth_to_dict(scene, seed=args.seed))
+    return 0
+
+
+def _cmd_trace(args: argparse.Namespace) -> int:
+    from curverecon.io import write_json
+    from curverecon.trace.options import TraceOptions
+    from curverecon.trace.stage import trace_inputs
+
+    if not (math.isfinite(args.width) and 1.0 <= args.width <= 100.0):
+        raise CurveReconError("--width must be a number of pixels between 1 and 100")
+    options = TraceOptions(width=args.width, dark_curve=args.dark_curve)
+    result = trace_inputs(
+        args.inputs,
+        options,
+        progress=sys.stderr.isatty() and not args.quiet,
+        keep_images=bool(args.plot),
+    )
+    write_json(args.output, result.document)
+    if args.plot:
+        from curverecon.trace.overlay import write_overlays
+
+        write_overlays(args.plot, result.frames, result.document)
+    for w in result.warnings:
+        _warn(w)
+    return 0
+
+
 def _cmd_match_flat(args: argparse.Namespace) -> int:
     from curverecon.solvers.flat import run_match_flat
 
@@ -160,11 +256,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser = build_parser()
         args = parser.parse_args(argv)
         if args.command is None:
-            raise CurveReconError("a command is required: reconstruct, simulate or match-flat")
+            raise CurveReconError(
+                "a command is required: reconstruct, simulate, match-flat or trace"
+            )
         handler = {
             "reconstruct": _cmd_reconstruct,
             "simulate": _cmd_simulate,
             "match-flat": _cmd_match_flat,
+            "trace": _cmd_trace,
         }[args.command]
         with np.errstate(all="ignore"):
             return handler(args)

@@ -68,11 +68,13 @@ def test_no_runtime_module_imports_another_modules_private_names():
 def test_stage_folders_are_in_the_order_the_data_passes():
     """The docs' map names every stage folder and every module in it."""
     text = (ROOT / "docs" / "architecture.md").read_text()
-    for folder in ("model", "solvers", "robust", "refine", "curve"):
+    for folder in ("trace", "model", "solvers", "robust", "refine", "curve"):
         for module in (ROOT / "curverecon" / folder).glob("*.py"):
             if module.name != "__init__.py":
                 assert f"{folder}/{module.name}" in text, module
-    order = [text.index(f"`{f}/`") for f in ("model", "solvers", "robust", "refine", "curve")]
+    order = [
+        text.index(f"`{f}/`") for f in ("trace", "model", "solvers", "robust", "refine", "curve")
+    ]
     assert order == sorted(order)
 
 
