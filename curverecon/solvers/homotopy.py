@@ -80,6 +80,8 @@ class TrackResult:
     """(n_paths,) accepted steps of the last try of each path."""
     retried: int = 0
     """Paths that needed at least one fresh detour."""
+    recovered: int = 0
+    """Paths whose endpoint was found by deflated Newton next to a near-double solution."""
     failures: dict[str, int] = field(default_factory=dict)
     """Failed paths by reason, after the retries (a path that jumped onto another's endpoint
     counts as 'duplicate'; its status is -1)."""
@@ -689,5 +691,6 @@ def track(
         status=status,
         steps=steps,
         retried=int(retried.sum()),
+        recovered=twins,
         failures=failures,
     )
