@@ -176,4 +176,5 @@ def test_four_frames_list_every_solution_as_alternatives() -> None:
     assert min(err) < 1e-6
     assert len(shapes) >= 2
     assert any("four frames cannot choose" in w for w in rec.warnings)
+    assert not any("distinct shapes fit the data" in w for w in rec.warnings)  # one warning
     assert all(a.chi2 < 1e-6 for a in rec.alternatives)

@@ -13,7 +13,7 @@ from dataclasses import replace
 
 from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise
-from curverecon.model.reconstruction import Alternative, Reconstruction
+from curverecon.model.reconstruction import Alternative, Reconstruction, alternatives_warning
 from curverecon.options import MinimalOptions
 from curverecon.refine.ml import refine
 from curverecon.robust.search import shape_distance
@@ -44,7 +44,11 @@ def add_minimal_solutions(
         added.append(Alternative(shape_n, poses_n, float(fit.chi2), fit.std))
         known.append(shape_n)
     alternatives = sorted(list(rec.alternatives) + added, key=lambda a: a.chi2)
-    warnings = list(rec.warnings)
+    # the four-frame warning below replaces the search's count of equally good fits
+    earlier = (
+        alternatives_warning(rec.shape, rec.std, rec.alternatives) if rec.alternatives else None
+    )
+    warnings = [w for w in rec.warnings if w != earlier]
     n_shapes = 1 + len(alternatives)
     if n_shapes > 1:
         warnings.append(
