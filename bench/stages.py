@@ -39,13 +39,13 @@ class _Timer:
     """The pipeline's progress hook, recording when each stage starts."""
 
     def __init__(self) -> None:
-        self.marks: list[tuple[str, float]] = []
+        self.marks: list[tuple[str, float, float]] = []
 
     def step(self, name: str) -> None:
-        self.marks.append((name, time.perf_counter()))
+        self.marks.append((name, time.perf_counter(), time.process_time()))
 
     def close(self) -> None:
-        self.marks.append(("end", time.perf_counter()))
+        self.step("end")
 
 
 def numerics(obs, rec, ps: float, ts: float) -> dict:
@@ -102,23 +102,21 @@ def run_case(
     ps, ts = opts.point_sigma, np.radians(opts.tangent_sigma_deg)
     sc = make_scene(np.random.default_rng(seed), n, point_sigma=1.0, tangent_sigma_deg=1.0)
     obs = sc.observations
-    t0 = time.perf_counter()
+    timer = _Timer()
+    timer.step("hypotheses_stub")
     if start == "truth":
         g0 = sc.truth.shape * (1.0 + 0.02 * np.random.default_rng(seed + 1).normal(size=4))
     else:
         sub = np.unique(np.linspace(0, n - 1, min(n, STUB_FRAMES)).round().astype(int))
         g0 = robust_start(obs.subset(sub), ps, ts, options=opts.search)[0].result.shape
-    t1 = time.perf_counter()
     prof = None
     if profile:
         import cProfile
 
         prof = cProfile.Profile()
         prof.enable()
+    timer.step("refine")
     fit = refine_hypothesis(obs, g0, ps, ts, options=opts.search)
-    t2 = time.perf_counter()
-    timer = _Timer()
-    timer.step("start")
     rec = answer_from_hypotheses(
         obs, [Candidate(fit, robust_cost(fit.frame_chi2), 0.0)], opts, timer
     )
@@ -126,11 +124,17 @@ def run_case(
     if prof is not None:
         prof.disable()
         prof.dump_stats(profile)
-    seconds = {"hypotheses_stub": t1 - t0, "refine": t2 - t1}
-    names = {"maximum likelihood": "outliers_covariance", "alternatives": "alternatives"}
-    for (name, t), (_, t_next) in zip(timer.marks[1:], timer.marks[2:], strict=False):
-        seconds[names.get(name, "final")] = t_next - t
-    seconds["stages_2_to_5"] = timer.marks[-1][1] - t1
+    names = {
+        "maximum likelihood": "outliers_covariance",
+        "alternatives": "alternatives",
+        "final estimate": "final",
+    }
+    seconds, cpu = {}, {}
+    for (name, t, c), (_, t_next, c_next) in zip(timer.marks, timer.marks[1:], strict=False):
+        seconds[names.get(name, name)] = t_next - t
+        cpu[names.get(name, name)] = c_next - c
+    seconds["stages_2_to_5"] = timer.marks[-1][1] - timer.marks[1][1]
+    cpu["stages_2_to_5"] = timer.marks[-1][2] - timer.marks[1][2]
     truth, _ = normalise(sc.truth.shape, np.zeros((1, 5)))
     err = np.asarray(rec.shape) - truth
     err[1:] = (err[1:] + np.pi) % (2 * np.pi) - np.pi
@@ -140,12 +144,12 @@ def run_case(
         **out,
         "frames": n,
         "seconds": {k: round(v, 3) for k, v in seconds.items()},
+        "cpu_seconds": {k: round(v, 3) for k, v in cpu.items()},
         "shape": [round(float(v), 6) for v in rec.shape],
         "truth": [round(float(v), 6) for v in truth],
         "error_in_std": [round(float(v), 2) for v in z],
         "outliers": int((~rec.inliers).sum()),
         "estimator": rec.estimator,
-        "cpu_seconds": round(time.process_time(), 2),
         "peak_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0, 1),
     }
 

@@ -862,6 +862,7 @@ def refine_batch(
     g = np.array(shapes, dtype=float, ndmin=2)
     p = np.array(poses, dtype=float, ndmin=3)
     k = g.shape[0]
+    shrink = LONG_SHRINK if p.shape[1] >= LONG_FRAMES else 1.0 / 3.0
     r, ja = _lin_aug(g, p, meas, w8)
     chi2 = np.einsum("kna,kna->k", r, r)
     lam = np.full(k, 1e-3)
@@ -981,11 +982,11 @@ def refine_batch(
         if accept.all():
             rho = (c2 - chi2_new) / np.maximum(predicted, 1e-300)
             rho = np.minimum(np.maximum(rho, 0.0), 1.0)
-            lam_new = np.maximum(lama * np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3), 1e-15)
+            lam_new = np.maximum(lama * np.maximum(shrink, 1.0 - (2.0 * rho - 1.0) ** 3), 1e-15)
         elif accept.any():
             rho = (c2 - chi2_new) / np.maximum(predicted, 1e-300)
             rho = np.minimum(np.maximum(rho, 0.0), 1.0)
-            factor = np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
+            factor = np.maximum(shrink, 1.0 - (2.0 * rho - 1.0) ** 3)
             lam_new = np.where(accept, np.maximum(lama * factor, 1e-15), lama * 4.0)
         else:
             lam_new = lama * 4.0
@@ -1011,6 +1012,16 @@ def refine_batch(
         chi2[acc] = chi2_new[accept]
     return g, p, r, chi2, iters, converged
 
+
+LONG_FRAMES = 1000
+"""From this many frames on, lambda shrinks by up to ``LONG_SHRINK`` per well-predicted step."""
+
+LONG_SHRINK = 0.1
+"""Nielsen's update shrinks lambda by at most 1/3 per step.  With thousands of frames the last
+iterations are a creep along the valley of c (its Schur-reduced curvature is a small fraction
+of the Gauss-Newton diagonal that scales the damping), each step shortened by lambda until
+lambda is below that fraction: 30,000 frames, the predicted decrease fell 2.7-fold per step for
+12 steps.  Below ``LONG_FRAMES`` frames 1/3 (the headline's fits unchanged)."""
 
 NEWTON_SWITCH = 1e-2
 """Switch to Newton once a Gauss-Newton step predicts a decrease below this times chi2."""
