@@ -713,7 +713,40 @@ def _normal_blocks(
         hi, ui = h[i], u[i]
         _add_curvature(hi, ui, g[i], p[i], r[i], w8)
         h[i], u[i] = hi, ui
+    if nwt.any() and h.shape[1] >= LONG_FRAMES:
+        _gauss_newton_where_indefinite(h, u, g, p, r, ja, w8, nwt)
     return h, u, el, eg, dv, du, sv, su
+
+
+def _gauss_newton_where_indefinite(
+    h: np.ndarray,
+    u: np.ndarray,
+    g: np.ndarray,
+    p: np.ndarray,
+    r: np.ndarray,
+    ja: np.ndarray,
+    w8: np.ndarray,
+    nwt: np.ndarray,
+) -> None:
+    """Long sequences: the frames whose Newton pose block V is not positive definite go back to
+    their Gauss-Newton blocks (in place; U loses their second-order terms).
+
+    Among thousands of frames a few are always away from a minimum of their own (a fold, a
+    saddle); one such frame made the whole Newton model indefinite, lambda rose tenfold, and
+    the iteration crept (30,000 frames: 46 iterations, 1 to 7 such frames in most of them).
+    Per frame Newton where it is positive definite, Gauss-Newton elsewhere, as the marginal
+    step's pose solves do (``refine.marginal``)."""
+    bad = ~_positive_definite(h[..., :5, :5]) & nwt[:, None]
+    if not bad.any():
+        return
+    ks, ns = np.nonzero(bad)
+    jb = ja[ks, ns]
+    h[ks, ns] = jb.swapaxes(-1, -2) @ jb
+    wb = w8[ns][:, None] if np.ndim(w8) == 2 else w8
+    terms = _curvature_terms(g[ks], p[ks, ns][:, None], r[ks, ns][:, None], wb)[:, 0]
+    part = np.take(terms, _CURVATURE_U[1], axis=-1)  # (M, 5)
+    for k in np.unique(ks):
+        u.reshape(-1, 16)[k, _CURVATURE_U[0]] -= part[ks == k].sum(axis=0)
 
 
 def _damped_solve(

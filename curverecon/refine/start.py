@@ -16,7 +16,7 @@ import numpy as np
 from curverecon.model.observations import Observations, wrap_angle
 from curverecon.model.pose import normalise
 from curverecon.options import SearchOptions
-from curverecon.refine.ml import RefineResult, refine_batch
+from curverecon.refine.ml import RefineResult, refine_batch, standardised_residuals
 from curverecon.robust.search import poses_from_branches, switch_branches
 
 START_MAX_ITER = 60
@@ -25,6 +25,15 @@ START_MAX_ITER = 60
 OTHER_BRANCH_DELTA = np.radians(5.0)
 """Poses whose delta differs by more than this are on different branches (as
 ``robust.search.branch_alternatives`` counts them)."""
+
+START_MIN_GAIN = 1.0
+"""Another round only if the frames that changed branch lower chi2 by this much at the current
+shape (with 100,000 frames some frame always changes between two branches that fit alike, and
+every round cost a refit on all frames; a gain below 1 moves the shape by a fraction of its
+standard deviation)."""
+
+START_REL_GAIN = 1e-4
+"""... or this fraction of chi2, if less (nearly noise-free data: every gain counts)."""
 
 START_ROUNDS = 4
 """Rounds of branch switching and refinement at most: a start a few percent off the shape
@@ -48,13 +57,21 @@ def refine_hypothesis(
     meas = obs.measurements()
     g = np.asarray(shape, float)
     p = poses_from_branches(obs, g) if poses is None else np.asarray(poses, float)
+    r = standardised_residuals(g, p, meas, w8)
+    fc = np.sum(r * r, axis=1)
     chi2, iters, conv = np.inf, 0, False
     for k in range(START_ROUNDS):
         # every frame on its best branch of (10) for the current shape (after the first
         # round: with the frames still far off re-solved from a grid of starts too)
         p_sw = switch_branches(obs, g, p, w8, rescue=k > 0, options=o)
-        if k > 0 and not _other_branch(p_sw, p).any():
-            break
+        if k > 0:
+            moved = _other_branch(p_sw, p)
+            if not moved.any():
+                break
+            rs = standardised_residuals(g, p_sw[moved], meas[moved], w8)
+            gain = np.sum(fc[moved]) - np.sum(rs * rs)
+            if gain < min(START_MIN_GAIN, START_REL_GAIN * chi2):
+                break
         g2, p2, r2, chi22, it2, conv2 = refine_batch(
             meas, g[None], p_sw[None], point_sigma, tangent_sigma, max_iter=START_MAX_ITER
         )
@@ -62,8 +79,9 @@ def refine_hypothesis(
         if not chi22[0] < chi2:
             break
         g, p, r, chi2, conv = g2[0], p2[0], r2[0], float(chi22[0]), bool(conv2[0])
+        fc = np.sum(r * r, axis=1)
     shape_n, poses_n = normalise(g, p)
-    return RefineResult(shape_n, poses_n, chi2, np.sum(r * r, axis=1), r, None, iters, conv)
+    return RefineResult(shape_n, poses_n, chi2, fc, r, None, iters, conv)
 
 
 def _other_branch(a: np.ndarray, b: np.ndarray) -> np.ndarray:
