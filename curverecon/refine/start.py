@@ -35,6 +35,12 @@ standard deviation)."""
 START_REL_GAIN = 1e-4
 """... or this fraction of chi2, if less (nearly noise-free data: every gain counts)."""
 
+START_SWITCH_CHI2 = 4.0
+"""After the first round only frames whose chi2 exceeds this (or ten times the median frame's,
+if less: nearly noise-free data) are tried on their other branches: a switch to a branch that
+fits better by less cannot move the shape much, and trying every frame's four branches cost
+about 10 s per round at 100,000 frames."""
+
 START_ROUNDS = 4
 """Rounds of branch switching and refinement at most: a start a few percent off the shape
 (noise-free, 600 frames, c and the angles 2-3 % off) left half of the frames on the wrong
@@ -63,8 +69,16 @@ def refine_hypothesis(
     for k in range(START_ROUNDS):
         # every frame on its best branch of (10) for the current shape (after the first
         # round: with the frames still far off re-solved from a grid of starts too)
-        p_sw = switch_branches(obs, g, p, w8, rescue=k > 0, options=o)
-        if k > 0:
+        if k == 0:
+            p_sw = switch_branches(obs, g, p, w8, options=o)
+        else:  # only the frames that fit worse than most can gain from another branch
+            worse = np.flatnonzero(fc > min(START_SWITCH_CHI2, 10.0 * float(np.median(fc))))
+            if worse.size == 0:
+                break
+            p_sw = np.array(p)
+            p_sw[worse] = switch_branches(
+                obs.subset(worse), g, p[worse], w8, rescue=True, options=o
+            )
             moved = _other_branch(p_sw, p)
             if not moved.any():
                 break
