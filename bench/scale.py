@@ -4,7 +4,11 @@ number of frames, and a frame whose polyline has 2,000,000 points.
 Each case runs in a child process (``python -m bench.scale --case ...``), so that its peak
 memory is its own: ``resource.getrusage(RUSAGE_SELF).ru_maxrss`` of the child at the end (the
 whole process: Python, NumPy and the scene).  Scenes: ``curverecon.simulate.make_scene`` with
-seed 2, 1 px, 1 degree.  ``python -m bench.scale [--quick]`` prints the figures as JSON.
+seed 2, 1 px, 1 degree.  Reported per size: wall and CPU seconds (the machine may be shared:
+CPU seconds are the process's own), peak memory, the frames flagged as outliers, and the
+seconds of each pipeline stage (the progress bar's stages: hypotheses, maximum likelihood with
+the outlier test, alternatives, final estimate, curve).  ``python -m bench.scale [--quick]``
+prints the figures as JSON.
 """
 
 from __future__ import annotations
@@ -19,16 +23,41 @@ SIZES_FULL = (1000, 10_000, 30_000, 100_000)
 SIZES_QUICK = (1000, 3000)
 
 
+class _StageTimes:
+    """Stands in for the pipeline's progress bar (``curverecon.progress.StageProgress``) in the
+    child process: records when each stage starts."""
+
+    marks: list[tuple[str, float]] = []
+
+    def __init__(self, stages, enabled, desc="") -> None:
+        _StageTimes.marks = []
+
+    def step(self, name: str) -> None:
+        _StageTimes.marks.append((name, time.perf_counter()))
+
+    def close(self) -> None:
+        self.step("end")
+
+
 def _case_frames(n: int) -> dict:
     import numpy as np
 
-    from curverecon.pipeline import reconstruct
+    import curverecon.pipeline as pipeline
     from curverecon.simulate import make_scene
 
     sc = make_scene(np.random.default_rng(2), n, point_sigma=1.0, tangent_sigma_deg=1.0)
-    t0 = time.perf_counter()
-    rec = reconstruct(sc.observations)
-    return {"seconds": time.perf_counter() - t0, "outliers": len(rec.outlier_frames())}
+    pipeline.StageProgress = _StageTimes  # the stages' start times, nothing shown
+    t0, c0 = time.perf_counter(), time.process_time()
+    rec = pipeline.reconstruct(sc.observations)
+    seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
+    marks = _StageTimes.marks
+    stages = {a: round(tb - ta, 2) for (a, ta), (_, tb) in zip(marks, marks[1:], strict=False)}
+    return {
+        "seconds": seconds,
+        "cpu_seconds": cpu,
+        "stages": stages,
+        "outliers": len(rec.outlier_frames()),
+    }
 
 
 def _case_polyline(points: int) -> dict:
@@ -74,9 +103,15 @@ def run(quick: bool = False) -> dict:
         f"reconstruct_seconds_{max(sizes)}_frames": round(big["seconds"], 2),
         f"peak_memory_mb_{max(sizes)}_frames": round(big["peak_mb"], 1),
         "scale_table": {
-            str(n): {"seconds": round(v["seconds"], 2), "peak_mb": round(v["peak_mb"], 1)}
+            str(n): {
+                "seconds": round(v["seconds"], 2),
+                "cpu_seconds": round(v["cpu_seconds"], 2),
+                "peak_mb": round(v["peak_mb"], 1),
+                "outliers": v["outliers"],
+            }
             for n, v in table.items()
         },
+        "scale_stage_seconds": {str(n): v["stages"] for n, v in table.items()},
         "scale_seconds_per_1000_frames": {
             str(n): round(1000 * v["seconds"] / n, 3) for n, v in table.items()
         },

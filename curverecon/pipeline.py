@@ -40,7 +40,7 @@ from curverecon.robust.alternatives import equally_good_fits
 from curverecon.robust.branches import flip_ambiguous_frames
 from curverecon.robust.four_frames import add_minimal_solutions
 from curverecon.robust.outliers import find_outlier_frames
-from curverecon.robust.search import robust_start
+from curverecon.robust.search import Candidate, robust_start
 from curverecon.solvers import minimal
 from curverecon.solvers.linear import frame_matrix, min_frames, solve_linear
 from curverecon.solvers.pose import poses_from_shape
@@ -108,13 +108,31 @@ def reconstruct_end_points(
     """Steps 1-5 of the pipeline: the answer from A', B' and the tangents alone."""
     progress = progress or StageProgress(STAGES, False)
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
-    w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
     # 1. hypotheses
     progress.step("hypotheses")
     seeds = _linear_seed(obs, opts.search)
     cands = robust_start(obs, ps, ts, options=opts.search, extra_shapes=seeds)
     if not cands:
         raise CurveReconError("no shape fits the data (the search found no candidate)")
+    rec = answer_from_hypotheses(obs, cands, opts, progress)
+    if obs.n_frames == minimal.FRAMES:
+        # exactly four frames: every shape that fits them exactly, from the minimal solver
+        rec = add_minimal_solutions(rec, obs, ps, ts, opts.minimal)
+    return rec
+
+
+def answer_from_hypotheses(
+    obs: Observations,
+    cands: list[Candidate],
+    opts: ReconstructOptions,
+    progress: StageProgress | None = None,
+) -> Reconstruction:
+    """Steps 2-5 of the pipeline from the hypotheses (best first; ``cands[0].result`` refined
+    on all frames, e.g. by ``refine.start.refine_hypothesis``): outlier frames, pose branches,
+    the equally good fits and the final estimate.  Linear in the number of frames."""
+    progress = progress or StageProgress(STAGES, False)
+    ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
+    w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
     # 2.-3. maximum likelihood, outlier frames, pose branches
     progress.step("maximum likelihood")
     inliers, fit = find_outlier_frames(obs, cands[0].result, ps, ts, opts.outliers, opts.search)
@@ -145,9 +163,6 @@ def reconstruct_end_points(
         opts.branches,
         opts.search,
     )
-    if obs.n_frames == minimal.FRAMES:
-        # exactly four frames: every shape that fits them exactly, from the minimal solver
-        rec = add_minimal_solutions(rec, obs, ps, ts, opts.minimal)
     return rec
 
 

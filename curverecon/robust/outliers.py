@@ -56,8 +56,14 @@ def find_outlier_frames(
     # implausible chi2, trimmed refits; then the outlier test on the unweighted, studentised
     # per-frame chi2: drop the worst frame above the threshold, refit, repeat.
     start_chi2 = fit.chi2
+    dof = max(n - 4, 1)
+    implausible = start_chi2 > dof + 5.0 * math.sqrt(2.0 * dof) + 10.0
+    long = n >= o.batch_frames
     st = studentised(obs, fit, w8, o)
-    robust_rounds = 3 if np.max(st) > threshold(st, o) else 0
+    # (a long sequence with a plausible chi2: a frame's pull on the shape is ~4/N of its own,
+    # no outlier can hide behind the others, and the frames above the threshold are the
+    # false alarms ``o.false_alarm`` predicts: the reweighting would change nothing)
+    robust_rounds = 3 if np.max(st) > threshold(st, o) and (implausible or not long) else 0
     for _ in range(robust_rounds):
         scale2 = o.cauchy_k**2 * max(1.0, float(np.median(st)) / MEDIAN_CHI2_1)
         weights = 1.0 / (1.0 + st / scale2)
@@ -66,8 +72,7 @@ def find_outlier_frames(
         st = studentised(obs, fit, w8, o)
     inliers = np.ones(n, dtype=bool)
     max_out = max(0, (n - 5) // 2)
-    dof = max(n - 4, 1)
-    if max_out > 0 and start_chi2 > dof + 5.0 * math.sqrt(2.0 * dof) + 10.0:
+    if max_out > 0 and implausible:
         inliers, fit = trimmed_inliers(obs, fit, ps, ts, w8, max_out, o, search)
     rescued = 0
     while True:
@@ -77,6 +82,11 @@ def find_outlier_frames(
         thr = threshold(st, o)
         if st[j] <= thr or (~inliers).sum() >= max_out:
             break
+        if long:
+            inliers, fit, rescued = _drop_all_over(
+                obs, inliers, fit, st, thr, max_out, rescued, ps, ts, w8, search
+            )
+            continue
         # a frame on a wrong pose (a minimum of its own that no branch of (10) led out of)
         # is not an outlier: its pose re-solved from a grid of starts first, and kept if
         # that brings it under the threshold (``search.switch_branches(..., rescue=True)``)
@@ -95,6 +105,50 @@ def find_outlier_frames(
         keep = np.arange(idx.size) != j
         fit = refine(obs.subset(inliers), fit.shape, fit.poses[keep], ps, ts, covariance=False)
     return inliers, fit
+
+
+def _drop_all_over(
+    obs: Observations,
+    inliers: np.ndarray,
+    fit: RefineResult,
+    st: np.ndarray,
+    thr: float,
+    max_out: int,
+    rescued: int,
+    ps: float,
+    ts: float,
+    w8: np.ndarray,
+    search: SearchOptions,
+) -> tuple[np.ndarray, RefineResult, int]:
+    """One round of the outlier loop of a long sequence: every inlier frame above the
+    threshold at once (rather than the worst, refit, repeat: O(N) per frame flagged).
+
+    As the loop does for its worst frame: each is first re-solved from a grid of pose starts
+    (kept if that brings it under the threshold); the others are dropped, the worst first, at
+    most up to ``max_out`` frames left out in all; then one refit on the inliers.  Returns the
+    new mask, fit and count of rescued frames."""
+    n = obs.n_frames
+    idx = np.flatnonzero(inliers)
+    over = np.flatnonzero(st > thr)
+    over = over[np.argsort(-st[over], kind="stable")]
+    poses = np.array(fit.poses)
+    if rescued < n:
+        sub = obs.subset(idx[over])
+        pj = switch_branches(sub, fit.shape, poses[over], w8, rescue=True, options=search)
+        rj = standardised_residuals(fit.shape, pj, sub.measurements(), w8)
+        chi2_j = np.sum(rj * rj, axis=1)
+        moved = np.any(pj != poses[over], axis=1)
+        ok = moved & (chi2_j < fit.frame_chi2[over]) & (chi2_j <= thr)
+        poses[over[ok]] = pj[ok]
+        rescued += int(ok.sum())
+        over = over[~ok]
+    drop = over[: max(0, max_out - int((~inliers).sum()))]
+    inliers = np.array(inliers)
+    inliers[idx[drop]] = False
+    keep = np.ones(idx.size, bool)
+    keep[drop] = False
+    fit = refine(obs.subset(inliers), fit.shape, poses[keep], ps, ts, covariance=False)
+    return inliers, fit, rescued
 
 
 def trimmed_inliers(

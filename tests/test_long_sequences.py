@@ -1,0 +1,98 @@
+"""Long sequences: the per-frame computations in chunks and on the frames still moving give the
+answer of the plain computation; the refinement from one shape on all frames; the outlier test's
+one-round path for many frames."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from test_conventions import canonical_parameters
+
+from curverecon.model.pose import normalise
+from curverecon.options import OutlierOptions
+from curverecon.refine import marginal, ml
+from curverecon.refine.ml import frame_leverages, optimise_poses, refine
+from curverecon.refine.start import refine_hypothesis
+from curverecon.robust.outliers import find_outlier_frames
+from curverecon.simulate import make_scene
+from curverecon.solvers.pose import poses_from_shape
+
+TS = np.radians(1.0)
+W8 = np.array([1.0] * 4 + [1.0 / TS] * 2)
+
+
+def _scene(seed: int, n: int, noise: float = 1.0, outliers: float = 0.0):
+    return make_scene(np.random.default_rng(seed), n, noise, noise, outlier_fraction=outliers)
+
+
+def test_pose_optimisation_reaches_the_true_poses_in_chunks_as_in_one_piece(monkeypatch):
+    sc = _scene(3, 300, noise=0.0)
+    shape, truth = canonical_parameters(sc.truth)
+    meas = sc.observations.measurements()
+    start = truth + np.random.default_rng(4).normal(scale=0.02, size=truth.shape)
+    start[:, 2:] = truth[:, 2:]
+    whole = optimise_poses(shape, start, meas, W8, 20)
+    # noise-free: every frame back at its true pose (independent: the simulated geometry)
+    assert np.max(np.abs(whole[0][:, :2] - truth[:, :2])) < 1e-7
+    monkeypatch.setattr(ml, "FRAME_CHUNK", 64)
+    chunked = optimise_poses(shape, start, meas, W8, 20)
+    assert np.array_equal(whole[0], chunked[0]) and np.array_equal(whole[1], chunked[1])
+
+
+def test_refinement_and_leverages_in_chunks_are_those_in_one_piece(monkeypatch):
+    sc = _scene(5, 400)
+    shape, poses = canonical_parameters(sc.truth)
+    g0 = shape * 1.002
+    p0, _ = poses_from_shape(sc.observations, g0)
+    meas = sc.observations.measurements()
+    weights = np.random.default_rng(6).uniform(0.5, 1.0, 400)
+    whole = refine(meas, g0, p0, 1.0, TS, frame_weights=weights)
+    lev = frame_leverages(whole.shape, whole.poses, meas, W8)
+    monkeypatch.setattr(ml, "FRAME_CHUNK", 50)
+    chunked = refine(meas, g0, p0, 1.0, TS, frame_weights=weights)
+    assert np.array_equal(whole.shape, chunked.shape)
+    assert np.array_equal(whole.poses, chunked.poses)
+    assert np.array_equal(whole.covariance, chunked.covariance)
+    assert np.array_equal(lev, frame_leverages(whole.shape, whole.poses, meas, W8))
+
+
+def test_marginal_step_in_chunks_is_the_one_in_one_piece(monkeypatch):
+    sc = _scene(7, 260)
+    meas = sc.observations.measurements()
+    shape, poses = canonical_parameters(sc.truth)
+    fit = refine(meas, shape, poses, 1.0, TS, covariance=False)
+    whole = marginal.refine_marginal(meas, fit.shape, fit.poses, 1.0, TS, fit.chi2)
+    monkeypatch.setattr(marginal, "FRAME_CHUNK", 40)
+    monkeypatch.setattr(ml, "FRAME_CHUNK", 40)
+    chunked = marginal.refine_marginal(meas, fit.shape, fit.poses, 1.0, TS, fit.chi2)
+    assert np.array_equal(whole.shape, chunked.shape)
+    assert np.array_equal(whole.poses, chunked.poses)
+    assert whole.value == chunked.value
+
+
+def test_refinement_from_one_shape_finds_the_truth_on_all_frames():
+    sc = _scene(9, 600, noise=0.0)
+    truth, _ = normalise(sc.truth.shape, np.zeros((1, 5)))
+    start = sc.truth.shape * np.array([1.02, 0.98, 1.03, 0.97])
+    fit = refine_hypothesis(sc.observations, start, 1.0, TS)
+    assert fit.chi2 < 1e-12
+    assert np.max(np.abs(fit.shape - truth) / np.r_[truth[0], 1, 1, 1]) < 1e-7
+    assert fit.poses.shape == (600, 5)
+
+
+@pytest.mark.parametrize("seed", [12, 13])
+def test_long_sequence_outliers_are_dropped_in_one_round(seed):
+    """With ``batch_frames`` low, the one-round path flags simulated outlier frames only (the
+    simulation's truth; one of the six fits by chance), the same as the one-at-a-time path."""
+    sc = _scene(seed, 120, outliers=0.05)
+    obs = sc.observations
+    shape, poses = canonical_parameters(sc.truth)
+    fit = refine(obs, shape, poses, 1.0, TS, covariance=False)
+    true_out = ~sc.truth.inliers
+    assert true_out.sum() >= 3
+    one_round = find_outlier_frames(obs, fit, 1.0, TS, OutlierOptions(batch_frames=50))
+    one_by_one = find_outlier_frames(obs, fit, 1.0, TS, OutlierOptions(batch_frames=10**9))
+    flagged = ~one_round[0]
+    assert flagged.sum() >= true_out.sum() - 1 and not np.any(flagged & ~true_out)
+    assert np.array_equal(one_round[0], one_by_one[0])
+    assert np.allclose(one_round[1].shape, one_by_one[1].shape, rtol=1e-6, atol=1e-8)
