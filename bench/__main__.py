@@ -253,7 +253,7 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-EXTRA_SECTIONS = {"fuzz": "bench.fuzz", "scale": "bench.scale"}
+EXTRA_SECTIONS = {"bundle": "bench.bundle", "fuzz": "bench.fuzz", "scale": "bench.scale"}
 """Sections with a module of their own (``run(quick) -> dict`` of report keys); each also runs
 alone: ``python -m bench --only NAME`` or ``python -m bench.NAME``."""
 

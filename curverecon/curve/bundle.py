@@ -1007,6 +1007,51 @@ def _oriented(curves, rec) -> list[np.ndarray]:
     return out
 
 
+def _arc_parameters(ctrl: np.ndarray, n_out: int) -> np.ndarray:
+    """Spline parameters u of ``n_out`` points equally spaced in 3-D arc length."""
+    u = np.linspace(0.0, 1.0, 4000)
+    dense = _Basis(len(ctrl)).values(u) @ ctrl
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))])
+    return np.interp(np.linspace(0.0, s[-1], n_out), s, u)
+
+
+def curve_point_std(
+    prob: _Problem,
+    ctrl: np.ndarray,
+    m: np.ndarray,
+    b: np.ndarray,
+    u: np.ndarray,
+    d_red: np.ndarray | None = None,
+) -> np.ndarray | None:
+    """Standard deviation (pixels; root of the trace of the 3x3 covariance) of the fitted
+    curve's points at parameters u, from the fit's covariance (residuals in units of sigma, so
+    (J^T J)^-1; the poses marginalised out when they were fitted).  ``d_red``: the pinned
+    parametrisation of :func:`fit_curve_fixed_poses` (poses fixed: the std is then the curve's
+    alone, given the end-point answer's poses).  None if the covariance is not finite."""
+    _, jac, _ = prob.residuals(ctrl, m, b, jac=True, poses=d_red is None)
+    if d_red is not None:
+        jac = jac @ d_red
+    try:
+        cov = np.linalg.pinv(jac.T @ jac)
+    except np.linalg.LinAlgError:
+        return None
+    nb = _Basis(len(ctrl)).values(u)
+    var = np.zeros(len(u))
+    for c in range(3):
+        g = np.zeros((len(u), prob.n_curve))
+        col = prob.cidx[:, c]
+        ok = col >= 0
+        g[:, col[ok]] = nb[:, ok]
+        if d_red is not None:
+            g = g @ d_red
+        else:
+            g = np.pad(g, ((0, 0), (0, cov.shape[0] - g.shape[1])))
+        var += np.einsum("ij,jk,ik->i", g, cov, g)
+    if not np.all(np.isfinite(var)):
+        return None
+    return np.sqrt(np.clip(var, 0.0, None))
+
+
 def _arc_samples(points: np.ndarray, n_out: int) -> np.ndarray:
     """``n_out`` points equally spaced in arc length along a dense polyline."""
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
@@ -1163,7 +1208,12 @@ def refine_reconstruction(
                 dense = _Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 400)) @ ctrl
                 ctrl, _, rms = fit(mask, dense, k_start)
         k = ctrl.shape[0]
-        curve3d = _arc_samples(_Basis(k).values(np.linspace(0.0, 1.0, 4000)) @ ctrl, n_out or 200)
+        u = _arc_parameters(ctrl, n_out or 200)
+        curve3d = _Basis(k).values(u) @ ctrl
+        prob = _Problem(polys, sigma, k, None, None, 1.0, 1.0)
+        prob.poly_w = mask.astype(float)
+        base, d = _pinned_map(k, a3[0], b3[0], ta3[0], tb3[0])
+        std = curve_point_std(prob, ctrl, m, bb, u, d[[j for j in range(3 * k) if j != 2]])
         info = {
             "control_points": int(k),
             "sigma_px": float(sigma),
@@ -1175,7 +1225,7 @@ def refine_reconstruction(
             **extra,
             "flagged_frames": flagged,
         }
-        return replace(rec, warnings=warnings), curve3d, info
+        return replace(rec, warnings=warnings, curve3d_std=std), curve3d, info
 
     if s2 is not None and s2 < o.exact_variance_factor:
         # exact end points (noise-free): the bundle could only move the answer out of their
@@ -1223,7 +1273,8 @@ def refine_reconstruction(
         }
         return fixed_answer(start, k, mask, extra)
     # curve samples equally spaced in 3-D arc length, in the curve frame
-    pts = _arc_samples(br.curve_points(4000), int(n_out) if n_out is not None else 200)
+    u_out = _arc_parameters(br.control, int(n_out) if n_out is not None else 200)
+    pts = _Basis(len(br.control)).values(u_out) @ br.control
     # normalise changes the curve frame by rotations (no change in camera coordinates) and,
     # for phi < 0, by the mirror image z -> -z (camera depth negated; A stays at z = 0)
     curve3d = pts * [1.0, 1.0, -1.0] if shape[3] < 0 else pts
@@ -1240,6 +1291,7 @@ def refine_reconstruction(
     prob.poly_w = mask.astype(float)
     _, jac, _ = prob.residuals(br.control, br.m, br.b)
     std = _shape_std(br, k, jac)
+    point_std = curve_point_std(prob, br.control, br.m, br.b, u_out)
     limit = RMS_LIMIT_SIGMA * br.sigma + RMS_LIMIT_PX
     bad = [int(i) for i in np.flatnonzero((br.rms > limit) & mask)]
     if bad:
@@ -1263,6 +1315,7 @@ def refine_reconstruction(
         frame_chi2=frame_chi2,
         branch_alternatives=alt_poses,
         branch_alternative_chi2=alt_chi2,
+        curve3d_std=point_std,
     )
     info = {
         "control_points": int(k),
