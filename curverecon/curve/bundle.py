@@ -675,6 +675,7 @@ def bundle_adjust(
     tangent_sigma_deg: float = 1.0,
     max_iter: int = MAX_ITER,
     polyline_mask: np.ndarray | None = None,
+    k_max: int = 0,
 ) -> BundleResult:
     """Refine the poses and the 3-D curve jointly against every frame's polyline.
 
@@ -684,6 +685,8 @@ def bundle_adjust(
     n_control: control points of the spline (default ``N_CONTROL``, fewer for short polylines).
     ends: optional (N, 2, 2) given A', B' per frame; tangents: optional (N, 2, 2) given image
         tangent directions at A and B (any sign); with their sigmas (pixels, degrees).
+    k_max: the control points grow (knot spans halved) up to this many while Akaike's
+        criterion (:func:`_bic` with 2 per parameter) improves (0: no growth).
     polyline_mask: optional (N,) bool, False for frames whose polyline is left out of the fit
         (flagged as contradicting the given end points and tangents; needs ``ends``).
 
@@ -786,6 +789,31 @@ def bundle_adjust(
         (ctrl, m, b), cost, it, converged = _lm(prob.residuals, prob.apply, (ctrl, m, b), max_iter)
         total_it += it
     rms = prob.residuals(ctrl, m, b, jac=False)[2]
+    crit = _bic(prob, rms, prob.n_par, 2.0)
+    while 2 * k - 3 <= int(k_max):
+        # every knot span halved (the old curve exactly, so the fit starts at the old optimum);
+        # kept while the information criterion improves (sharp bends, wiggles)
+        k2 = 2 * k - 3
+        u = np.linspace(0.0, 1.0, 20 * k2)
+        ctrl2 = np.linalg.lstsq(_Basis(k2).values(u), prob.basis.values(u) @ ctrl, rcond=None)[0]
+        prob2 = problem(k2)
+        (c2, m2, b2), cost2, it, conv2 = _lm(prob2.residuals, prob2.apply, (ctrl2, m, b), max_iter)
+        total_it += it
+        rms2 = prob2.residuals(c2, m2, b2, jac=False)[2]
+        crit2 = _bic(prob2, rms2, prob2.n_par, 2.0)
+        if not crit2 < crit:
+            break
+        k, prob, ctrl, m, b, cost, converged, rms, crit = (
+            k2,
+            prob2,
+            c2,
+            m2,
+            b2,
+            cost2,
+            conv2,
+            rms2,
+            crit2,
+        )
     return BundleResult(ctrl, m, b, sigma, rms, cost_start, cost, total_it, converged)
 
 
@@ -821,7 +849,7 @@ def _pinned_start(
     return p
 
 
-def _bic(prob: _Problem, rms: np.ndarray, n_par: int) -> float:
+def _bic(prob: _Problem, rms: np.ndarray, n_par: int, per_param: float | None = None) -> float:
     """Bayesian information criterion of a fit with ``n_par`` free parameters from each frame's
     RMS point distance ``rms`` (pixels): ``n ln(RSS / n) + n_par ln n`` over the polyline
     points (n) of the frames in the fit, the noise level estimated from the fit itself
@@ -832,7 +860,8 @@ def _bic(prob: _Problem, rms: np.ndarray, n_par: int) -> float:
     counts = np.array([max(len(p) - 2, 1) for p in prob.polys], float)[use]
     n_obs = max(float(counts.sum()), n_par + 1.0)
     rss = float(np.sum(counts * rms[use] ** 2))
-    return float(n_obs * np.log(max(rss, 1e-300) / n_obs) + n_par * np.log(n_obs))
+    pen = np.log(n_obs) if per_param is None else per_param
+    return float(n_obs * np.log(max(rss, 1e-300) / n_obs) + n_par * pen)
 
 
 def fit_curve_fixed_poses(
@@ -1131,6 +1160,7 @@ def refine_reconstruction(
         "tangents": tangents,
         "point_sigma": point_sigma,
         "tangent_sigma_deg": tangent_sigma_deg,
+        "k_max": o.bundle_max_control_points,
     }
 
     def run(mask=None):
