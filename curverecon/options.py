@@ -191,6 +191,14 @@ class CurveOptions:
     """Least variance factor of that test (noise-free end points: float rounding, about 1e-28;
     a positive floor only avoids dividing by zero)."""
 
+    flag_rms_sigma: float = 3.0
+    """A frame whose polyline stays more than flag_rms_sigma * sigma + flag_rms_px (RMS) from
+    the fitted curve while end points are given is flagged: its polyline contradicts them
+    (3 sigma: a frame fitting at the noise level stays below it)."""
+
+    flag_rms_px: float = 1.0
+    """... plus this (pixels: tracing and curve-model errors of a frame that does fit)."""
+
     max_flagged_fraction: float = 0.34
     """At most this fraction of the frames can have their polylines flagged as contradicting
     the end points; with more, the end points themselves are the doubtful data."""

@@ -49,6 +49,15 @@ retries from frame 0's polyline at depth 0 when a frame still fits clearly worse
 Afterwards the shape (c, alpha, beta, phi) and the end tangents come from the fitted curve and
 every frame's pose from its fitted rotation (``shape_and_poses``), in the conventions of
 docs/CONVENTIONS.md.
+
+Given end points and tangents (:func:`refine_reconstruction`, ``CurveOptions``): they enter the
+fit as measurements with their sigmas; a frame whose polyline contradicts them is flagged and
+left out; the bundle's shape is kept only inside the end points' 99 % confidence region (their
+profile chi2, in units of their own variance factor), else, and always for exact (noise-free)
+end points, the end-point answer stays and the curve alone is fitted with every pose fixed and
+its ends and end tangent lines pinned (:func:`fit_curve_fixed_poses`: truncated-SVD
+Gauss-Newton, knot spans halved while the information criterion improves).  Each output curve
+point gets a std from the fit's covariance (:func:`curve_point_std`).
 """
 
 from __future__ import annotations
@@ -93,7 +102,8 @@ REVERSE_SAMPLES_PER_SPAN = 6
 #: ... and its total weight relative to the forward term (polyline points to curve).
 REVERSE_WEIGHT = 0.02
 #: A frame whose RMS distance from the fitted curve exceeds RMS_LIMIT_SIGMA * sigma +
-#: RMS_LIMIT_PX does not fit (second start, warning).
+#: RMS_LIMIT_PX does not fit (the coarse stage's reweighting limit; the flag and the warning of
+#: :func:`refine_reconstruction` use ``CurveOptions.flag_rms_sigma``, ``flag_rms_px``).
 RMS_LIMIT_SIGMA = 3.0
 RMS_LIMIT_PX = 1.0
 #: A frame whose RMS distance exceeds UNEVEN_RATIO times the median frame's (plus sigma / 4,
@@ -1081,13 +1091,6 @@ def curve_point_std(
     return np.sqrt(np.clip(var, 0.0, None))
 
 
-def _arc_samples(points: np.ndarray, n_out: int) -> np.ndarray:
-    """``n_out`` points equally spaced in arc length along a dense polyline."""
-    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
-    t = np.linspace(0.0, s[-1], n_out)
-    return np.column_stack([np.interp(t, s, points[:, j]) for j in range(3)])
-
-
 def end_point_chi2(shape: np.ndarray, poses: np.ndarray, obs, inliers, w8) -> np.ndarray:
     """(N,) per-frame chi2 of a shape and poses against the end points and tangents."""
     from curverecon.refine.ml import standardised_residuals
@@ -1117,7 +1120,7 @@ def refine_reconstruction(
 
     With given end points and tangents, two more steps (``CurveOptions``):
 
-    - a frame whose polyline stays far from the fitted curve (``RMS_LIMIT_*``) while its end
+    - a frame whose polyline stays far from the fitted curve (``flag_rms_*``) while its end
       points fit is flagged: its polyline contradicts the end points (another curve, a tracking
       error) and is left out of a second fit, not averaged in (``curve_bundle.flagged_frames``);
     - never worse: the bundle's shape and poses are kept only if their end-point chi2 exceeds
@@ -1190,7 +1193,7 @@ def refine_reconstruction(
         chi2_ep = float(np.sum(end_point_chi2(rec.shape, rec.poses, obs, inl, w8)[inl]))
         s2 = max(chi2_ep / max(int(inl.sum()) - 4, 1), o.variance_floor)
     sigma = max(float(np.median([pl.noise_level(pl.as_polyline(p)) for p in curves])), SIGMA_FLOOR)
-    limit = RMS_LIMIT_SIGMA * sigma + RMS_LIMIT_PX
+    limit = o.flag_rms_sigma * sigma + o.flag_rms_px
     warnings = list(rec.warnings)
 
     def flag_warning(flagged: list[int], rms: np.ndarray) -> None:
@@ -1322,7 +1325,7 @@ def refine_reconstruction(
     _, jac, _ = prob.residuals(br.control, br.m, br.b)
     std = _shape_std(br, k, jac)
     point_std = curve_point_std(prob, br.control, br.m, br.b, u_out)
-    limit = RMS_LIMIT_SIGMA * br.sigma + RMS_LIMIT_PX
+    limit = o.flag_rms_sigma * br.sigma + o.flag_rms_px
     bad = [int(i) for i in np.flatnonzero((br.rms > limit) & mask)]
     if bad:
         warnings.append(
