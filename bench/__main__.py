@@ -3,15 +3,15 @@
 Usage::
 
     python -m bench [--quick] [--out DIR] [--workers N] [--budget SECONDS] [--full-counts]
-    python -m bench --only fuzz|scale|minimal [--quick]
+    python -m bench --only bundle|fuzz|minimal|scale|trace [--quick]
 
 Writes ``REPORT.md``, ``report.json`` and PNG plots into ``--out`` (default ``bench/``).  The
 speed section runs first in this process (no worker busy); then the scene experiments run on
 ``--workers`` processes, every scene seeded by its own SeedSequence spawn key, in priority order
 (``bench.plan``) until a deadline keeps the run within the budget (15 minutes by default); the
 report prints required against run counts.  Progress goes to stderr.  Then the added sections
-(``EXTRA_SECTIONS``: fuzz, about 1.5 minutes; scale, about 4.5 minutes) run and merge their keys
-into ``report.json``; ``--only NAME`` runs one of them alone.
+(``EXTRA_SECTIONS``: bundle, about 5 minutes; fuzz, about 1.5 minutes; scale, about 4.5
+minutes) run and merge their keys into ``report.json``; ``--only NAME`` runs one of them alone.
 """
 
 from __future__ import annotations
@@ -254,9 +254,10 @@ def main(argv: list[str] | None = None) -> int:
 
 
 EXTRA_SECTIONS = {
+    "bundle": "bench.bundle",
     "fuzz": "bench.fuzz",
-    "scale": "bench.scale",
     "minimal": "bench.minimal",
+    "scale": "bench.scale",
     "trace": "bench.trace",
 }
 """Sections with a module of their own (``run(quick) -> dict`` of report keys); each also runs

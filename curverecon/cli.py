@@ -12,6 +12,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from curverecon.curve_families import FAMILIES as CURVE_FAMILIES
 from curverecon.errors import CurveReconError
 
 MAX_SIMULATED_FRAMES = 10_000_000
@@ -77,6 +78,12 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--chord", type=float, nargs=2, default=(100.0, 300.0), metavar=("MIN", "MAX"))
     sim.add_argument("--seed", type=int, default=0)
     sim.add_argument("--with-curve", action="store_true", help="also write projected polylines")
+    sim.add_argument(
+        "--curve-family",
+        choices=list(CURVE_FAMILIES),
+        default="bezier",
+        help="the kind of 3-D curve drawn (default bezier: the original random cubic curves)",
+    )
     sim.add_argument(
         "--images",
         metavar="DIR",
@@ -177,6 +184,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         chord=(lo, hi),
         outlier_fraction=args.outlier_fraction,
         with_curve=args.with_curve,
+        curve_family=args.curve_family,
     )
     write_json(args.output, observations_to_dict(scene.observations))
     if args.truth:

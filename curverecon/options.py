@@ -183,6 +183,66 @@ class CurveOptions:
     refit_rounds: int = 1
     """At most this many accepted refits (a second round changed nothing; costs a batch)."""
 
+    bundle_max_control_points: int = 12
+    """The bundle's curve may grow from 12 control points (knot spans halved: 21, 39) while
+    Akaike's criterion of the polyline residuals improves.  Off (12) by default: at 0.5 px on
+    sharp-ended curves (seeds 1200-1202, 12 frames) neither AIC nor BIC asked for more than 12
+    (curve errors 0.34, 0.13, 0.62 % unchanged) and the trial cost 1.5-4 s per scene: the
+    residual there is the polylines' noise, not the spline's flexibility."""
+
+    never_worse_dchi2: float = 13.28
+    """The curve bundle's answer replaces the end-point answer only if its end-point chi2 is
+    within this of the end-point answer's, in units of the end-point fit's variance factor
+    (chi2 / dof): the 99 % quantile of chi2 with 4 degrees of freedom (the shape), so the
+    answer stays inside the end points' 99 % confidence region (never worse beyond noise)."""
+
+    variance_floor: float = 1e-30
+    """Least variance factor of that test (noise-free end points: float rounding, about 1e-28;
+    a positive floor only avoids dividing by zero)."""
+
+    flag_rms_sigma: float = 3.0
+    """A frame whose polyline stays more than flag_rms_sigma * sigma + flag_rms_px (RMS) from
+    the fitted curve while end points are given is flagged: its polyline contradicts them
+    (3 sigma: a frame fitting at the noise level stays below it)."""
+
+    flag_rms_px: float = 1.0
+    """... plus this (pixels: tracing and curve-model errors of a frame that does fit)."""
+
+    max_flagged_fraction: float = 0.34
+    """At most this fraction of the frames can have their polylines flagged as contradicting
+    the end points; with more, the end points themselves are the doubtful data."""
+
+    max_control_points: int = 75
+    """Most control points of the curve when the information criterion asks for more (knot
+    spans halved from 12: 21, 39, 75; noise-free sharp-ended curves reach 1e-7 of their length
+    at 75; time grows with it)."""
+
+    exact_variance_factor: float = 1e-16
+    """An end-point fit whose variance factor (chi2 / dof) is below this is exact (noise-free
+    end points fit to 1e-8 of their sigma): the bundle is skipped, the exact answer kept and
+    the curve alone fitted with the poses fixed (its variance factor is about 1e-28 there)."""
+
+    fixed_pose_reverse_factor: float = 0.05
+    """... and this fraction of the reverse term's weight (curve samples to the polyline): the
+    term's pull towards the polyline's chords biased noise-free curves by about 1e-6 of their
+    length at 0.25 (helix, seed 1, 8 frames: 1.0e-6; at 0.05: 6.9e-8), while the fixed poses
+    leave a hidden detour little room."""
+
+    fixed_pose_abs_tol: float = 1e-7
+    """... its Gauss-Newton stops when the cost (units of sigma squared) falls by less than this
+    per residual: a noise-free cost falls towards zero by a large fraction in every iteration,
+    and below this a further fall moves the curve by about sigma * 3e-4 RMS (2e-5 px at the
+    0.05 px floor; the noise-free target is 1e-6 of a 100-300 px curve)."""
+
+    fixed_pose_resolution: float = 1e-8
+    """... and its control points stop growing once every frame's RMS distance is below this
+    fraction of the polyline's length (noise-free: a Bezier curve fits to rounding at once)."""
+
+    fixed_pose_smooth_factor: float = 1e-3
+    """The curve fitted with the poses fixed keeps this fraction of the bundle's difference
+    penalty: with the poses fixed only the spline's parametrisation is undetermined, which a
+    trace of the penalty fixes, and the full penalty biased noise-free helices by 2e-4 px."""
+
 
 METHODS = ("auto", "linear")
 ESTIMATORS = ("marginal", "ml")

@@ -1,11 +1,12 @@
 """Synthetic scenes with the truth beside them: an INDEPENDENT 3-D construction.
 
 Nothing here uses the generated modules or the (delta, tau) parametrisation: a random cubic
-Bezier curve with A, B its end points is moved by random rotations (scipy Rotation.random) and
-translations, projected orthographically (keep x, y), and the image tangents are the projected
-derivatives at the ends.  The true c, alpha, beta, phi follow from the 3-D curve by the CONTRACT's
-geometric definitions (S, T, the angle between AS and BT), so tests compare the solver with
-geometry it never saw.
+Bezier curve (or, with ``curve_family``, a helix, clothoid, Fourier, sharp-ended or random
+Frenet curve from ``curverecon.curve_families``) with A, B its end points is moved by random
+rotations (scipy Rotation.random) and translations, projected orthographically (keep x, y),
+and the image tangents are the projected derivatives at the ends.  The true c, alpha, beta,
+phi follow from the 3-D curve by the CONTRACT's geometric definitions (S, T, the angle between
+AS and BT), so tests compare the solver with geometry it never saw.
 
 Sampling choices (so the frames are observable at all): alpha and beta of the curve lie in
 [10, 80] degrees; a frame is redrawn while c'/c < 0.3 (AB nearly along the line of sight) or
@@ -20,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from curverecon.curve_families import bezier_curve, draw_curve
 from curverecon.model.observations import Observations
 
 MIN_FORESHORTENING = 0.3
@@ -87,16 +89,6 @@ def shape_from_geometry(
     return c, alpha, beta, float(np.arccos(np.clip(cosphi, -1.0, 1.0)))
 
 
-def _bezier(ctrl: np.ndarray, s: np.ndarray) -> np.ndarray:
-    s = s[:, None]
-    return (
-        (1 - s) ** 3 * ctrl[0]
-        + 3 * (1 - s) ** 2 * s * ctrl[1]
-        + 3 * (1 - s) * s**2 * ctrl[2]
-        + s**3 * ctrl[3]
-    )
-
-
 def random_curve(rng: np.random.Generator, chord: tuple[float, float]) -> np.ndarray:
     """(4, 3) control points of a random cubic Bezier curve with alpha, beta in [10, 80] deg."""
     while True:
@@ -139,6 +131,7 @@ def make_scene(
     outlier_fraction: float = 0.0,
     with_curve: bool = False,
     n_curve_points: int = 150,
+    curve_family: str = "bezier",
 ) -> Scene:
     """A random smooth curve seen in ``n_frames`` orthographic frames under random free motion.
 
@@ -153,10 +146,15 @@ def make_scene(
             degrees (tracking errors); ``truth.inliers`` marks them False.
         with_curve: also produce each frame's projected polyline (A' to B') and the 3-D curve in
             frame 0's camera coordinates (A at z = 0).
+        curve_family: one of ``curve_families.FAMILIES``; "bezier" (the default) draws the
+            same scenes as before the families existed (same random stream).
     """
-    ctrl = random_curve(rng, chord)
-    a, b = ctrl[0], ctrl[3]
-    ta, tb = ctrl[1] - ctrl[0], ctrl[2] - ctrl[3]  # from A into the curve, from B into the curve
+    if curve_family == "bezier":
+        ctrl = random_curve(rng, chord)
+        curve = bezier_curve(ctrl)
+    else:
+        curve = draw_curve(rng, curve_family, chord)
+    a, b, ta, tb = curve.ends()  # tangents from A into the curve, from B into the curve
     c, alpha, beta, phi = shape_from_geometry(a, b, ta, tb)
     rots = []
     while len(rots) < n_frames:
@@ -198,7 +196,7 @@ def make_scene(
     curve_3d = None
     if with_curve:
         s = np.linspace(0.0, 1.0, n_curve_points)
-        pts = _bezier(ctrl, s) - a
+        pts = curve.points(s) - a
         curves = []
         for i in range(n_frames):
             cam = pts @ rot[i].T + a3[i]

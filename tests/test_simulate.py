@@ -7,14 +7,17 @@ import inspect
 import numpy as np
 import pytest
 
-from curverecon import simulate
+from curverecon import curve_families, simulate
+from curverecon.cli import main
+from curverecon.curve_families import FAMILIES
 from curverecon.simulate import make_scene, shape_from_geometry
 
 
 def test_simulator_is_independent_of_the_generated_model():
-    source = inspect.getsource(simulate)
-    assert "generated" not in source.replace("generated modules", "")
-    assert "delta" not in source.split('"""', 2)[2]  # no (delta, tau) parametrisation in code
+    for module in (simulate, curve_families):
+        source = inspect.getsource(module)
+        assert "generated" not in source.replace("generated modules", "")
+        assert "delta" not in source.split('"""', 2)[2]  # no (delta, tau) parametrisation
 
 
 def test_same_seed_same_scene():
@@ -74,3 +77,34 @@ def test_curves_and_outliers():
     assert sc.curve_3d.shape[1] == 3 and np.allclose(sc.curve_3d[0], sc.truth.A3[0])
     assert np.allclose(sc.curve_3d[-1], sc.truth.B3[0])
     assert (~sc.truth.inliers).sum() == 2
+
+
+@pytest.mark.parametrize("family", FAMILIES)
+def test_curve_families_are_consistent_3d_curves(family):
+    """Each family's scene: the polyline runs from A' to B', leaves A' along the image tangent
+    (to the curve's bend over one sample), the 3-D curve's chord is c and its end tangents give
+    the truth's angles by the CONTRACT's construction."""
+    scene = make_scene(
+        np.random.default_rng(3), 5, with_curve=True, curve_family=family, n_curve_points=20000
+    )
+    obs, t = scene.observations, scene.truth
+    lo, hi = np.radians([10.0, 80.0])
+    assert lo <= t.alpha <= hi and lo <= t.beta <= hi
+    curve = scene.curve_3d
+    assert np.isclose(np.linalg.norm(curve[-1] - curve[0]), t.c, rtol=1e-9)
+    assert np.allclose(curve[0], t.A3[0]) and np.allclose(curve[-1], t.B3[0], atol=1e-6)
+    for i, poly in enumerate(obs.curves):
+        assert np.allclose(poly[0], obs.a[i]) and np.allclose(poly[-1], obs.b[i], atol=1e-6)
+        d = (poly[2] - poly[0]) / np.linalg.norm(poly[2] - poly[0])
+        assert abs(d @ obs.tangent_a[i]) / np.linalg.norm(obs.tangent_a[i]) > 0.99
+    c, alpha, beta, phi = shape_from_geometry(
+        curve[0], curve[-1], curve[1] - curve[0], curve[-2] - curve[-1]
+    )
+    assert abs(c - t.c) < 1e-9 * t.c
+    assert abs(alpha - t.alpha) < 0.01 and abs(beta - t.beta) < 0.01 and abs(phi - t.phi) < 0.01
+
+
+def test_simulate_command_curve_family(tmp_path):
+    out = str(tmp_path / "s.json")
+    assert main(["simulate", "-o", out, "--with-curve", "--curve-family", "helix"]) == 0
+    assert main(["simulate", "-o", out, "--with-curve", "--curve-family", "spiral"]) == 2

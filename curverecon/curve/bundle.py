@@ -49,6 +49,15 @@ retries from frame 0's polyline at depth 0 when a frame still fits clearly worse
 Afterwards the shape (c, alpha, beta, phi) and the end tangents come from the fitted curve and
 every frame's pose from its fitted rotation (``shape_and_poses``), in the conventions of
 docs/CONVENTIONS.md.
+
+Given end points and tangents (:func:`refine_reconstruction`, ``CurveOptions``): they enter the
+fit as measurements with their sigmas; a frame whose polyline contradicts them is flagged and
+left out; the bundle's shape is kept only inside the end points' 99 % confidence region (their
+profile chi2, in units of their own variance factor), else, and always for exact (noise-free)
+end points, the end-point answer stays and the curve alone is fitted with every pose fixed and
+its ends and end tangent lines pinned (:func:`fit_curve_fixed_poses`: truncated-SVD
+Gauss-Newton, knot spans halved while the information criterion improves).  Each output curve
+point gets a std from the fit's covariance (:func:`curve_point_std`).
 """
 
 from __future__ import annotations
@@ -93,7 +102,8 @@ REVERSE_SAMPLES_PER_SPAN = 6
 #: ... and its total weight relative to the forward term (polyline points to curve).
 REVERSE_WEIGHT = 0.02
 #: A frame whose RMS distance from the fitted curve exceeds RMS_LIMIT_SIGMA * sigma +
-#: RMS_LIMIT_PX does not fit (second start, warning).
+#: RMS_LIMIT_PX does not fit (the coarse stage's reweighting limit; the flag and the warning of
+#: :func:`refine_reconstruction` use ``CurveOptions.flag_rms_sigma``, ``flag_rms_px``).
 RMS_LIMIT_SIGMA = 3.0
 RMS_LIMIT_PX = 1.0
 #: A frame whose RMS distance exceeds UNEVEN_RATIO times the median frame's (plus sigma / 4,
@@ -255,6 +265,10 @@ class _Problem:
 
         self.trees = [cKDTree(p) for p in polys]
         self.frame_w = np.ones(self.n)  # frame weights (the coarse stage's robust reweighting)
+        # weight of each frame's polyline rows (0: a polyline flagged as contradicting the given
+        # end points and tangents is left out; the frame keeps its end-point measurements)
+        self.poly_w = np.ones(self.n)
+        self.smooth_weight = SMOOTH_WEIGHT
         n_rev = REVERSE_SAMPLES_PER_SPAN * (k - 3) + 1
         self.rev_basis = self.basis.values(np.linspace(0.0, 1.0, n_rev)[1:-1])
         # the reverse term carries REVERSE_WEIGHT of the forward term's total weight per frame
@@ -398,6 +412,11 @@ class _Problem:
         res.append(er)
         jcs.append(ejc)
         jps.append(ejp)
+        if self.poly_w[i] != 1.0:
+            pw = self.poly_w[i]
+            res[:2] = [v * pw for v in res[:2]]
+            jcs[:2] = [v * pw for v in jcs[:2]]
+            jps[:2] = [v * pw for v in jps[:2]]
         if self.ends is not None:  # given A', B'
             er, ejc, ejp = self._point_rows(ctrl, mi, bi, self.ends[i], (0, -1), self.point_sigma)
             res.append(er)
@@ -434,16 +453,22 @@ class _Problem:
         return rr * fw, np.vstack(jcs) * fw, np.vstack(jps) * fw, rms
 
     def residuals(
-        self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, jac: bool = True
+        self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, jac: bool = True, poses: bool = True
     ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
-        """(weighted residuals, Jacobian or None, per-frame RMS point distance in pixels)."""
+        """(weighted residuals, Jacobian or None, per-frame RMS point distance in pixels).
+
+        poses: False for the Jacobian with respect to the curve's parameters alone (the poses
+        held fixed; ``n_curve`` columns)."""
         rows_r: list[np.ndarray] = []
         rows_j: list[np.ndarray] = []
         rms = np.zeros(self.n)
+        n_col = self.n_par if poses else self.n_curve
         for i in range(self.n):
             r, jc, jp, rms[i] = self.frame_rows(ctrl, m[i], b[i], i, jac)
             rows_r.append(r)
-            if jac:
+            if jac and not poses:
+                rows_j.append(jc)
+            elif jac:
                 full = np.zeros((len(r), self.n_par))
                 full[:, : self.n_curve] = jc
                 if i > 0:
@@ -451,11 +476,11 @@ class _Problem:
                     full[:, off : off + 5] = jp
                 rows_j.append(full)
         # difference regulariser on the control points (see the module docstring)
-        wreg = SMOOTH_WEIGHT / self.sigma
+        wreg = self.smooth_weight / self.sigma
         rr = (self.dreg @ ctrl) * wreg
         rows_r.append(rr.reshape(-1))
         if jac:
-            jreg = np.zeros((rr.size, self.n_par))
+            jreg = np.zeros((rr.size, n_col))
             for c in range(3):
                 col = self.cidx[:, c]
                 ok = col >= 0
@@ -475,9 +500,19 @@ class _Problem:
         return c2, m2, b2
 
 
-def _lm(residual, apply, state, max_iter: int, lam: float = 1e-3, rel_tol: float = REL_TOL):
+def _lm(
+    residual,
+    apply,
+    state,
+    max_iter: int,
+    lam: float = 1e-3,
+    rel_tol: float = REL_TOL,
+    abs_tol: float = 0.0,
+):
     """Levenberg-Marquardt (Marquardt's diagonal scaling) on ``residual(*state) -> (r, J, ...)``;
-    ``apply(*state, dx)`` makes the new state.  Returns (state, cost, iterations, converged)."""
+    ``apply(*state, dx)`` makes the new state.  Stops when the cost falls by less than
+    ``rel_tol`` of itself or ``abs_tol`` (noise-free fits: the relative test never stops a cost
+    falling towards zero).  Returns (state, cost, iterations, converged)."""
     r, jac, *_ = residual(*state)
     cost = float(r @ r)
     it, converged = 0, False
@@ -504,14 +539,48 @@ def _lm(residual, apply, state, max_iter: int, lam: float = 1e-3, rel_tol: float
             converged = True
             break
         rel = (cost - cost2) / max(cost, 1e-300)
+        cost_prev = cost
         state = new
         lam = max(lam / 10.0, 1e-9)
         r, jac, *_ = residual(*state)
         cost = float(r @ r)
-        if rel < rel_tol:
+        if rel < rel_tol or cost_prev - cost < abs_tol:
             converged = True
             break
     return state, cost, it, converged
+
+
+def _gauss_newton_tsvd(residual, p, max_iter: int, rcond: float, abs_tol: float):
+    """Gauss-Newton with truncated-SVD steps on ``residual(p, jac) -> (r, J, ...)``.
+
+    The curve's parametrisation is nearly free (sliding control points along the curve changes
+    it only to second order): full steps along those near-null directions are huge and leave
+    the linearisation (the cost rose tenfold per step, seen).  Singular directions below
+    ``rcond`` times the largest are dropped from each step (they change the cost by nothing
+    that matters), so the steps stay in the determined part and converge in a few iterations.
+    Step halving (by 4) when a step does not lower the cost; stops when the cost falls by less
+    than ``abs_tol`` per residual (or a relative ``REL_TOL``).  Returns (p, cost)."""
+    r, jac, *_ = residual(p)
+    cost = float(r @ r)
+    for _ in range(max_iter):
+        dx = -np.linalg.lstsq(jac, r, rcond=rcond)[0]
+        step, new = 1.0, None
+        for _ in range(8):
+            r2 = residual(p + step * dx, jac=False)[0]
+            cost2 = float(r2 @ r2)
+            if np.isfinite(cost2) and cost2 < cost:
+                new = p + step * dx
+                break
+            step /= 4.0
+        if new is None:
+            break
+        drop = cost - cost2
+        p = new
+        r, jac, *_ = residual(p)
+        cost = float(r @ r)
+        if drop < abs_tol * len(r) or drop < REL_TOL * cost:
+            break
+    return p, cost
 
 
 def _rot_zyx(theta: float, tau: float, delta: float) -> np.ndarray:
@@ -615,6 +684,8 @@ def bundle_adjust(
     point_sigma: float = 1.0,
     tangent_sigma_deg: float = 1.0,
     max_iter: int = MAX_ITER,
+    polyline_mask: np.ndarray | None = None,
+    k_max: int = 0,
 ) -> BundleResult:
     """Refine the poses and the 3-D curve jointly against every frame's polyline.
 
@@ -624,6 +695,10 @@ def bundle_adjust(
     n_control: control points of the spline (default ``N_CONTROL``, fewer for short polylines).
     ends: optional (N, 2, 2) given A', B' per frame; tangents: optional (N, 2, 2) given image
         tangent directions at A and B (any sign); with their sigmas (pixels, degrees).
+    k_max: the control points grow (knot spans halved) up to this many while Akaike's
+        criterion (:func:`_bic` with 2 per parameter) improves (0: no growth).
+    polyline_mask: optional (N,) bool, False for frames whose polyline is left out of the fit
+        (flagged as contradicting the given end points and tangents; needs ``ends``).
 
     Stages: a coarse curve (``K_COARSE`` control points) with the start poses; every frame's
     pose searched again against that curve (``_resect``: the wrong-branch poses the end
@@ -673,8 +748,14 @@ def bundle_adjust(
     tans_arr = None if tangents is None else np.asarray(tangents, float)
     ts = float(np.radians(tangent_sigma_deg))
 
+    use_poly = np.ones(n, bool) if polyline_mask is None else np.asarray(polyline_mask, bool)
+    if use_poly.shape != (n,) or (ends_arr is None and not use_poly.all()):
+        raise _error(f"polyline_mask: expected {n} flags (and given end points to leave any out)")
+
     def problem(kk: int) -> _Problem:
-        return _Problem(polys, sigma, kk, ends_arr, tans_arr, float(point_sigma), ts)
+        prob = _Problem(polys, sigma, kk, ends_arr, tans_arr, float(point_sigma), ts)
+        prob.poly_w = use_poly.astype(float)
+        return prob
 
     k_coarse = min(K_COARSE, k)
     prob = problem(k_coarse)
@@ -695,6 +776,8 @@ def bundle_adjust(
             total_it += it
             prob.frame_w = np.ones(n)
         for i in range(n):
+            if not use_poly[i]:
+                continue
             cur = float(np.sum(prob.frame_rows(ctrl, m[i], b[i], i, jac=False)[0] ** 2))
             found = _resect(prob, ctrl, m[i], b[i], i)
             if found is None:
@@ -716,7 +799,154 @@ def bundle_adjust(
         (ctrl, m, b), cost, it, converged = _lm(prob.residuals, prob.apply, (ctrl, m, b), max_iter)
         total_it += it
     rms = prob.residuals(ctrl, m, b, jac=False)[2]
+    crit = _bic(prob, rms, prob.n_par, 2.0)
+    while 2 * k - 3 <= int(k_max):
+        # every knot span halved (the old curve exactly, so the fit starts at the old optimum);
+        # kept while the information criterion improves (sharp bends, wiggles)
+        k2 = 2 * k - 3
+        u = np.linspace(0.0, 1.0, 20 * k2)
+        ctrl2 = np.linalg.lstsq(_Basis(k2).values(u), prob.basis.values(u) @ ctrl, rcond=None)[0]
+        prob2 = problem(k2)
+        (c2, m2, b2), cost2, it, conv2 = _lm(prob2.residuals, prob2.apply, (ctrl2, m, b), max_iter)
+        total_it += it
+        rms2 = prob2.residuals(c2, m2, b2, jac=False)[2]
+        crit2 = _bic(prob2, rms2, prob2.n_par, 2.0)
+        if not crit2 < crit:
+            break
+        k, prob, ctrl, m, b, cost, converged, rms, crit = (
+            k2,
+            prob2,
+            c2,
+            m2,
+            b2,
+            cost2,
+            conv2,
+            rms2,
+            crit2,
+        )
     return BundleResult(ctrl, m, b, sigma, rms, cost_start, cost, total_it, converged)
+
+
+def _pinned_map(k: int, a: np.ndarray, bpt: np.ndarray, ta: np.ndarray, tb: np.ndarray):
+    """Control points with A, B and the end tangent lines pinned: ``ctrl = base + D p``.
+
+    P_0 = A, P_{K-1} = B, P_1 = A + p_0 ta, P_{K-2} = B + p_1 tb (ta, tb unit, into the curve)
+    and the interior control points free.  Returns (base (K, 3), D (3K, 2 + 3(K - 4)))."""
+    base = np.zeros((k, 3))
+    base[0], base[1], base[-2], base[-1] = a, a, bpt, bpt
+    d = np.zeros((3 * k, 2 + 3 * (k - 4)))
+    d[3:6, 0] = ta
+    d[3 * (k - 2) : 3 * (k - 1), 1] = tb
+    d[6 : 3 * (k - 2), 2:] = np.eye(3 * (k - 4))
+    return base, d
+
+
+def _pinned_start(
+    points: np.ndarray, k: int, base: np.ndarray, d: np.ndarray, u: np.ndarray | None = None
+) -> np.ndarray:
+    """Parameters p of the pinned spline nearest (least squares) to ``points`` at the curve
+    parameters ``u`` (default: chord length)."""
+    pts = np.asarray(points, float)
+    if u is None:
+        s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+        u = s / s[-1]
+    nb = _Basis(k).values(u)  # (M, K)
+    # x(u) = nb @ (base + (D p).reshape(K, 3)) = points
+    a_mat = np.einsum("mk,kcp->mcp", nb, d.reshape(k, 3, -1)).reshape(-1, d.shape[1])
+    rhs = (pts - nb @ base).reshape(-1)
+    p, *_ = np.linalg.lstsq(a_mat, rhs, rcond=None)
+    p[:2] = np.maximum(p[:2], 1e-3 * float(np.linalg.norm(base[-1] - base[0])))
+    return p
+
+
+def _bic(prob: _Problem, rms: np.ndarray, n_par: int, per_param: float | None = None) -> float:
+    """Bayesian information criterion of a fit with ``n_par`` free parameters from each frame's
+    RMS point distance ``rms`` (pixels): ``n ln(RSS / n) + n_par ln n`` over the polyline
+    points (n) of the frames in the fit, the noise level estimated from the fit itself
+    (scale-free), so noise-free data keep asking for knots until float rounding while noisy
+    data stop at the noise.  The reverse term and the regulariser are left out (their floors,
+    e.g. the pull towards the polyline's chords, are not the data's)."""
+    use = prob.poly_w > 0
+    counts = np.array([max(len(p) - 2, 1) for p in prob.polys], float)[use]
+    n_obs = max(float(counts.sum()), n_par + 1.0)
+    rss = float(np.sum(counts * rms[use] ** 2))
+    pen = np.log(n_obs) if per_param is None else per_param
+    return float(n_obs * np.log(max(rss, 1e-300) / n_obs) + n_par * pen)
+
+
+def fit_curve_fixed_poses(
+    polylines: Sequence[np.ndarray],
+    m: np.ndarray,
+    b: np.ndarray,
+    ends3d: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    start: np.ndarray,
+    *,
+    sigma: float,
+    k_start: int,
+    k_max: int,
+    polyline_mask: np.ndarray | None = None,
+    max_iter: int = MAX_ITER,
+    smooth_weight: float = SMOOTH_WEIGHT,
+    reverse_factor: float = 1.0,
+    abs_tol: float = 0.0,
+    resolution: float = 0.0,
+    rcond: float = 1e-4,
+) -> tuple[np.ndarray, float, np.ndarray]:
+    """The 3-D curve alone, every frame's pose fixed, its ends and end tangent lines pinned.
+
+    polylines: N (M_i, 2) from A' to B'; m, b: (N, 3, 3), (N, 3) frame 0 camera -> frame i
+    camera; ends3d: (A, B, unit tangent at A into the curve, unit tangent at B into the curve)
+    in frame 0's camera coordinates (the end-point answer's: the shape stays exactly that
+    answer's); start: (M, 3) a curve near the answer.  The number of control points grows from
+    ``k_start`` by halving every knot span (K -> 2 K - 3, at most ``k_max``) while the
+    information criterion
+    (:func:`_bic`) improves and some frame's RMS distance exceeds ``resolution`` times its
+    polyline's length.  Returns (control points (K, 3), weighted cost, per-frame RMS px).
+    """
+    a, bpt, ta, tb = (np.asarray(v, float) for v in ends3d)
+    polys = [pl.as_polyline(p, name=f"frame {i} curve") for i, p in enumerate(polylines)]
+    n = len(polys)
+    mask = np.ones(n, bool) if polyline_mask is None else np.asarray(polyline_mask, bool)
+    lengths = np.array([np.linalg.norm(np.diff(p, axis=0), axis=1).sum() for p in polys])
+    best = None
+    k = max(int(k_start), 4)
+    while True:
+        prob = _Problem(polys, sigma, k, None, None, 1.0, 1.0)
+        prob.poly_w = mask.astype(float)
+        prob.smooth_weight = smooth_weight
+        prob.rev_weight = [w * reverse_factor for w in prob.rev_weight]
+        base, d = _pinned_map(k, a, bpt, ta, tb)
+        flat = [j for j in range(3 * k) if j != 2]
+        d_red = d[flat]
+        if best is None:
+            p0 = _pinned_start(start, k, base, d)
+        else:
+            # the knots of k = 2 k_old - 3 contain the old ones: the old curve exactly, so the
+            # refined fit starts at the old optimum and can only improve on it
+            u = np.linspace(0.0, 1.0, 20 * k)
+            p0 = _pinned_start(_Basis(len(best[0])).values(u) @ best[0], k, base, d, u)
+
+        def ctrl_of(p: np.ndarray, base=base, d=d, k=k) -> np.ndarray:
+            return base + (d @ p).reshape(k, 3)
+
+        def residual(p, jac=True, prob=prob, ctrl_of=ctrl_of, d_red=d_red):
+            r, j, rms = prob.residuals(ctrl_of(p), m, b, jac=jac, poses=False)
+            return r, (j @ d_red if jac else None), rms
+
+        p, cost = _gauss_newton_tsvd(residual, p0, max_iter, rcond, abs_tol)
+        ctrl = ctrl_of(p)
+        rms = prob.residuals(ctrl, m, b, jac=False)[2]
+        crit = _bic(prob, rms, d.shape[1])
+        if best is not None and crit >= best[1]:
+            break
+        best = (ctrl, crit, cost, rms)
+        if np.all((rms <= resolution * lengths) | ~mask):
+            break
+        k_next = 2 * k - 3  # every knot span halved
+        if k_next > k_max:
+            break
+        k = k_next
+    return best[0], best[2], best[3]
 
 
 def shape_and_poses(
@@ -797,6 +1027,78 @@ def _shape_std(result: BundleResult, prob_k: int, jac: np.ndarray) -> np.ndarray
     return np.sqrt(np.clip(var, 0.0, None)) if np.all(np.isfinite(var)) else None
 
 
+def _fixed_pose_frames(rec) -> tuple[np.ndarray, np.ndarray]:
+    """(m, b) of a reconstruction's poses: frame 0 camera -> frame i camera."""
+    rot, tr = rec.rotations(), rec.translations()
+    m = np.einsum("nij,kj->nik", rot, rot[0])
+    return m, tr - np.einsum("nij,j->ni", m, tr[0])
+
+
+def _oriented(curves, rec) -> list[np.ndarray]:
+    """Every polyline as an array from A' to B' (the end nearer the answer's A' first)."""
+    tr = rec.translations()
+    out = []
+    for i, p in enumerate(curves):
+        q = pl.as_polyline(p, name=f"frame {i} curve")
+        if np.hypot(*(q[-1] - tr[i, :2])) < np.hypot(*(q[0] - tr[i, :2])):
+            q = q[::-1].copy()
+        out.append(q)
+    return out
+
+
+def _arc_parameters(ctrl: np.ndarray, n_out: int) -> np.ndarray:
+    """Spline parameters u of ``n_out`` points equally spaced in 3-D arc length."""
+    u = np.linspace(0.0, 1.0, 4000)
+    dense = _Basis(len(ctrl)).values(u) @ ctrl
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))])
+    return np.interp(np.linspace(0.0, s[-1], n_out), s, u)
+
+
+def curve_point_std(
+    prob: _Problem,
+    ctrl: np.ndarray,
+    m: np.ndarray,
+    b: np.ndarray,
+    u: np.ndarray,
+    d_red: np.ndarray | None = None,
+) -> np.ndarray | None:
+    """Standard deviation (pixels; root of the trace of the 3x3 covariance) of the fitted
+    curve's points at parameters u, from the fit's covariance (residuals in units of sigma, so
+    (J^T J)^-1; the poses marginalised out when they were fitted).  ``d_red``: the pinned
+    parametrisation of :func:`fit_curve_fixed_poses` (poses fixed: the std is then the curve's
+    alone, given the end-point answer's poses).  None if the covariance is not finite."""
+    _, jac, _ = prob.residuals(ctrl, m, b, jac=True, poses=d_red is None)
+    if d_red is not None:
+        jac = jac @ d_red
+    try:
+        cov = np.linalg.pinv(jac.T @ jac)
+    except np.linalg.LinAlgError:
+        return None
+    nb = _Basis(len(ctrl)).values(u)
+    var = np.zeros(len(u))
+    for c in range(3):
+        g = np.zeros((len(u), prob.n_curve))
+        col = prob.cidx[:, c]
+        ok = col >= 0
+        g[:, col[ok]] = nb[:, ok]
+        if d_red is not None:
+            g = g @ d_red
+        else:
+            g = np.pad(g, ((0, 0), (0, cov.shape[0] - g.shape[1])))
+        var += np.einsum("ij,jk,ik->i", g, cov, g)
+    if not np.all(np.isfinite(var)):
+        return None
+    return np.sqrt(np.clip(var, 0.0, None))
+
+
+def end_point_chi2(shape: np.ndarray, poses: np.ndarray, obs, inliers, w8) -> np.ndarray:
+    """(N,) per-frame chi2 of a shape and poses against the end points and tangents."""
+    from curverecon.refine.ml import standardised_residuals
+
+    resid = standardised_residuals(shape, poses, obs.measurements(), w8)
+    return np.sum(resid * resid, axis=1)
+
+
 def refine_reconstruction(
     rec,
     obs,
@@ -806,14 +1108,29 @@ def refine_reconstruction(
     point_sigma: float = 1.0,
     tangent_sigma_deg: float = 1.0,
     n_out: int | None = None,
+    options=None,
 ):
     """Run the curve bundle on a reconstruction and return the updated answer.
 
     rec: a ``reconstruct.Reconstruction`` (its poses are the start); obs: the observations
     (with curves); curve_start: the start curve in frame 0's camera coordinates (``curve3d``),
     or None for :func:`flat_start`.  use_given: the input gave A', B' and the tangents (they
-    join the fit with ``point_sigma``, ``tangent_sigma_deg``; tangents of frames the end-point
-    fit marked as outliers are left out).
+    join the fit as measurements with ``point_sigma``, ``tangent_sigma_deg``; tangents of
+    frames the end-point fit marked as outliers are left out).  options: ``CurveOptions``.
+
+    With given end points and tangents, two more steps (``CurveOptions``):
+
+    - a frame whose polyline stays far from the fitted curve (``flag_rms_*``) while its end
+      points fit is flagged: its polyline contradicts the end points (another curve, a tracking
+      error) and is left out of a second fit, not averaged in (``curve_bundle.flagged_frames``);
+    - never worse: the bundle's shape and poses are kept only if their end-point chi2 exceeds
+      the end-point answer's by at most ``never_worse_dchi2`` in units of the end-point fit's
+      own variance factor (chi2 / dof, the noise level the end points show).  Beyond that the
+      polylines (or the curve model) pull the answer outside the end points' confidence region,
+      so the end-point answer stays and the curve alone is fitted to the polylines with every
+      pose fixed and the ends and end tangent lines pinned (:func:`fit_curve_fixed_poses`).
+      Noise-free end points have a variance factor of float rounding: any curve-model error
+      moves the bundle out of that region, and the exact answer stays exact.
 
     Returns ``(reconstruction, curve3d (n_out, 3), info)``: the shape and every pose from the
     fitted curve (normalised as in ``pose.normalise``), ``std`` from the bundle's covariance,
@@ -825,12 +1142,14 @@ def refine_reconstruction(
     from dataclasses import replace
 
     from curverecon.model.pose import normalise
-    from curverecon.refine.ml import standardised_residuals
+    from curverecon.options import CurveOptions
     from curverecon.robust.search import branch_alternatives
 
+    o = options if options is not None else CurveOptions()
     curves = obs.curves
     if curves is None:
         raise _error("the curve bundle needs a polyline in every frame")
+    n = len(curves)
     flat = curve_start is None
     if flat:
         curve_start = flat_start(curves[0])
@@ -844,34 +1163,155 @@ def refine_reconstruction(
         "tangents": tangents,
         "point_sigma": point_sigma,
         "tangent_sigma_deg": tangent_sigma_deg,
+        "k_max": o.bundle_max_control_points,
     }
-    br = bundle_adjust(curves, rec.rotations(), rec.translations(), curve_start, **kw)
-    if _uneven(br.rms, br.sigma) and not flat:
-        # some frame does not fit: a second start from frame 0's polyline at depth 0 (every
-        # pose searched again against it); the lower cost wins
-        other = bundle_adjust(
-            curves, rec.rotations(), rec.translations(), flat_start(curves[0]), **kw
+
+    def run(mask=None):
+        br = bundle_adjust(
+            curves, rec.rotations(), rec.translations(), curve_start, polyline_mask=mask, **kw
         )
-        if other.cost < br.cost:
-            br = other
+        if _uneven(br.rms if mask is None else br.rms[mask], br.sigma) and not flat:
+            # some frame does not fit: a second start from frame 0's polyline at depth 0 (every
+            # pose searched again against it); the lower cost wins
+            other = bundle_adjust(
+                curves,
+                rec.rotations(),
+                rec.translations(),
+                flat_start(curves[0]),
+                polyline_mask=mask,
+                **kw,
+            )
+            if other.cost < br.cost:
+                br = other
+        return br
+
+    w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / np.radians(tangent_sigma_deg)] * 2)
+    inl = np.asarray(rec.inliers, bool)
+    s2 = chi2_ep = None
+    if use_given and rec.poses is not None:
+        # the end-point fit's variance factor: the noise level its end points show
+        chi2_ep = float(np.sum(end_point_chi2(rec.shape, rec.poses, obs, inl, w8)[inl]))
+        s2 = max(chi2_ep / max(int(inl.sum()) - 4, 1), o.variance_floor)
+    sigma = max(float(np.median([pl.noise_level(pl.as_polyline(p)) for p in curves])), SIGMA_FLOOR)
+    limit = o.flag_rms_sigma * sigma + o.flag_rms_px
+    warnings = list(rec.warnings)
+
+    def flag_warning(flagged: list[int], rms: np.ndarray) -> None:
+        warnings.append(
+            f"frames {flagged}: the polyline contradicts the end points and tangents (RMS "
+            f"{', '.join(f'{rms[i]:.1f}' for i in flagged)} px from the curve they fix, limit "
+            f"{limit:.1f} px): left out of the curve fit"
+        )
+
+    def fixed_answer(
+        start: np.ndarray, k_start: int, mask: np.ndarray, extra: dict, exact: bool = False
+    ):
+        """The end-point answer with the curve fitted to the polylines, every pose fixed
+        (exact end points: the knots grow as the data ask, the model's own floors lowered;
+        otherwise the bundle's curve model with the poses held)."""
+        m, bb = _fixed_pose_frames(rec)
+        a3, b3, ta3, tb3 = rec.points_3d()
+        polys = _oriented(curves, rec)
+
+        def fit(mask: np.ndarray, start: np.ndarray, k0: int):
+            return fit_curve_fixed_poses(
+                polys,
+                m,
+                bb,
+                (a3[0], b3[0], ta3[0], tb3[0]),
+                start - start[0] + a3[0],
+                sigma=sigma,
+                k_start=k0,
+                k_max=o.max_control_points if exact else k0,
+                polyline_mask=mask,
+                smooth_weight=SMOOTH_WEIGHT * (o.fixed_pose_smooth_factor if exact else 1.0),
+                reverse_factor=o.fixed_pose_reverse_factor if exact else 1.0,
+                abs_tol=o.fixed_pose_abs_tol,
+                resolution=o.fixed_pose_resolution,
+            )
+
+        ctrl, _, rms = fit(mask, start, k_start)
+        flagged = list(extra.get("flagged_frames", []))
+        if not flagged and use_given:
+            bad = rms > limit
+            if bad.any() and bad.sum() <= o.max_flagged_fraction * n:
+                flagged = [int(i) for i in np.flatnonzero(bad)]
+                flag_warning(flagged, rms)
+                mask = ~bad
+                dense = _Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 400)) @ ctrl
+                ctrl, _, rms = fit(mask, dense, k_start)
+        k = ctrl.shape[0]
+        u = _arc_parameters(ctrl, n_out or 200)
+        curve3d = _Basis(k).values(u) @ ctrl
+        prob = _Problem(polys, sigma, k, None, None, 1.0, 1.0)
+        prob.poly_w = mask.astype(float)
+        base, d = _pinned_map(k, a3[0], b3[0], ta3[0], tb3[0])
+        std = curve_point_std(prob, ctrl, m, bb, u, d[[j for j in range(3 * k) if j != 2]])
+        info = {
+            "control_points": int(k),
+            "sigma_px": float(sigma),
+            "frame_rms_px": [float(v) for v in rms],
+            "iterations": 0,
+            "converged": True,
+            "accepted": False,
+            "end_point_dchi2": None,
+            **extra,
+            "flagged_frames": flagged,
+        }
+        return replace(rec, warnings=warnings, curve3d_std=std), curve3d, info
+
+    if s2 is not None and s2 < o.exact_variance_factor:
+        # exact end points (noise-free): the bundle could only move the answer out of their
+        # confidence region, which has shrunk to float rounding
+        start = np.asarray(curve_start, float)
+        return fixed_answer(start, N_CONTROL, np.ones(n, bool), {}, exact=True)
+    br = run()
+    flagged: list[int] = []
+    mask = np.ones(n, bool)
+    if use_given:
+        bad = br.rms > limit
+        if bad.any() and bad.sum() <= o.max_flagged_fraction * n:
+            flagged = [int(i) for i in np.flatnonzero(bad)]
+            flag_warning(flagged, br.rms)
+            mask = ~bad
+            br = run(mask)
     shape, poses, _ = shape_and_poses(br)
     shape_n, poses_n = normalise(shape, poses)
+    frame_chi2 = end_point_chi2(shape_n, poses_n, obs, inl, w8)
+    accepted, dchi2 = True, None
+    if s2 is not None:
+        # the end points' profile chi2 of the bundle's shape (every pose at its best for that
+        # shape): the shape's own distance from the end-point answer, in 4 dimensions
+        from curverecon.refine.ml import optimise_poses
+
+        _, resid = optimise_poses(shape_n, poses_n, obs.measurements(), w8, 10)
+        profile = float(np.sum((resid * resid).sum(axis=1)[inl]))
+        dchi2 = (min(profile, float(np.sum(frame_chi2[inl]))) - chi2_ep) / s2
+        accepted = dchi2 <= o.never_worse_dchi2
+    k = br.control.shape[0]
+    if not accepted:
+        # the end-point answer stays; the curve alone is fitted with its poses and ends
+        a3, _, ta3, _ = rec.points_3d()
+        start = np.asarray(curve_start, float)
+        if flat:
+            start = br.curve_points(200)
+            d0 = start[min(5, len(start) - 1)] - start[0]
+            if d0 @ ta3[0] < (d0 * [1.0, 1.0, -1.0]) @ ta3[0]:
+                start = start * [1.0, 1.0, -1.0]
+        extra = {
+            "iterations": int(br.iterations),
+            "converged": bool(br.converged),
+            "end_point_dchi2": float(dchi2),
+            "flagged_frames": flagged,
+        }
+        return fixed_answer(start, k, mask, extra)
     # curve samples equally spaced in 3-D arc length, in the curve frame
-    dense = br.curve_points(2000)
-    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))])
-    n_out = int(n_out) if n_out is not None else 200
-    t = np.linspace(0.0, s[-1], n_out)
-    pts = np.column_stack([np.interp(t, s, dense[:, j]) for j in range(3)])
+    u_out = _arc_parameters(br.control, int(n_out) if n_out is not None else 200)
+    pts = _Basis(len(br.control)).values(u_out) @ br.control
     # normalise changes the curve frame by rotations (no change in camera coordinates) and,
     # for phi < 0, by the mirror image z -> -z (camera depth negated; A stays at z = 0)
     curve3d = pts * [1.0, 1.0, -1.0] if shape[3] < 0 else pts
-    # end-point / tangent chi2 of the new answer (the fit's own units)
-    w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / np.radians(tangent_sigma_deg)] * 2)
-    resid = standardised_residuals(shape_n, poses_n, obs.measurements(), w8)
-    frame_chi2 = np.sum(resid * resid, axis=1)
-    inl = np.asarray(rec.inliers, bool)
     alt_poses, alt_chi2 = branch_alternatives(obs, shape_n, poses_n, w8)
-    k = br.control.shape[0]
     prob = _Problem(
         [pl.as_polyline(p) for p in curves],
         br.sigma,
@@ -881,15 +1321,16 @@ def refine_reconstruction(
         point_sigma,
         float(np.radians(tangent_sigma_deg)),
     )
+    prob.poly_w = mask.astype(float)
     _, jac, _ = prob.residuals(br.control, br.m, br.b)
     std = _shape_std(br, k, jac)
-    warnings = list(rec.warnings)
-    limit = RMS_LIMIT_SIGMA * br.sigma + RMS_LIMIT_PX
-    bad = [int(i) for i in np.flatnonzero(br.rms > limit)]
+    point_std = curve_point_std(prob, br.control, br.m, br.b, u_out)
+    limit = o.flag_rms_sigma * br.sigma + o.flag_rms_px
+    bad = [int(i) for i in np.flatnonzero((br.rms > limit) & mask)]
     if bad:
         warnings.append(
-            f"frames {bad}: the fitted curve stays up to {float(br.rms.max()):.1f} px (RMS) from "
-            f"their polylines (limit {limit:.1f} px)"
+            f"frames {bad}: the fitted curve stays up to {float(br.rms[bad].max()):.1f} px (RMS) "
+            f"from their polylines (limit {limit:.1f} px)"
         )
     if not use_given:
         warnings.append(
@@ -907,6 +1348,7 @@ def refine_reconstruction(
         frame_chi2=frame_chi2,
         branch_alternatives=alt_poses,
         branch_alternative_chi2=alt_chi2,
+        curve3d_std=point_std,
     )
     info = {
         "control_points": int(k),
@@ -914,5 +1356,8 @@ def refine_reconstruction(
         "frame_rms_px": [float(v) for v in br.rms],
         "iterations": int(br.iterations),
         "converged": bool(br.converged),
+        "accepted": True,
+        "end_point_dchi2": None if dchi2 is None else float(dchi2),
+        "flagged_frames": flagged,
     }
     return new, curve3d, info

@@ -71,6 +71,7 @@ def fit_curve(
         point_sigma=options.point_sigma,
         tangent_sigma_deg=options.tangent_sigma_deg,
         n_out=None if res is None else len(res.points),
+        options=o,
     )
     return replace(rec, curve3d=curve3d, curve_bundle=info, warnings=list(rec.warnings) + warnings)
 

@@ -48,6 +48,8 @@ class Reconstruction:
         estimator: "marginal", "ml" or "curve-bundle", the estimate the shape is (None for
             linear); "ml" also where the marginal step does not apply (noise-free data, fewer
             than 5 frames).
+        curve3d_std: (M,) standard deviation of each ``curve3d`` point (input units; root of
+            the trace of its 3x3 covariance), from the curve bundle's covariance, or None.
         curve3d: (M, 3) the whole curve in frame 0's camera coordinates (A at z = 0), when the
             frames carry polylines; None otherwise.
         curve_bundle: the curve bundle's summary (the output's ``curve_bundle`` key), or None.
@@ -68,6 +70,7 @@ class Reconstruction:
     branch_alternative_chi2: np.ndarray | None = None
     estimator: str | None = None
     curve3d: np.ndarray | None = None
+    curve3d_std: np.ndarray | None = None
     curve_bundle: dict | None = None
     ambiguous_dchi2: float = 4.0
 
@@ -157,6 +160,8 @@ class Reconstruction:
         out["warnings"] = list(self.warnings)
         if self.curve3d is not None:
             out["curve3d"] = np.asarray(self.curve3d, float).tolist()
+        if self.curve3d is not None and self.curve3d_std is not None:
+            out["curve3d_std"] = np.asarray(self.curve3d_std, float).tolist()
         if self.curve_bundle is not None:
             out["curve_bundle"] = self.curve_bundle
         return out

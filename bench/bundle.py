@@ -1,0 +1,231 @@
+"""Bench section ``bundle`` (issue 13): the curve bundle on every curve family.
+
+``python -m bench --only bundle [--quick]`` (or ``python -m bench.bundle [--quick]``).
+
+Scenes: ``curverecon.simulate.make_scene(..., with_curve=True, curve_family=F)`` for every
+family of ``curverecon.curve_families.FAMILIES`` (3-D curves moved and projected without project
+code), seeds from 1000 on (not the seeds the defaults were tuned on, 0-30).  Measures:
+
+- ``bundle_noise_free_max_error``: noise-free, 8 frames, end points and tangents given: the
+  largest relative error of c, angle error (degrees) and curve error (mean distance of the
+  ``curve3d`` points from the densely sampled true curve / its length) over the scenes.
+- ``bundle_curve_error_median_by_family``: 0.5 px on every point, 0.5 degree on the tangents,
+  12 frames: median curve error (``bench.curve_end_to_end.curve_error``) per family, and
+  ``bundle_curve_within_half_percent_rate_by_family`` the fraction within 0.5 % of the length.
+- ``bundle_never_worse_rate``: 1 px, 1 degree, 12 frames, each scene with and without its
+  polylines (``--curve-bundle off``).  Shape error E = max over (c, alpha, beta, phi) of
+  |error| / std, std of the answer without polylines; never worse: E_with <= E_without + 1
+  (one std of the answer without polylines: the noise of the comparison).  The paired
+  comparison: ``bundle_paired_worst_angle_deg`` (median worst-angle error with / without).
+- ``std_coverage_3sigma``: the same scenes with polylines, fraction of (scene, parameter) pairs
+  with |error| / std < 3 (the std the answer reports); ``curve3d_std_coverage_3sigma``: fraction
+  of ``curve3d`` points whose distance from the true curve is below 3 ``curve3d_std``.
+- ``polylines_only_angles_within_1deg_rate``: 0.5 px, 12 frames, polylines only (no A, B,
+  tangents): fraction of scenes with alpha, beta, phi all within 1 degree.
+- ``bundle_time_ratio_20_frames``: 1 px, 20 frames: median over scenes of the reconstruction's
+  CPU time with polylines over the time of the same frames without polylines.
+  ``bundle_time_ratio_1000_frames``: not measured (null): the bundle's dense normal equations
+  (3K + 5N parameters) do not fit in memory at 1,000 frames; see the issue's item 6.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import json  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+import warnings  # noqa: E402
+from multiprocessing import get_context  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+SEED0 = 1000
+WORKERS = 2
+
+
+def _obs_without(obs, curves: bool, ends: bool):
+    from curverecon.io import observations_from_dict, observations_to_dict
+
+    doc = observations_to_dict(obs)
+    for frame in doc["frames"]:
+        if not curves:
+            frame.pop("curve", None)
+        if not ends:
+            for key in ("A", "B", "tangent_A", "tangent_B"):
+                frame.pop(key)
+    return observations_from_dict(doc)
+
+
+def _mean_distance(points: np.ndarray, curve: np.ndarray) -> float:
+    seg0, seg = curve[:-1], np.diff(curve, axis=0)
+    len2 = (seg * seg).sum(1)
+    out = []
+    for p in points:
+        t = np.clip(((p - seg0) * seg).sum(1) / len2, 0.0, 1.0)
+        out.append(np.linalg.norm(seg0 + t[:, None] * seg - p, axis=1).min())
+    return float(np.mean(out))
+
+
+def _case(task: tuple) -> dict:
+    """One scene of one measure (runs in a worker)."""
+    warnings.filterwarnings("ignore")
+    from bench.curve_end_to_end import curve_error
+    from curverecon.options import CurveOptions, ReconstructOptions
+    from curverecon.pipeline import reconstruct
+    from curverecon.simulate import make_scene
+
+    kind, family, seed = task
+    rng = np.random.default_rng
+    out: dict = {"kind": kind, "family": family, "seed": seed}
+    try:
+        if kind == "noise_free":
+            sc = make_scene(rng(seed), 8, with_curve=True, curve_family=family)
+            dense = make_scene(
+                rng(seed), 8, with_curve=True, curve_family=family, n_curve_points=20000
+            ).curve_3d
+            rec = reconstruct(sc.observations)
+            t = sc.truth
+            length = float(np.linalg.norm(np.diff(dense, axis=0), axis=1).sum())
+            out["c_rel"] = abs(rec.c - t.c) / t.c
+            out["angle_deg"] = float(np.degrees(np.abs(rec.shape[1:] - t.shape[1:])).max())
+            out["curve3d_rel"] = (
+                min(_mean_distance(rec.curve3d, q) for q in (dense, dense * [1.0, 1.0, -1.0]))
+                / length
+            )
+        elif kind == "curve_05":
+            sc = make_scene(rng(seed), 12, 0.5, 0.5, with_curve=True, curve_family=family)
+            rec = reconstruct(sc.observations)
+            out["curve_error"] = curve_error(rec.curve3d, sc.curve_3d)
+        elif kind == "never_worse":
+            sc = make_scene(rng(seed), 12, 1.0, 1.0, with_curve=True, curve_family=family)
+            on = reconstruct(sc.observations)
+            off = reconstruct(
+                sc.observations, options=ReconstructOptions(curve=CurveOptions(bundle=False))
+            )
+            tr = sc.truth.shape
+            out["e_with"] = float(np.max(np.abs(on.shape - tr) / off.std))
+            out["e_without"] = float(np.max(np.abs(off.shape - tr) / off.std))
+            out["angle_with"] = float(np.degrees(np.abs(on.shape[1:] - tr[1:])).max())
+            out["angle_without"] = float(np.degrees(np.abs(off.shape[1:] - tr[1:])).max())
+            out["z_with"] = (np.abs(on.shape - tr) / on.std).tolist()
+            out["accepted"] = bool((on.curve_bundle or {}).get("accepted", True))
+            if on.curve3d_std is not None:
+                dense = make_scene(
+                    rng(seed),
+                    12,
+                    1.0,
+                    1.0,
+                    with_curve=True,
+                    curve_family=family,
+                    n_curve_points=5000,
+                ).curve_3d
+                mirror = dense * [1.0, 1.0, -1.0]
+                d = min(
+                    (
+                        np.array([_mean_distance(p[None], q) for p in on.curve3d])
+                        for q in (dense, mirror)
+                    ),
+                    key=np.mean,
+                )
+                out["curve_z"] = (d / on.curve3d_std).tolist()
+        elif kind == "poly_only":
+            sc = make_scene(rng(seed), 12, 0.5, 0.5, with_curve=True, curve_family=family)
+            rec = reconstruct(_obs_without(sc.observations, True, False))
+            out["angle_deg"] = float(np.degrees(np.abs(rec.shape[1:] - sc.truth.shape[1:])).max())
+        elif kind == "time_20":
+            sc = make_scene(rng(seed), 20, 1.0, 1.0, with_curve=True, curve_family=family)
+            plain = _obs_without(sc.observations, False, True)
+            t0 = time.process_time()
+            reconstruct(sc.observations)
+            t1 = time.process_time()
+            reconstruct(plain)
+            t2 = time.process_time()
+            out["with_s"], out["without_s"] = t1 - t0, t2 - t1
+    except Exception as exc:  # a refusal counts against the measure
+        out["error"] = f"{type(exc).__name__}: {exc}"
+    return out
+
+
+def run(quick: bool = False) -> dict:
+    from curverecon.curve_families import FAMILIES
+
+    # quick (the smoke test of ``python -m bench --quick``, seconds): one Bezier scene each
+    families = ("bezier",) if quick else FAMILIES
+    n = {"noise_free": 1, "curve_05": 1, "never_worse": 1, "poly_only": 1, "time_20": 1}
+    if not quick:  # about 4-7 minutes on 2 cores
+        n = {"noise_free": 1, "curve_05": 4, "never_worse": 4, "poly_only": 2, "time_20": 1}
+    tasks = [
+        (kind, fam, SEED0 + 100 * k + j)
+        for k, kind in enumerate(n)
+        for fam in families
+        for j in range(n[kind])
+    ]
+    with get_context("fork").Pool(WORKERS) as pool:
+        results = pool.map(_case, tasks, chunksize=1)
+
+    def of(kind: str) -> list[dict]:
+        return [r for r in results if r["kind"] == kind]
+
+    nf = of("noise_free")
+    ok = [r for r in nf if "error" not in r]
+    by_fam: dict[str, list[float]] = {f: [] for f in families}
+    for r in of("curve_05"):
+        by_fam[r["family"]].append(r.get("curve_error", float("inf")))
+    nw = [r for r in of("never_worse") if "error" not in r]
+    po = of("poly_only")
+    tm = [r for r in of("time_20") if "error" not in r]
+    z = np.array([v for r in nw for v in r["z_with"]])
+    return {
+        "bundle_noise_free_max_error": {
+            "c_rel": float(max(r["c_rel"] for r in ok)) if ok else None,
+            "angle_deg": float(max(r["angle_deg"] for r in ok)) if ok else None,
+            "curve3d_rel": float(max(r["curve3d_rel"] for r in ok)) if ok else None,
+            "scenes": len(nf),
+            "refused": len(nf) - len(ok),
+        },
+        "bundle_curve_error_median_by_family": {
+            f: round(float(np.median(v)), 5) for f, v in by_fam.items()
+        },
+        "bundle_curve_within_half_percent_rate_by_family": {
+            f: round(float(np.mean(np.array(v) < 0.005)), 3) for f, v in by_fam.items()
+        },
+        "bundle_never_worse_rate": round(
+            float(np.mean([r["e_with"] <= r["e_without"] + 1.0 for r in nw])), 3
+        )
+        if nw
+        else None,
+        "bundle_never_worse_scenes": len(of("never_worse")),
+        "bundle_paired_worst_angle_deg": {
+            "with_polylines_median": round(float(np.median([r["angle_with"] for r in nw])), 3),
+            "without_median": round(float(np.median([r["angle_without"] for r in nw])), 3),
+            "bundle_accepted_rate": round(float(np.mean([r["accepted"] for r in nw])), 3),
+        },
+        "std_coverage_3sigma": round(float(np.mean(z < 3.0)), 3) if len(z) else None,
+        "curve3d_std_coverage_3sigma": round(
+            float(np.mean([v < 3.0 for r in nw for v in r.get("curve_z", [])])), 3
+        )
+        if any("curve_z" in r for r in nw)
+        else None,
+        "polylines_only_angles_within_1deg_rate": round(
+            float(np.mean([r.get("angle_deg", np.inf) < 1.0 for r in po])), 3
+        ),
+        "polylines_only_scenes": len(po),
+        "bundle_time_ratio_20_frames": round(
+            float(np.median([r["with_s"] for r in tm]) / np.median([r["without_s"] for r in tm])),
+            2,
+        )
+        if tm
+        else None,
+        "bundle_time_ratio_1000_frames": None,
+        "bundle_errors": [
+            f"{r['kind']} {r['family']} {r['seed']}: {r['error']}" for r in results if "error" in r
+        ],
+    }
+
+
+if __name__ == "__main__":
+    print(json.dumps(run("--quick" in sys.argv[1:]), indent=1))
