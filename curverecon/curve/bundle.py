@@ -1287,7 +1287,10 @@ def refine_reconstruction(
         _, resid = optimise_poses(shape_n, poses_n, obs.measurements(), w8, 10)
         profile = float(np.sum((resid * resid).sum(axis=1)[inl]))
         dchi2 = (min(profile, float(np.sum(frame_chi2[inl]))) - chi2_ep) / s2
-        accepted = dchi2 <= o.never_worse_dchi2
+        # the gate guards a determined end-point answer; where the end points leave the shape
+        # undetermined (singular information, or other shapes fitting as well) the curve decides
+        undetermined = rec.std is None or bool(rec.alternatives)
+        accepted = undetermined or dchi2 <= o.never_worse_dchi2
     k = br.control.shape[0]
     if not accepted:
         # the end-point answer stays; the curve alone is fitted with its poses and ends

@@ -678,7 +678,8 @@ def track(
         new_ok = bad[si == OK]
         others = everyone[status == OK]
         status[new_ok[_coincide(x, new_ok, others, duplicate_tolerance)]] = -1
-    twins = _recover_twins(system, q1, x, status, rng, duplicate_tolerance)
+    with np.errstate(all="ignore"):  # deflated Newton may overflow on a path it then rejects
+        twins = _recover_twins(system, q1, x, status, rng, duplicate_tolerance)
     failures: dict[str, int] = {}
     for code, name in ((-1, "duplicate"), *enumerate(STATUS_NAMES)):
         n = int(np.sum(status == code))
