@@ -108,10 +108,18 @@ def _unit(v: np.ndarray) -> np.ndarray:
     return v / np.linalg.norm(v)
 
 
-def _observable(rot: Rotation, ab: np.ndarray, ta: np.ndarray, tb: np.ndarray) -> bool:
-    m = rot.as_matrix()
+def observable_view(
+    m: np.ndarray,
+    ab: np.ndarray,
+    ta: np.ndarray,
+    tb: np.ndarray,
+    min_foreshortening: float = MIN_FORESHORTENING,
+) -> bool:
+    """A view (rotation matrix ``m``) shows AB at least ``min_foreshortening`` of its length
+    and neither end tangent (``ta``, ``tb``) within MIN_TANGENT_TO_NORMAL_DEG of the normal of
+    A'B' (the simulator's rule; the renderer of ``curverecon.trace.render`` uses it too)."""
     ch = (m @ ab)[:2]
-    if np.linalg.norm(ch) < MIN_FORESHORTENING * np.linalg.norm(ab):
+    if np.linalg.norm(ch) < min_foreshortening * np.linalg.norm(ab):
         return False
     lim = np.sin(np.radians(MIN_TANGENT_TO_NORMAL_DEG))
     for t in (ta, tb):
@@ -159,7 +167,7 @@ def make_scene(
     rots = []
     while len(rots) < n_frames:
         r = Rotation.random(random_state=rng)
-        if _observable(r, b - a, ta, tb):
+        if observable_view(r.as_matrix(), b - a, ta, tb):
             rots.append(r.as_matrix())
     rot = np.array(rots)
     shift = rng.uniform(-200.0, 200.0, size=(n_frames, 2))

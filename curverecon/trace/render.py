@@ -24,7 +24,13 @@ from scipy.spatial.transform import Rotation
 
 from curverecon.errors import CurveReconError
 from curverecon.model.observations import Observations
-from curverecon.simulate import Scene, Truth, random_curve, shape_from_geometry
+from curverecon.simulate import (
+    Scene,
+    Truth,
+    observable_view,
+    random_curve,
+    shape_from_geometry,
+)
 
 FAMILIES = ("bezier", "helix", "wave", "loop")
 """Curve families: a random cubic Bezier (``simulate.random_curve``), a stretch of a helix, a
@@ -95,19 +101,10 @@ def curve_points(rng: np.random.Generator, family: str, n: int = 2000) -> np.nda
 
 
 def _observable(m: np.ndarray, pts: np.ndarray, min_foreshortening: float) -> bool:
-    """The frame shows AB at least ``min_foreshortening`` of its length and neither end tangent
-    within 3 degrees of the normal of A'B' (the simulator's rule)."""
-    ab = pts[-1] - pts[0]
-    ch = (m @ ab)[:2]
-    if np.linalg.norm(ch) < min_foreshortening * np.linalg.norm(ab):
-        return False
-    lim = np.sin(np.radians(3.0))
-    for t in (pts[5] - pts[0], pts[-6] - pts[-1]):
-        pt = (m @ t)[:2]
-        n = np.linalg.norm(pt)
-        if n == 0 or abs(pt @ ch) / (n * np.linalg.norm(ch)) < lim:
-            return False
-    return True
+    """The simulator's rule (``simulate.observable_view``) for a sampled 3-D curve ``pts``."""
+    return observable_view(
+        m, pts[-1] - pts[0], pts[5] - pts[0], pts[-6] - pts[-1], min_foreshortening
+    )
 
 
 def tumbling_scene(
