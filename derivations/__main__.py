@@ -66,36 +66,34 @@ def _function_module(module: str, filename: str) -> str | None:
     )
 
 
-def _polynomial_module(module: str, filename: str) -> str | None:
-    """Render a PolynomialColumns module from ``module.grouped_columns()``."""
-    grouped = _optional(module, "grouped_columns")
-    if grouped is None:
-        return None
-    record = grouped()
-    return render_module(
-        source=module.replace(".", "/") + ".py",
-        doc=record.doc,
-        polynomial=record,
-        filename=f"generated/{filename}",
-    )
-
-
-#: (file name, one-line summary, builder) in the order they are generated.
-def _system_module(module: str, filename: str) -> str | None:
-    """Render a PolynomialSystem module (data tables and start solutions) from
-    ``module.minimal_system()``."""
-    build = _optional(module, "minimal_system")
+def _record_module(module: str, filename: str, builder: str, kind: str) -> str | None:
+    """Render the record ``module.builder()`` returns, as ``render_module``'s argument ``kind``:
+    ``polynomial`` (PolynomialColumns, from ``grouped_columns``) or ``system``
+    (PolynomialSystem with its start solutions, from ``minimal_system``)."""
+    build = _optional(module, builder)
     if build is None:
         return None
     record = build()
     return render_module(
         source=module.replace(".", "/") + ".py",
         doc=record.doc,
-        system=record,
         filename=f"generated/{filename}",
+        **{kind: record},
     )
 
 
+def _polynomial_module(module: str, filename: str) -> str | None:
+    """Render a PolynomialColumns module from ``module.grouped_columns()``."""
+    return _record_module(module, filename, "grouped_columns", "polynomial")
+
+
+def _system_module(module: str, filename: str) -> str | None:
+    """Render a PolynomialSystem module (data tables and start solutions) from
+    ``module.minimal_system()``."""
+    return _record_module(module, filename, "minimal_system", "system")
+
+
+#: (file name, one-line summary, builder) in the order they are generated.
 TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
     (
         "measurement_model.py",
