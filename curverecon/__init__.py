@@ -6,7 +6,8 @@ The pipeline's stages, in the order the data passes through them (docs/architect
 (hypotheses, outlier frames) -> ``refine`` (maximum and marginal likelihood) -> ``curve``
 (polylines, section 4, the curve bundle); :func:`reconstruct` chains them.
 
-``curverecon.refine.refine`` is maximum likelihood, ``curverecon.refine.crlb`` the bound.
+``curverecon.refine.refine`` is maximum likelihood, ``curverecon.refine.crlb`` the bound;
+:func:`solve_minimal` (``curverecon.solvers.minimal.solve``) every shape that fits four frames.
 
 Library units: lengths in input units, angles in radians; files use degrees.
 """
@@ -17,6 +18,7 @@ from curverecon.model.reconstruction import Alternative, Reconstruction
 from curverecon.options import (
     BranchOptions,
     CurveOptions,
+    MinimalOptions,
     OutlierOptions,
     ReconstructOptions,
     SearchOptions,
@@ -26,6 +28,8 @@ from curverecon.refine import RefineResult, crlb, refine_marginal
 from curverecon.simulate import Scene, make_scene
 from curverecon.solvers.flat import match_flat
 from curverecon.solvers.linear import solve_linear
+from curverecon.solvers.minimal import MinimalResult
+from curverecon.solvers.minimal import solve as solve_minimal
 from curverecon.solvers.pose import poses_from_shape
 
 __version__ = "0.1.0"
@@ -34,6 +38,8 @@ __all__ = [
     "BranchOptions",
     "CurveOptions",
     "CurveReconError",
+    "MinimalOptions",
+    "MinimalResult",
     "Observations",
     "OutlierOptions",
     "ReconstructOptions",
@@ -49,4 +55,5 @@ __all__ = [
     "reconstruct",
     "refine_marginal",
     "solve_linear",
+    "solve_minimal",
 ]
