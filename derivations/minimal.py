@@ -42,6 +42,7 @@ import numpy as np
 import sympy as sp
 
 from derivations import lean
+from derivations.codegen.generate import system_terms
 from derivations.codegen.spec import PolynomialSystem
 
 FRAMES = 4
@@ -103,25 +104,15 @@ def equations() -> tuple[sp.Expr, ...]:
 
 def _tables(eqs: tuple[sp.Expr, ...]) -> SimpleNamespace:
     """The generated module's tables, built here the same way (for monodromy before emitting)."""
-    gens = UNKNOWNS + PARAMETERS
-    per_equation = [sp.Poly(sp.expand(e), *gens).terms() for e in eqs]
-    umons = sorted({m[:5] for terms in per_equation for m, _ in terms})
-    pmons = sorted({m[5:] for terms in per_equation for m, _ in terms})
-    ui = {m: i for i, m in enumerate(umons)}
-    pi = {m: i for i, m in enumerate(pmons)}
-    terms, coefs = [], []
-    for a, ts in enumerate(per_equation):
-        for m, co in sorted(ts):
-            terms += [a, pi[m[5:]], ui[m[:5]]]
-            coefs.append(int(co))
+    umons, pmons, terms = system_terms(eqs, UNKNOWNS, PARAMETERS)
     return SimpleNamespace(
         UNKNOWNS=tuple(s.name for s in UNKNOWNS),
         PARAMETERS=tuple(s.name for s in PARAMETERS),
         EQUATIONS=tuple(range(len(eqs))),
         UNKNOWN_EXPONENTS=np.array(umons, dtype=np.int64),
         PARAMETER_EXPONENTS=np.array(pmons, dtype=np.int64),
-        TERMS=np.array(terms, dtype=np.int64),
-        COEFFICIENTS=np.array(coefs, dtype=np.float64),
+        TERMS=np.array([t[:3] for t in terms], dtype=np.int64),
+        COEFFICIENTS=np.array([t[3] for t in terms], dtype=np.float64),
         START_PARAMETERS=np.zeros(len(PARAMETERS), complex),
         START_SOLUTIONS=np.zeros((1, 5), complex),
     )

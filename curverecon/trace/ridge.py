@@ -86,18 +86,27 @@ def _kernels(frac: np.ndarray, s: float, radius: int) -> tuple[np.ndarray, ...]:
     return g, g1, g2
 
 
-def _derivatives(img: np.ndarray, pts: np.ndarray, s: float) -> np.ndarray:
-    """(P, 5) gx, gy, hxx, hxy, hyy of the Gaussian-smoothed image at sub-pixel points (x, y).
-
-    Separable Gaussian-derivative kernels centred at each point, applied to the image patch
-    around it (edge pixels repeated outside the image)."""
+def _patches(
+    img: np.ndarray, pts: np.ndarray, s: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, int]:
+    """(P, rows, cols) image patches around the pixels nearest each point (x, y), radius
+    3.5 s (edge pixels repeated outside the image), with those pixels' columns, rows and the
+    radius."""
     radius = int(np.ceil(3.5 * s))
     ix = np.rint(pts[:, 0]).astype(int)
     iy = np.rint(pts[:, 1]).astype(int)
     k = np.arange(-radius, radius + 1)
     rows = np.clip(iy[:, None] + k[None, :], 0, img.shape[0] - 1)
     cols = np.clip(ix[:, None] + k[None, :], 0, img.shape[1] - 1)
-    patch = img[rows[:, :, None], cols[:, None, :]]  # (P, rows, cols)
+    return img[rows[:, :, None], cols[:, None, :]], ix, iy, radius
+
+
+def _derivatives(img: np.ndarray, pts: np.ndarray, s: float) -> np.ndarray:
+    """(P, 5) gx, gy, hxx, hxy, hyy of the Gaussian-smoothed image at sub-pixel points (x, y).
+
+    Separable Gaussian-derivative kernels centred at each point, applied to the image patch
+    around it (edge pixels repeated outside the image)."""
+    patch, ix, iy, radius = _patches(img, pts, s)
     gx0, gx1, gx2 = _kernels(pts[:, 0] - ix, s, radius)
     gy0, gy1, gy2 = _kernels(pts[:, 1] - iy, s, radius)
 
@@ -151,13 +160,7 @@ def centre_points(
 def smoothed_profile(img: np.ndarray, pts: np.ndarray, options: TraceOptions) -> np.ndarray:
     """The Gaussian-smoothed image (at the line's scale) at sub-pixel points (x, y)."""
     s = scale_for_width(options.width)
-    radius = int(np.ceil(3.5 * s))
-    ix = np.rint(pts[:, 0]).astype(int)
-    iy = np.rint(pts[:, 1]).astype(int)
-    k = np.arange(-radius, radius + 1)
-    rows = np.clip(iy[:, None] + k[None, :], 0, img.shape[0] - 1)
-    cols = np.clip(ix[:, None] + k[None, :], 0, img.shape[1] - 1)
-    patch = img[rows[:, :, None], cols[:, None, :]]
+    patch, ix, iy, radius = _patches(img, pts, s)
     gx0 = _kernels(pts[:, 0] - ix, s, radius)[0]
     gy0 = _kernels(pts[:, 1] - iy, s, radius)[0]
     return np.einsum("pr,prc,pc->p", gy0, patch, gx0)

@@ -390,24 +390,38 @@ def complex_literal(value: complex, digits: int = 17) -> str:
     return f"complex({z.real:.{digits}g}, {z.imag:.{digits}g})"
 
 
+def system_terms(
+    equations: Sequence[sp.Expr],
+    unknowns: Sequence[sp.Symbol],
+    parameters: Sequence[sp.Symbol],
+) -> tuple[list[tuple[int, ...]], list[tuple[int, ...]], list[tuple[int, int, int, int]]]:
+    """A parametric system as tables: the sorted unknown monomials, the sorted parameter
+    monomials, and every term as (equation, parameter monomial, unknown monomial, integer
+    coefficient), in a fixed order.  The generated module's tables and the derivation's own
+    monodromy (``derivations.minimal``) both come from here."""
+    gens = tuple(unknowns) + tuple(parameters)
+    n_u = len(unknowns)
+    per_equation = [sp.Poly(sp.expand(e), *gens).terms() for e in equations]
+    umons = sorted({m[:n_u] for ts in per_equation for m, _ in ts})
+    pmons = sorted({m[n_u:] for ts in per_equation for m, _ in ts})
+    u_index = {m: i for i, m in enumerate(umons)}
+    p_index = {m: i for i, m in enumerate(pmons)}
+    terms: list[tuple[int, int, int, int]] = []
+    for a, ts in enumerate(per_equation):
+        for m, coeff in sorted(ts):
+            if not coeff.is_Integer:
+                raise ValueError(f"non-integer coefficient {coeff} in equation {a}")
+            terms.append((a, p_index[m[n_u:]], u_index[m[:n_u]], int(coeff)))
+    return umons, pmons, terms
+
+
 def print_system(record: PolynomialSystem, config: NumPyConfig) -> SystemCode:
     """Tables of a parametric polynomial system: every term as (equation, parameter monomial,
     unknown monomial) with its integer coefficient; monomials sorted, so the order is fixed."""
-    gens = tuple(record.unknowns) + tuple(record.parameters)
     n_u = len(record.unknowns)
-    per_equation = [sp.Poly(sp.expand(e), *gens).terms() for e in record.equations]
-    umons = sorted({m[:n_u] for terms in per_equation for m, _ in terms})
-    pmons = sorted({m[n_u:] for terms in per_equation for m, _ in terms})
-    u_index = {m: i for i, m in enumerate(umons)}
-    p_index = {m: i for i, m in enumerate(pmons)}
-    term_items: list[str] = []
-    coefficient_items: list[str] = []
-    for a, terms in enumerate(per_equation):
-        for m, coeff in sorted(terms):
-            if not coeff.is_Integer:
-                raise ValueError(f"non-integer coefficient {coeff} in {record.name}")
-            term_items.append(f"{a}, {p_index[m[n_u:]]}, {u_index[m[:n_u]]}")
-            coefficient_items.append(str(int(coeff)))
+    umons, pmons, terms = system_terms(record.equations, record.unknowns, record.parameters)
+    term_items = [f"{a}, {j}, {k}" for a, j, k, _ in terms]
+    coefficient_items = [str(c) for *_, c in terms]
     width = config.line_length - len(config.indent) - 4
     return SystemCode(
         unknowns_repr=repr(tuple(s.name for s in record.unknowns)),
