@@ -95,6 +95,14 @@ class SearchOptions:
     """... and merging those within this ``shape_distance`` of a better one (one basin: the
     same threshold that makes two fits one alternative, ``robust.alternatives``)."""
 
+    ladder_factor: int = 10
+    """Above ``medium_frames`` the kept candidates are refined on ever larger spread subsets,
+    each this many times the last (as long as it is at most half of all frames), before all
+    frames: each rung starts a few of its own standard deviations from its optimum.  (30,000
+    frames: from the 400-frame fit the refinement on all frames took 34 iterations, with 4,000
+    frames in between 9 (with the Newton switch of long sequences, ``refine.ml``); 100,000
+    frames with rungs of 4,000 and 40,000: 6 and 7.)"""
+
     linear_seed_gap: float = 1e-3
     """The linearisation seeds the search (from 45 frames) only if its two smallest singular
     values differ this much (nearly noise-free data; at realistic noise it is unusable)."""

@@ -27,6 +27,7 @@ from derivations.codegen.generate import (
     REPO_ROOT,
     compare_or_update,
     render_init,
+    render_kernel_module,
     render_module,
 )
 
@@ -66,6 +67,19 @@ def _function_module(module: str, filename: str) -> str | None:
     )
 
 
+def _kernel_module(module: str, filename: str) -> str | None:
+    """Render a module of scalar numba kernels from ``module.kernel_functions()``."""
+    kernels = _optional(module, "kernel_functions")
+    if kernels is None:
+        return None
+    return render_kernel_module(
+        source=module.replace(".", "/") + ".py",
+        doc=sys.modules[module].KERNEL_DOC,
+        kernels=kernels(),
+        filename=f"generated/{filename}",
+    )
+
+
 def _record_module(module: str, filename: str, builder: str, kind: str) -> str | None:
     """Render the record ``module.builder()`` returns, as ``render_module``'s argument ``kind``:
     ``polynomial`` (PolynomialColumns, from ``grouped_columns``) or ``system``
@@ -99,6 +113,12 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         "measurement_model.py",
         "maximum-likelihood measurement model and its Jacobians (derivations/measurement.py)",
         lambda: _function_module("derivations.measurement", "measurement_model.py"),
+    ),
+    (
+        "measurement_kernel.py",
+        "the measurement model as scalar numba kernels, one frame per call "
+        "(derivations/measurement.py)",
+        lambda: _kernel_module("derivations.measurement", "measurement_kernel.py"),
     ),
     (
         "frame_equations.py",

@@ -324,3 +324,36 @@ def generated_functions() -> list[FunctionSpec]:
             ),
         ),
     ]
+
+
+KERNEL_DOC = """Scalar numba kernels of the measurement model, for loops over frames (generated).
+
+The same expressions as generated/measurement_model.py (derivations/measurement.py), one frame
+per call: float arguments (c, alpha, beta, phi, delta, tau, theta, tx, ty), outputs written
+into arrays the caller passes.  Used by the per-frame pose iterations of long sequences
+(curverecon.refine.pose_kernel), where NumPy's per-call overhead on (N, 6, 5) blocks was most
+of the time.  Conventions and units as in measurement_model.py and docs/CONVENTIONS.md.
+"""
+
+
+def kernel_functions() -> list[FunctionSpec]:
+    """The kernels of generated/measurement_kernel.py: one frame's prediction, and its
+    prediction with the Jacobian of the pose (delta, tau, theta, tx, ty)."""
+    pred = tuple(predictions())
+    return [
+        FunctionSpec(
+            name="predict_frame",
+            args=ALL_PARAMETERS,
+            outputs={"prediction": pred},
+            doc="Predicted (ax, ay, bx, by, psi_a, psi_b) of one frame (input units, radians).",
+        ),
+        FunctionSpec(
+            name="predict_frame_with_pose_jacobian",
+            args=ALL_PARAMETERS,
+            outputs={"prediction": pred, "jac_local": jacobian(LOCAL_PARAMETERS)},
+            doc=(
+                "Prediction of one frame and its Jacobian (6, 5) with respect to the pose\n"
+                "(delta, tau, theta, tx, ty)."
+            ),
+        ),
+    ]

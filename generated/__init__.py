@@ -8,6 +8,8 @@
 
 - ``measurement_model``: maximum-likelihood measurement model and its Jacobians
   (derivations/measurement.py)
+- ``measurement_kernel``: the measurement model as scalar numba kernels, one frame per call
+  (derivations/measurement.py)
 - ``frame_equations``: section 3 per-frame equations (10), (11), (12) (derivations/section3.py)
 - ``lean_polynomial``: single-squaring elimination, grouped by observable monomial
   (derivations/lean.py)
@@ -18,6 +20,7 @@
 
 __all__ = (
     "measurement_model",
+    "measurement_kernel",
     "frame_equations",
     "lean_polynomial",
     "polynomial_12p",

@@ -27,11 +27,13 @@ import jinja2
 import sympy as sp
 
 from derivations.codegen.config import TEMPLATE_DIR, NumPyConfig
-from derivations.codegen.printer import NumPyCodePrinter
+from derivations.codegen.printer import NumPyCodePrinter, ScalarCodePrinter
 from derivations.codegen.spec import FunctionSpec, PolynomialColumns, PolynomialSystem
 
 TEMPLATE_NAME = "module.py.jinja"
 TEMPLATE_PATH = "derivations/codegen/templates/" + TEMPLATE_NAME
+KERNEL_TEMPLATE_NAME = "kernel.py.jinja"
+KERNEL_TEMPLATE_PATH = "derivations/codegen/templates/" + KERNEL_TEMPLATE_NAME
 REPO_ROOT = Path(__file__).resolve().parents[2]
 
 
@@ -72,6 +74,19 @@ def _normalise_output(name: str, value: object) -> _Output:
     return _Output(name, (sp.sympify(value),), ())
 
 
+def _cse(spec: FunctionSpec, config: NumPyConfig) -> tuple[list[_Output], list, list]:
+    """The outputs of ``spec`` and one ``sympy.cse`` pass over all their components."""
+    outputs = [_normalise_output(name, value) for name, value in spec.outputs.items()]
+    flat: list[sp.Expr] = [e for out in outputs for e in out.components]
+    replacements, reduced = sp.cse(
+        flat,
+        symbols=sp.numbered_symbols("_tmp"),
+        optimizations=config.cse_optimizations,
+        order="canonical",
+    )
+    return outputs, replacements, reduced
+
+
 def print_function(spec: FunctionSpec, config: NumPyConfig) -> FunctionCode:
     """One CSE pass over all outputs of ``spec`` and print it."""
     printer = NumPyCodePrinter(config)
@@ -87,12 +102,7 @@ def print_function(spec: FunctionSpec, config: NumPyConfig) -> FunctionCode:
     )
     if clashes:
         raise ValueError(f"{spec.name}: output names must be new identifiers: {clashes}")
-    replacements, reduced = sp.cse(
-        flat,
-        symbols=sp.numbered_symbols("_tmp"),
-        optimizations=config.cse_optimizations,
-        order="canonical",
-    )
+    _, replacements, reduced = _cse(spec, config)
     temporaries = tuple((sym.name, printer.doprint(expr)) for sym, expr in replacements)
     lines: list[str] = []
     position = 0
@@ -135,6 +145,51 @@ def print_function(spec: FunctionSpec, config: NumPyConfig) -> FunctionCode:
         output_lines=tuple(lines),
         return_expr=return_expr,
         return_annotation=annotation,
+    )
+
+
+@dataclass(frozen=True)
+class KernelCode:
+    """A printed scalar kernel, ready for ``templates/kernel.py.jinja``."""
+
+    name: str
+    args: tuple[str, ...]
+    outputs: tuple[tuple[str, str], ...]  # (name, shape as text)
+    doc: str
+    temporaries: tuple[tuple[str, str], ...]
+    output_lines: tuple[str, ...]
+
+
+def print_kernel(spec: FunctionSpec, config: NumPyConfig) -> KernelCode:
+    """``spec`` as a scalar numba kernel: float arguments, the outputs written into arrays the
+    caller passes (after the arguments, in the order of ``spec.outputs``).  Every entry is
+    written, zeros included, so the arrays need no initialisation.  One CSE pass over all
+    outputs, as :func:`print_function`, printed by ``ScalarCodePrinter`` (``math``)."""
+    printer = ScalarCodePrinter(config)
+    outputs, replacements, reduced = _cse(spec, config)
+    temporaries = tuple((sym.name, printer.doprint(expr)) for sym, expr in replacements)
+    lines: list[str] = []
+    position = 0
+    shapes: list[tuple[str, str]] = []
+    for out in outputs:
+        parts = [printer.doprint(e) for e in reduced[position : position + len(out.components)]]
+        position += len(out.components)
+        shape = out.shape or (1,)
+        shapes.append((out.name, "(" + ", ".join(str(d) for d in shape) + ",)"))
+        for k, part in enumerate(parts):
+            if len(shape) == 2:
+                index = f"{k // shape[1]}, {k % shape[1]}"
+            else:
+                index = str(k)
+            value = "0.0" if part == "0" else part
+            lines.append(f"{out.name}[{index}] = {value}")
+    return KernelCode(
+        name=spec.name,
+        args=tuple(a.name for a in spec.args),
+        outputs=tuple(shapes),
+        doc=wrap_doc(spec.doc, config.line_length - 8),
+        temporaries=temporaries,
+        output_lines=tuple(lines),
     )
 
 
@@ -515,6 +570,29 @@ def render_module(
         polynomial=polynomial is not None,
         poly=print_polynomial(polynomial, config) if polynomial is not None else None,
         system=print_system(system, config) if system is not None else None,
+    )
+    if config.run_ruff_format:
+        text = format_python(text, filename)
+    return text
+
+
+def render_kernel_module(
+    *,
+    source: str,
+    doc: str,
+    kernels: Sequence[FunctionSpec],
+    filename: str = "generated/kernel.py",
+    config: NumPyConfig | None = None,
+) -> str:
+    """The formatted text of one module of scalar numba kernels (``templates/kernel.py.jinja``)."""
+    config = config or NumPyConfig()
+    template = _environment().get_template(KERNEL_TEMPLATE_NAME)
+    text = template.render(
+        source=source,
+        template=KERNEL_TEMPLATE_PATH,
+        sympy_version=sp.__version__,
+        doc=wrap_doc(doc, config.line_length - 4),
+        kernels=[print_kernel(f, config) for f in kernels],
     )
     if config.run_ruff_format:
         text = format_python(text, filename)

@@ -23,6 +23,10 @@ from derivations.codegen.config import NumPyConfig
 class NumPyCodePrinter(NumPyPrinter):
     """Print SymPy expressions as NumPy code that broadcasts over frame arrays."""
 
+    PREFIX = "np."
+    SQRT = "np.sqrt"
+    ATAN2 = "np.arctan2"
+
     def __init__(self, config: NumPyConfig | None = None) -> None:
         super().__init__({"fully_qualified_modules": True, "allow_unknown_functions": False})
         self.config = config or NumPyConfig()
@@ -30,9 +34,9 @@ class NumPyCodePrinter(NumPyPrinter):
     # ``numpy.sin`` -> ``np.sin``; ``math.pi`` never appears (constants go through _kc).
     def _module_format(self, fqn: str, register: bool = True) -> str:
         if fqn.startswith("numpy."):
-            fqn = "np." + fqn[len("numpy.") :]
+            fqn = self.PREFIX + fqn[len("numpy.") :]
         elif fqn.startswith("math."):
-            fqn = "np." + fqn[len("math.") :]
+            fqn = self.PREFIX + fqn[len("math.") :]
         return fqn
 
     def _print_Float(self, expr: sp.Float) -> str:
@@ -61,9 +65,9 @@ class NumPyCodePrinter(NumPyPrinter):
             b = self.parenthesize(base, PRECEDENCE["Pow"], strict=True)
             return f"{b}**{n}" if n > 0 else f"{b}**({n})"
         if exp == sp.S.Half:
-            return f"np.sqrt({self._print(base)})"
+            return f"{self.SQRT}({self._print(base)})"
         if exp == -sp.S.Half:
-            return f"1/np.sqrt({self._print(base)})"
+            return f"1/{self.SQRT}({self._print(base)})"
         b = self.parenthesize(base, PRECEDENCE["Pow"], strict=True)
         e = self.parenthesize(exp, prec, strict=False)
         return f"{b}**{e}"
@@ -95,4 +99,21 @@ class NumPyCodePrinter(NumPyPrinter):
 
     def _print_atan2(self, expr: sp.atan2) -> str:
         y, x = expr.args
-        return f"np.arctan2({self._print(y)}, {self._print(x)})"
+        return f"{self.ATAN2}({self._print(y)}, {self._print(x)})"
+
+
+class ScalarCodePrinter(NumPyCodePrinter):
+    """Print SymPy expressions as scalar ``math`` code, for numba kernels that loop over frames
+    (``templates/kernel.py.jinja``): ``math.sin``, ``math.sqrt``, ``math.atan2``.  Everything
+    else (powers as products, float constants, parenthesisation) as the NumPy printer, so a
+    kernel rounds as the NumPy module does, operation for operation."""
+
+    PREFIX = "math."
+    SQRT = "math.sqrt"
+    ATAN2 = "math.atan2"
+
+    def doprint(self, expr: sp.Basic, assign_to: object = None) -> str:
+        text = super().doprint(expr, assign_to)
+        if "np." in text or "numpy." in text:
+            raise ValueError(f"a scalar kernel cannot call NumPy: {text[:80]}")
+        return text
