@@ -11,8 +11,9 @@ gradient of 60 grey levels).  Per sequence:
 - the end identity (``curverecon.trace.ends.assign_ends``) is right when every traced frame's A
   is the same true end (``trace_end_identity_rate``: the share of sequences right in every
   frame);
-- on the first sequences, the traced observations go through ``curverecon.reconstruct``
-  and ``curve3d`` is compared with the true curve by ``bench.curve_end_to_end.curve_error``
+- on the first sequences, the traced observations (as ``curverecon trace`` writes them, with
+  ``"tangents_from_curve": true``) go through ``curverecon.reconstruct`` and ``curve3d`` is
+  compared with the true curve by ``bench.curve_end_to_end.curve_error``
   (mean distance over the curve's length, best over the mirror image):
   ``images_curve_error_median`` (relative) and ``images_curve_within_1pct_rate``.
 
@@ -35,10 +36,10 @@ FAMILIES = ("bezier", "helix", "wave")
 
 def _sequence(seed: int, end_to_end: bool) -> dict:
     from bench.curve_end_to_end import curve_error
-    from curverecon.curve.polyline import distance_to_polyline, end_tangents
+    from curverecon.curve.polyline import distance_to_polyline
     from curverecon.io import OBSERVATIONS_FORMAT, observations_from_dict
     from curverecon.pipeline import reconstruct
-    from curverecon.trace.ends import assign_ends
+    from curverecon.trace.ends import assign_ends, frame_tangents
     from curverecon.trace.frame import trace_image
     from curverecon.trace.options import TraceOptions
     from curverecon.trace.render import render_frame, tumbling_scene
@@ -65,7 +66,9 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
     if len(curves) < 4:
         out.update(end_ok=False, curve_error=np.inf if end_to_end else None)
         return out
-    assignment = assign_ends(curves, options.ambiguity_ratio, index)
+    assignment = assign_ends(
+        curves, options.ambiguity_ratio, index, fit_length=options.tangent_fit_length
+    )
     oriented = [c[::-1] if f else c for c, f in zip(curves, assignment.flip, strict=True)]
     a_is_a = [
         np.hypot(*(c[0] - t[0])) < np.hypot(*(c[0] - t[-1]))
@@ -76,7 +79,7 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
     if end_to_end:
         frames = []
         for c in oriented:
-            ta, tb = end_tangents(c[1:-1], fit_length=options.tangent_fit_length)
+            ta, tb = frame_tangents(c, options.tangent_fit_length)
             frames.append(
                 {
                     "A": c[0].tolist(),
@@ -86,7 +89,9 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
                     "curve": c.tolist(),
                 }
             )
-        obs = observations_from_dict({"format": OBSERVATIONS_FORMAT, "frames": frames})
+        # as ``curverecon trace`` writes them: the tangents are fits to the polylines
+        doc = {"format": OBSERVATIONS_FORMAT, "frames": frames, "tangents_from_curve": True}
+        obs = observations_from_dict(doc)
         try:
             rec = reconstruct(obs)
             # the true curve in the first traced frame's camera, its A (the traced A) at z = 0

@@ -163,7 +163,12 @@ def observations_from_dict(data: Any) -> Observations:
             f"frames {long}: polylines of more than {MAX_POLYLINE_POINTS} points averaged "
             f"down to {MAX_POLYLINE_POINTS} (equal arc-length bins)"
         )
-    return Observations(np.array(a), np.array(b), np.array(ta), np.array(tb), keep, given, warnings)
+    from_curve = data.get("tangents_from_curve", False)
+    if not isinstance(from_curve, bool):
+        raise CurveReconError('"tangents_from_curve" must be true or false')
+    return Observations(
+        np.array(a), np.array(b), np.array(ta), np.array(tb), keep, given, warnings, from_curve
+    )
 
 
 def _end_tangents(curve: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
@@ -200,4 +205,7 @@ def observations_to_dict(obs: Observations) -> dict:
         if obs.curves is not None:
             frame["curve"] = np.round(obs.curves[i], 6).tolist()
         frames.append(frame)
-    return {"format": OBSERVATIONS_FORMAT, "projection": "orthographic", "frames": frames}
+    doc = {"format": OBSERVATIONS_FORMAT, "projection": "orthographic", "frames": frames}
+    if obs.tangents_from_curve:
+        doc["tangents_from_curve"] = True
+    return doc

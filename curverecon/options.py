@@ -167,6 +167,17 @@ class CurveOptions:
     bundle: bool = True
     """Fit the poses and one 3-D curve to every frame's polyline (``curve/bundle.py``)."""
 
+    traced_tangents_retry: bool = True
+    """Input whose tangents were estimated from its polylines (``"tangents_from_curve": true``,
+    ``curverecon trace``): reconstruct also with the adaptive end-tangent fit as a start only
+    (``Observations.ends_given`` false: the polylines alone fix the shape) and keep the answer
+    whose curve fits the polylines closer (mean frame RMS).  Tangents of hooked or end-on ends
+    are off by tens of degrees; trusted as measurements they left the bundle in a wrong
+    minimum on bench seeds 8 and 1002 (frame RMS 0.3-4 px, curve errors 3.8 % and 12.9 %;
+    from the polylines alone 0.13 % and 0.15 %), while on seed 1003 the polylines alone went
+    wrong and the tangents did not (RMS up to 3.5 px against 0.24 px): neither start is always
+    right, the fit to the images decides.  Costs a second reconstruction."""
+
     flip_dchi2: float = 4.0
     """Frames whose other branch fits within this chi2 of their pose are tried on it by the
     curve; farther branches are excluded by the end points and tangents alone."""

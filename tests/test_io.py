@@ -36,6 +36,16 @@ def test_round_trip(tmp_path):
     assert json.loads(path.read_text())["format"] == "curverecon.observations/1"
 
 
+def test_tangents_from_curve_round_trips():
+    doc = _doc()
+    assert not observations_from_dict(doc).tangents_from_curve
+    assert "tangents_from_curve" not in observations_to_dict(observations_from_dict(doc))
+    doc["tangents_from_curve"] = True
+    obs = observations_from_dict(doc)
+    assert obs.tangents_from_curve and obs.subset([0, 1, 2, 3]).tangents_from_curve
+    assert observations_to_dict(obs)["tangents_from_curve"] is True
+
+
 @pytest.mark.parametrize(
     "mutate,needle",
     [
@@ -48,6 +58,7 @@ def test_round_trip(tmp_path):
         (lambda d: d["frames"][0].update(A=["x", 2]), "frame 0: A must be [x, y]"),
         (lambda d: d.update(projection="perspective"), "not supported"),
         (lambda d: d.update(frames={}), "must be a list"),
+        (lambda d: d.update(tangents_from_curve="yes"), '"tangents_from_curve" must be'),
     ],
 )
 def test_bad_documents(mutate, needle):

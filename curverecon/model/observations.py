@@ -62,6 +62,10 @@ class Observations:
             (the input did not give them): then they are not measurements of their own.
         warnings: what the loader changed or noticed (e.g. a long polyline averaged down);
             the reconstruction repeats them.
+        tangents_from_curve: the input's tangents were estimated from its polylines (the
+            document's ``"tangents_from_curve": true``, written by ``curverecon trace``): the
+            reconstruction also tries the polylines alone and keeps what fits them better
+            (``curverecon.pipeline.reconstruct``).
 
     Construction validates every frame (finite numbers, A' != B', tangents not zero and not
     perpendicular to A'B') and raises :class:`CurveReconError` with a one-line message.
@@ -74,6 +78,7 @@ class Observations:
     curves: list[np.ndarray] | None = field(default=None)
     ends_given: bool = True
     warnings: list[str] = field(default_factory=list)
+    tangents_from_curve: bool = False
 
     def __post_init__(self) -> None:
         self.a = _as_xy("A", self.a)
@@ -199,6 +204,7 @@ class Observations:
             curves,
             self.ends_given,
             list(self.warnings),
+            self.tangents_from_curve,
         )
 
     # ----------------------------------------------------------------- checks

@@ -14,10 +14,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from curverecon.curve.polyline import end_tangents
 from curverecon.errors import CurveReconError
 from curverecon.io import OBSERVATIONS_FORMAT
-from curverecon.trace.ends import assign_ends
+from curverecon.trace.ends import assign_ends, frame_tangents
 from curverecon.trace.frame import trace_image
 from curverecon.trace.images import count_frames, iter_frames
 from curverecon.trace.options import TraceOptions
@@ -88,7 +87,9 @@ def trace_inputs(
             f"{MIN_TRACED_FRAMES} are needed{more}"
         )
     curves = [t["curve"] for t in traced]
-    assignment = assign_ends(curves, o.ambiguity_ratio, [t["index"] for t in traced])
+    assignment = assign_ends(
+        curves, o.ambiguity_ratio, [t["index"] for t in traced], fit_length=o.tangent_fit_length
+    )
     if assignment.ambiguous:
         which = ", ".join(str(traced[k]["index"]) for k in assignment.ambiguous[:10])
         how = (
@@ -101,9 +102,7 @@ def trace_inputs(
     for t, f in zip(traced, assignment.flip, strict=True):
         curve = np.round(t["curve"][::-1] if f else t["curve"], 4)  # 1e-4 px: far below the noise
         t["curve"] = curve
-        ta, tb = end_tangents(
-            curve[1:-1] if len(curve) > 8 else curve, fit_length=o.tangent_fit_length
-        )
+        ta, tb = frame_tangents(curve, o.tangent_fit_length)
         frames.append(
             {
                 "A": curve[0].tolist(),
@@ -127,6 +126,8 @@ def trace_inputs(
         "projection": "orthographic",
         "frames": frames,
         "frames_skipped": skipped,
+        # the tangents are fits to the polylines, not measurements of their own
+        "tangents_from_curve": True,
         "pixel_convention": "x = column, y = row, centre of the top-left pixel at (0, 0)",
     }
     return TraceResult(doc, warnings, traced)
