@@ -4,11 +4,13 @@ number of frames, and a frame whose polyline has 2,000,000 points.
 Each case runs in a child process (``python -m bench.scale --case ...``), so that its peak
 memory is its own: ``resource.getrusage(RUSAGE_SELF).ru_maxrss`` of the child at the end (the
 whole process: Python, NumPy and the scene).  Scenes: ``curverecon.simulate.make_scene`` with
-seed 2, 1 px, 1 degree.  Reported per size: wall and CPU seconds (the machine may be shared:
-CPU seconds are the process's own), peak memory, the frames flagged as outliers, and the
+seed 2, 1 px, 1 degree (the largest size also with ``HELDOUT_SEED``: ``*_heldout`` keys).
+Reported per size: wall and CPU seconds (the machine may be shared: CPU seconds are the
+process's own, summed over its threads), peak memory, the frames flagged as outliers, the
 seconds of each pipeline stage (the progress bar's stages: hypotheses, maximum likelihood with
-the outlier test, alternatives, final estimate, curve).  ``python -m bench.scale [--quick]``
-prints the figures as JSON.
+the outlier test, alternatives, final estimate, curve), and the answer's error in its own
+standard deviations (``scale_error_std``: c, alpha, beta, phi).
+``python -m bench.scale [--quick]`` prints the figures as JSON.
 """
 
 from __future__ import annotations
@@ -21,6 +23,9 @@ import time
 
 SIZES_FULL = (1000, 10_000, 30_000, 100_000)
 SIZES_QUICK = (1000, 3000)
+HELDOUT_SEED = 1002
+"""The largest size once more on a scene of this seed: the speed-ups of issue 16 were measured
+and tuned on seed 2's scenes only."""
 
 
 class _StageTimes:
@@ -39,17 +44,19 @@ class _StageTimes:
         self.step("end")
 
 
-def _case_frames(n: int) -> dict:
+def _case_frames(n: int, seed: int = 2) -> dict:
     import numpy as np
 
     import curverecon.pipeline as pipeline
+    from curverecon.model.pose import normalise
     from curverecon.simulate import make_scene
 
-    sc = make_scene(np.random.default_rng(2), n, point_sigma=1.0, tangent_sigma_deg=1.0)
+    sc = make_scene(np.random.default_rng(seed), n, point_sigma=1.0, tangent_sigma_deg=1.0)
     pipeline.StageProgress = _StageTimes  # the stages' start times, nothing shown
     t0, c0 = time.perf_counter(), time.process_time()
     rec = pipeline.reconstruct(sc.observations)
     seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
+    truth = normalise(sc.truth.shape, np.zeros((1, 5)))[0]
     marks = _StageTimes.marks
     stages = {a: round(tb - ta, 2) for (a, ta), (_, tb) in zip(marks, marks[1:], strict=False)}
     return {
@@ -57,6 +64,12 @@ def _case_frames(n: int) -> dict:
         "cpu_seconds": cpu,
         "stages": stages,
         "outliers": len(rec.outlier_frames()),
+        # the answer's error in its own standard deviations (c, alpha, beta, phi)
+        "error_std": (
+            None
+            if rec.std is None
+            else [round(float(v), 1) for v in (rec.shape - truth) / np.asarray(rec.std)]
+        ),
     }
 
 
@@ -84,9 +97,9 @@ def _case_polyline(points: int) -> dict:
     return {"load_seconds": t1 - t0, "seconds": time.perf_counter() - t1}
 
 
-def _child(kind: str, n: int) -> dict:
+def _child(kind: str, n: int, seed: int = 2) -> dict:
     proc = subprocess.run(
-        [sys.executable, "-m", "bench.scale", "--case", kind, str(n)],
+        [sys.executable, "-m", "bench.scale", "--case", kind, str(n), str(seed)],
         capture_output=True,
         text=True,
         check=True,
@@ -97,11 +110,16 @@ def _child(kind: str, n: int) -> dict:
 def run(quick: bool = False) -> dict:
     sizes = SIZES_QUICK if quick else SIZES_FULL
     table = {n: _child("frames", n) for n in sizes}
+    heldout = _child("frames", max(sizes), HELDOUT_SEED)
     poly = _child("polyline", 200_000 if quick else 2_000_000)
     big = table[max(sizes)]
     return {
         f"reconstruct_seconds_{max(sizes)}_frames": round(big["seconds"], 2),
         f"peak_memory_mb_{max(sizes)}_frames": round(big["peak_mb"], 1),
+        f"reconstruct_seconds_{max(sizes)}_frames_heldout": round(heldout["seconds"], 2),
+        f"peak_memory_mb_{max(sizes)}_frames_heldout": round(heldout["peak_mb"], 1),
+        "scale_error_std": {str(n): v["error_std"] for n, v in table.items()},
+        "scale_error_std_heldout": {str(max(sizes)): heldout["error_std"]},
         "scale_table": {
             str(n): {
                 "seconds": round(v["seconds"], 2),
@@ -123,8 +141,8 @@ def run(quick: bool = False) -> dict:
 if __name__ == "__main__":
     args = sys.argv[1:]
     if args[:1] == ["--case"]:
-        kind, n = args[1], int(args[2])
-        out = _case_frames(n) if kind == "frames" else _case_polyline(n)
+        kind, n, seed = args[1], int(args[2]), int(args[3])
+        out = _case_frames(n, seed) if kind == "frames" else _case_polyline(n)
         out["peak_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
         print(json.dumps(out))
     else:

@@ -96,3 +96,15 @@ def test_long_sequence_outliers_are_dropped_in_one_round(seed):
     assert flagged.sum() >= true_out.sum() - 1 and not np.any(flagged & ~true_out)
     assert np.array_equal(one_round[0], one_by_one[0])
     assert np.allclose(one_round[1].shape, one_by_one[1].shape, rtol=1e-6, atol=1e-8)
+
+
+def test_many_frames_warn_that_the_std_is_the_precision_not_the_accuracy():
+    """From ``BIAS_WARNING_FRAMES`` inlier frames on the answer says its standard deviations
+    understate its error; below, it does not."""
+    from curverecon.pipeline import reconstruct
+    from curverecon.refine.answer import BIAS_WARNING_FRAMES
+
+    many = reconstruct(_scene(13, BIAS_WARNING_FRAMES + 50).observations)
+    few = reconstruct(_scene(13, 300).observations)
+    assert any("precision, not the accuracy" in w for w in many.warnings)
+    assert not any("precision, not the accuracy" in w for w in few.warnings)
