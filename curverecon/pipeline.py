@@ -27,7 +27,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from curverecon.curve.stage import fit_curve
+from curverecon.curve.stage import better_fit_to_polylines, fit_curve
 from curverecon.errors import CurveReconError
 from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise
@@ -104,50 +104,11 @@ def reconstruct(
         and opts.curve.bundle
         and opts.curve.traced_tangents_retry
     ):
-        rec = _better_fit_to_polylines(rec, obs, opts)
+        rec = better_fit_to_polylines(rec, obs, opts, reconstruct_end_points)
     progress.close()
     if obs.warnings:
         rec = replace(rec, warnings=list(obs.warnings) + list(rec.warnings))
     return rec
-
-
-def _mean_frame_rms(rec: Reconstruction) -> float:
-    info = rec.curve_bundle or {}
-    rms = info.get("frame_rms_px")
-    return float(np.mean(rms)) if rms else math.inf
-
-
-def _better_fit_to_polylines(
-    rec: Reconstruction, obs: Observations, opts: ReconstructOptions
-) -> Reconstruction:
-    """Tangents estimated from the polylines (``CurveOptions.traced_tangents_retry``): the
-    answer again with the adaptive end-tangent fit as a start only, the polylines alone fixing
-    the shape; the answer whose curve reprojects closer to the polylines is kept."""
-    from curverecon.curve.polyline import end_tangents
-
-    try:
-        ends = [end_tangents(c) for c in obs.curves]
-        alt = Observations(
-            obs.a,
-            obs.b,
-            np.array([e[0] for e in ends]),
-            np.array([e[1] for e in ends]),
-            obs.curves,
-            False,
-            [],
-        )
-        other = fit_curve(reconstruct_end_points(alt, opts), alt, opts)
-    except (CurveReconError, ArithmeticError, ValueError, np.linalg.LinAlgError):
-        return rec
-    mine, theirs = _mean_frame_rms(rec), _mean_frame_rms(other)
-    if not theirs < mine:
-        return rec
-    note = (
-        f"the traced tangents (estimated from the polylines) left the curve {mine:.2f} px "
-        f"(mean frame RMS) from the polylines, the polylines alone {theirs:.2f} px: "
-        "the answer is the polylines' (tangents as a start only)"
-    )
-    return replace(other, warnings=[*other.warnings, note])
 
 
 def reconstruct_end_points(

@@ -9,6 +9,8 @@ the fitted curve (``curve.bundle``).  ``curve3d`` is in frame 0's camera coordin
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -16,6 +18,7 @@ import numpy as np
 from curverecon.curve import section4
 from curverecon.curve.branches import refit_branches_with_curves, resolve_branches_with_curves
 from curverecon.curve.bundle import refine_reconstruction
+from curverecon.curve.polyline import end_tangents
 from curverecon.errors import CurveReconError
 from curverecon.model.observations import Observations
 from curverecon.model.reconstruction import Reconstruction
@@ -76,4 +79,45 @@ def fit_curve(
     return replace(rec, curve3d=curve3d, curve_bundle=info, warnings=list(rec.warnings) + warnings)
 
 
-__all__ = ["fit_curve"]
+def _mean_frame_rms(rec: Reconstruction) -> float:
+    info = rec.curve_bundle or {}
+    rms = info.get("frame_rms_px")
+    return float(np.mean(rms)) if rms else math.inf
+
+
+def better_fit_to_polylines(
+    rec: Reconstruction,
+    obs: Observations,
+    opts: ReconstructOptions,
+    end_points: Callable[[Observations, ReconstructOptions], Reconstruction],
+) -> Reconstruction:
+    """Tangents estimated from the polylines (``CurveOptions.traced_tangents_retry``): the
+    answer again with the adaptive end-tangent fit as a start only, the polylines alone fixing
+    the shape (``end_points``: the pipeline's end-point stages, then :func:`fit_curve`); the
+    answer whose curve reprojects closer to the polylines is kept."""
+    try:
+        ends = [end_tangents(c) for c in obs.curves]
+        alt = Observations(
+            obs.a,
+            obs.b,
+            np.array([e[0] for e in ends]),
+            np.array([e[1] for e in ends]),
+            obs.curves,
+            False,
+            [],
+        )
+        other = fit_curve(end_points(alt, opts), alt, opts)
+    except (CurveReconError, ArithmeticError, ValueError, np.linalg.LinAlgError):
+        return rec
+    mine, theirs = _mean_frame_rms(rec), _mean_frame_rms(other)
+    if not theirs < mine:
+        return rec
+    note = (
+        f"the traced tangents (estimated from the polylines) left the curve {mine:.2f} px "
+        f"(mean frame RMS) from the polylines, the polylines alone {theirs:.2f} px: "
+        "the answer is the polylines' (tangents as a start only)"
+    )
+    return replace(other, warnings=[*other.warnings, note])
+
+
+__all__ = ["better_fit_to_polylines", "fit_curve"]
