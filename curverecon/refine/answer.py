@@ -27,7 +27,7 @@ BIAS_WARNING_FRAMES = 3000
 """From this many inlier frames on, the answer warns that its standard deviations understate its
 error: the marginal likelihood's remaining bias does not shrink with more frames while the
 standard deviations do (``python -m bench --only scale``, ``scale_error_std``: c off by 0.8
-standard deviations at 1,000 frames, -6.0 at 10,000, 14.3 at 30,000, 27.2 at 100,000)."""
+standard deviations at 1,000 frames, -5.9 at 10,000, 14.3 at 30,000, 27.1 at 100,000)."""
 
 
 def final_estimate(
