@@ -92,3 +92,20 @@ def test_a_forked_child_runs_the_frame_pool(scene):
     with multiprocessing.get_context("fork").Pool(1) as pool:
         there = pool.apply_async(_chi2_in_child, ((shape, start, meas, w8),)).get(timeout=30)
     assert there == here
+
+
+def test_chunks_mapped_from_inside_a_chunk_run_in_that_thread():
+    """map_chunks called from one of its own workers does not wait on the pool (a deadlock
+    when every worker waits so); the nested call's results are the same, in order."""
+    from curverecon.refine import ml
+
+    n = 3 * ml.FRAME_CHUNK
+
+    def inner(c: slice) -> int:
+        return c.start
+
+    def outer(c: slice) -> list[int]:
+        return ml.map_chunks(inner, n)
+
+    expected = [c.start for c in ml.frame_chunks(n)]
+    assert ml.map_chunks(outer, n) == [expected] * len(expected)

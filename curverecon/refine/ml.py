@@ -54,6 +54,7 @@ convergence (:func:`_frame_search`) and iterates again from them.
 from __future__ import annotations
 
 import os
+import threading
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -160,6 +161,7 @@ def frame_chunks(n: int, chunk: int | None = None) -> list[slice]:
 
 
 _POOL: ThreadPoolExecutor | None = None
+_POOL_PREFIX = "curverecon-frames"
 
 
 def _forget_pool() -> None:
@@ -178,10 +180,12 @@ def map_chunks(function: Callable[[slice], T], n: int) -> list[T]:
     (each chunk's arithmetic is its own)."""
     global _POOL
     chunks = frame_chunks(n)
-    if len(chunks) == 1:
-        return [function(chunks[0])]
+    if len(chunks) == 1 or threading.current_thread().name.startswith(_POOL_PREFIX):
+        # one chunk, or called from a worker of the pool itself (waiting there on the same
+        # pool's workers could deadlock): in this thread
+        return [function(c) for c in chunks]
     if _POOL is None:
-        _POOL = ThreadPoolExecutor(max_workers=os.cpu_count() or 1)
+        _POOL = ThreadPoolExecutor(max_workers=os.cpu_count() or 1, thread_name_prefix=_POOL_PREFIX)
     return list(_POOL.map(function, chunks))
 
 
