@@ -39,7 +39,7 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
     from curverecon.curve.polyline import distance_to_polyline
     from curverecon.io import OBSERVATIONS_FORMAT, observations_from_dict
     from curverecon.pipeline import reconstruct
-    from curverecon.trace.ends import assign_ends, frame_tangents
+    from curverecon.trace.ends import assign_ends, frame_record
     from curverecon.trace.frame import trace_image
     from curverecon.trace.options import TraceOptions
     from curverecon.trace.render import render_frame, tumbling_scene
@@ -77,18 +77,7 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
     out["end_ok"] = bool(all(a_is_a) or not any(a_is_a))
     out["curve_error"] = None
     if end_to_end:
-        frames = []
-        for c in oriented:
-            ta, tb = frame_tangents(c, options.tangent_fit_length)
-            frames.append(
-                {
-                    "A": c[0].tolist(),
-                    "B": c[-1].tolist(),
-                    "tangent_A": ta.tolist(),
-                    "tangent_B": tb.tolist(),
-                    "curve": c.tolist(),
-                }
-            )
+        frames = [frame_record(c, options.tangent_fit_length) for c in oriented]
         # as ``curverecon trace`` writes them: the tangents are fits to the polylines
         doc = {"format": OBSERVATIONS_FORMAT, "frames": frames, "tangents_from_curve": True}
         obs = observations_from_dict(doc)

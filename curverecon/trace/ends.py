@@ -123,6 +123,19 @@ def frame_tangents(curve: np.ndarray, fit_length: float) -> tuple[np.ndarray, np
     return end_tangents(curve[1:-1] if len(curve) > 8 else curve, fit_length=fit_length)
 
 
+def frame_record(curve: np.ndarray, fit_length: float) -> dict:
+    """One frame of ``curverecon.observations/1`` from a traced polyline oriented A to B: A and B
+    its ends, the tangents :func:`frame_tangents`, ``curve`` the polyline (lists of floats)."""
+    ta, tb = frame_tangents(curve, fit_length)
+    return {
+        "A": curve[0].tolist(),
+        "B": curve[-1].tolist(),
+        "tangent_A": ta.tolist(),
+        "tangent_B": tb.tolist(),
+        "curve": curve.tolist(),
+    }
+
+
 def _score(curves: list[np.ndarray], flip: np.ndarray, fit_length: float | None = None) -> float:
     """Mean over frames of the reprojection RMS (px) of the curve reconstructed from the
     polylines so ordered; with ``fit_length``, the better of the reconstructions with the

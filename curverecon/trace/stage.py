@@ -16,7 +16,7 @@ import numpy as np
 
 from curverecon.errors import CurveReconError
 from curverecon.io import OBSERVATIONS_FORMAT
-from curverecon.trace.ends import assign_ends, frame_tangents
+from curverecon.trace.ends import assign_ends, frame_record
 from curverecon.trace.frame import trace_image
 from curverecon.trace.images import count_frames, iter_frames
 from curverecon.trace.options import TraceOptions
@@ -102,17 +102,8 @@ def trace_inputs(
     for t, f in zip(traced, assignment.flip, strict=True):
         curve = np.round(t["curve"][::-1] if f else t["curve"], 4)  # 1e-4 px: far below the noise
         t["curve"] = curve
-        ta, tb = frame_tangents(curve, o.tangent_fit_length)
         frames.append(
-            {
-                "A": curve[0].tolist(),
-                "B": curve[-1].tolist(),
-                "tangent_A": ta.tolist(),
-                "tangent_B": tb.tolist(),
-                "curve": curve.tolist(),
-                "index": t["index"],
-                "file": t["file"],
-            }
+            {**frame_record(curve, o.tangent_fit_length), "index": t["index"], "file": t["file"]}
         )
     chords = np.array([np.hypot(*(np.array(f["B"]) - f["A"])) for f in frames])
     for f, c in zip(frames, chords, strict=True):
