@@ -33,7 +33,6 @@ from derivations.codegen.spec import FunctionSpec, PolynomialColumns, Polynomial
 TEMPLATE_NAME = "module.py.jinja"
 TEMPLATE_PATH = "derivations/codegen/templates/" + TEMPLATE_NAME
 KERNEL_TEMPLATE_NAME = "kernel.py.jinja"
-KERNEL_TEMPLATE_PATH = "derivations/codegen/templates/" + KERNEL_TEMPLATE_NAME
 REPO_ROOT = Path(__file__).resolve().parents[2]
 
 
@@ -558,18 +557,35 @@ def render_module(
     ``source`` is the repository-relative path of the derivation script named in the preamble.
     """
     config = config or NumPyConfig()
-    template = _environment().get_template(TEMPLATE_NAME)
-    text = template.render(
-        source=source,
-        template=TEMPLATE_PATH,
-        sympy_version=sp.__version__,
-        doc=wrap_doc(doc, config.line_length - 4),
+    return _render(
+        TEMPLATE_NAME,
+        source,
+        doc,
+        filename,
+        config,
         dtype=config.dtype,
         constants=[(k, repr(v)) for k, v in (constants or {}).items()],
         functions=[print_function(f, config) for f in functions],
         polynomial=polynomial is not None,
         poly=print_polynomial(polynomial, config) if polynomial is not None else None,
         system=print_system(system, config) if system is not None else None,
+    )
+
+
+def _render(
+    name: str, source: str, doc: str, filename: str, config: NumPyConfig, **fields: object
+) -> str:
+    """Template ``name`` rendered with the preamble's fields and ``fields``, then formatted."""
+    text = (
+        _environment()
+        .get_template(name)
+        .render(
+            source=source,
+            template="derivations/codegen/templates/" + name,
+            sympy_version=sp.__version__,
+            doc=wrap_doc(doc, config.line_length - 4),
+            **fields,
+        )
     )
     if config.run_ruff_format:
         text = format_python(text, filename)
@@ -586,17 +602,8 @@ def render_kernel_module(
 ) -> str:
     """The formatted text of one module of scalar numba kernels (``templates/kernel.py.jinja``)."""
     config = config or NumPyConfig()
-    template = _environment().get_template(KERNEL_TEMPLATE_NAME)
-    text = template.render(
-        source=source,
-        template=KERNEL_TEMPLATE_PATH,
-        sympy_version=sp.__version__,
-        doc=wrap_doc(doc, config.line_length - 4),
-        kernels=[print_kernel(f, config) for f in kernels],
-    )
-    if config.run_ruff_format:
-        text = format_python(text, filename)
-    return text
+    kernel_code = [print_kernel(f, config) for f in kernels]
+    return _render(KERNEL_TEMPLATE_NAME, source, doc, filename, config, kernels=kernel_code)
 
 
 def render_init(modules: Sequence[tuple[str, str]], source: str) -> str:
