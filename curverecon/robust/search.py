@@ -544,10 +544,20 @@ def _refined_on(
     # polish has none, and the frames it left off cost the refinement its first iterations
     # (30,000 frames: chi2 36,352 at the start against 28,218 at the optimum)
     kk, n = poses.shape[:2]
-    polished, _ = optimise_poses(
+    polished, res = optimise_poses(
         np.repeat(shapes, n, axis=0), poses.reshape(-1, 5), np.tile(meas, (kk, 1)), w8, 10
     )
     poses = polished.reshape(kk, n, 5)
+    if n >= o.rescue_before_fit_frames:
+        # frames that fit badly at the start shape try every branch and a grid of starts now
+        # (``o.rescue_before_fit_frames``): the start is near the optimum on a long sequence
+        fs = np.sum(res * res, axis=1).reshape(kk, n)
+        for k in range(kk):
+            bad = np.flatnonzero(fs[k] > o.rescue_chi2)
+            if bad.size:
+                poses[k, bad] = switch_branches(
+                    obs.subset(bad), shapes[k], poses[k, bad], w8, rescue=True, options=o
+                )
     g, p, r, chi2, iters, conv = refine_batch(
         meas, shapes, poses, point_sigma, tangent_sigma, max_iter=60
     )
