@@ -161,13 +161,21 @@ def answer_from_hypotheses(
     fits = equally_good_fits(obs, inliers, cands, final, ps, ts, opts.branches)
     # 5. the final estimate
     progress.step("final estimate")
+    marginal = opts.estimator == "marginal"
+    if marginal and int(inliers.sum()) >= opts.marginal_max_frames:
+        marginal = False
+        warnings.append(
+            f"with {int(inliers.sum())} frames the answer is the maximum-likelihood fit: the "
+            "marginal likelihood is not resolved at the scale of its correction beyond "
+            f"{opts.marginal_max_frames} frames (ReconstructOptions.marginal_max_frames)"
+        )
     rec = final_estimate(
         obs,
         inliers,
         fits,
         ps,
         ts,
-        opts.estimator == "marginal",
+        marginal,
         warnings,
         opts.branches,
         opts.search,

@@ -108,3 +108,22 @@ def test_many_frames_warn_that_the_std_is_the_precision_not_the_accuracy():
     few = reconstruct(_scene(13, 300).observations)
     assert any("precision, not the accuracy" in w for w in many.warnings)
     assert not any("precision, not the accuracy" in w for w in few.warnings)
+
+
+def test_beyond_marginal_max_frames_the_answer_is_maximum_likelihood_and_says_so():
+    """From ``marginal_max_frames`` inlier frames on, ``estimator="marginal"`` gives the answer
+    of ``estimator="ml"`` (the same shape and std) with a warning naming the option; below, the
+    marginal step runs (it moves the shape on a noisy scene)."""
+    from curverecon.options import ReconstructOptions
+    from curverecon.pipeline import reconstruct
+
+    obs = _scene(14, 300).observations
+    capped = reconstruct(obs, options=ReconstructOptions(marginal_max_frames=250))
+    ml_answer = reconstruct(obs, options=ReconstructOptions(estimator="ml"))
+    default = reconstruct(obs)
+    assert capped.estimator == "ml" and default.estimator == "marginal"
+    assert np.array_equal(capped.shape, ml_answer.shape)
+    assert np.array_equal(capped.std, ml_answer.std)
+    assert any("marginal_max_frames" in w for w in capped.warnings)
+    assert not any("marginal_max_frames" in w for w in default.warnings + ml_answer.warnings)
+    assert not np.allclose(default.shape, ml_answer.shape, rtol=1e-9, atol=0.0)

@@ -25,9 +25,10 @@ from curverecon.solvers.pose import poses_from_shape
 
 BIAS_WARNING_FRAMES = 3000
 """From this many inlier frames on, the answer warns that its standard deviations understate its
-error: the marginal likelihood's remaining bias does not shrink with more frames while the
-standard deviations do (``python -m bench --only scale``, ``scale_error_std``: c off by 0.8
-standard deviations at 1,000 frames, -5.9 at 10,000, 14.3 at 30,000, 27.1 at 100,000)."""
+error: the estimators' remaining bias does not shrink with more frames while the standard
+deviations do (``python -m bench --only scale``, ``scale_error_std``: c off by 0.8 standard
+deviations at 1,000 frames and -5.9 at 10,000 (marginal likelihood), 14.3 at 30,000 and 27.1
+at 100,000 (maximum likelihood, ``ReconstructOptions.marginal_max_frames``))."""
 
 
 def final_estimate(
@@ -119,7 +120,7 @@ def final_estimate(
         warnings.append(
             f"with {int(inliers.sum())} frames the standard deviations are below the "
             "estimator's bias (the poses are nuisance parameters; on simulated 1 px / 1 deg "
-            "scenes c came out 6 to 27 standard deviations off at 10,000 to 100,000 frames): "
+            "scenes c came out 6 to 37 standard deviations off at 10,000 to 100,000 frames): "
             "read them as the precision, not the accuracy"
         )
     outliers = np.flatnonzero(~inliers)
