@@ -216,6 +216,15 @@ class CurveOptions:
     (curve errors 0.34, 0.13, 0.62 % unchanged) and the trial cost 1.5-4 s per scene: the
     residual there is the polylines' noise, not the spline's flexibility."""
 
+    bundle_extra_starts: int = 3
+    """When the curve bundle still leaves some frame fitting clearly worse than the others
+    (``bundle.UNEVEN_RATIO``) after its start from the end-point answer and from frame 0's
+    polyline, it starts again from this many other frames' polylines at depth 0 (spread over
+    the sequence, ``bundle.extra_start_frames``) and keeps the lowest cost.  Trace bench seed 0:
+    both default starts ended in the same wrong minimum (frame RMS up to 2.4 px, 10.7 % of the
+    length off) while the starts from frames 8 and 12 reached the noise level (0.1 %).  Each
+    start costs one bundle run (2-5 s at 16 frames), only on scenes that do not fit evenly."""
+
     never_worse_dchi2: float = 13.28
     """The curve bundle's answer replaces the end-point answer only if its end-point chi2 is
     within this of the end-point answer's, in units of the end-point fit's variance factor

@@ -164,3 +164,68 @@ def test_command_bundle_switch_and_keys(tmp_path):
         for key in ("delta_deg", "tau_deg", "A3", "B3", "tangent_A3", "tangent_B3"):
             assert key in out["frames"][0]
         assert ("curve_bundle" in out) == (switch == "on")
+
+
+def test_starts_from_other_frames_come_back_in_frame_0_coordinates():
+    """``bundle_from_frame``: every start pose the identity (nothing known), the start curve
+    one frame's polyline at depth 0.  Whichever frame is the reference, the answer is in frame
+    0's camera coordinates (frame 0's pose the identity, A at depth 0); from frames 0, 1, 5
+    and 7 it is the true curve, and its cost the same from each (the cost does not depend on
+    the reference frame, so starts compare by it).  Not from every frame: from frames 2, 3, 4
+    and 6 of this scene the fit ends 2.7-8.8 % off (hence several starts)."""
+    from curverecon.curve.bundle import bundle_from_frame
+
+    scene = make_scene(np.random.default_rng(5), 8, with_curve=True)
+    curves = scene.observations.curves
+    n = len(curves)
+    rot = np.tile(np.eye(3), (n, 1, 1))
+    tr = np.array([[c[0][0], c[0][1], 0.0] for c in curves])
+    costs = []
+    for ref in (0, 1, 5, 7, 3):
+        res = bundle_from_frame(curves, rot, tr, ref)
+        assert np.allclose(res.m[0], np.eye(3), atol=1e-9) and np.allclose(res.b[0], 0.0)
+        assert abs(res.control[0, 2]) < 1e-9  # A at depth 0
+        if ref == 3:
+            assert res.cost > 10 * max(costs)  # a wrong basin costs more
+            continue
+        pts = res.curve_points()
+        assert np.allclose(pts[0, :2], scene.truth.A3[0, :2], atol=0.05)
+        assert curve_error(pts, scene.curve_3d) < 1e-4, ref
+        assert np.max(res.rms) < 0.05
+        costs.append(res.cost)
+    assert max(costs) < 1.01 * min(costs)
+    with pytest.raises(CurveReconError):
+        bundle_from_frame(curves, rot, tr, n)
+
+
+def test_extra_start_frames_are_spread_and_distinct():
+    from curverecon.curve.bundle import extra_start_frames
+
+    assert extra_start_frames(16, 3) == [8, 4, 12]
+    for n, count in ((4, 3), (5, 6), (16, 8), (2, 1)):
+        out = extra_start_frames(n, count)
+        assert len(out) == min(count, n - 1) and len(set(out)) == len(out)
+        assert all(0 < f < n for f in out)
+
+
+def test_a_hooked_end_does_not_bend_the_curve(monkeypatch):
+    """One frame's polyline runs on 8 px beyond A' (a traced end hooked back along the line of
+    sight ends its polyline at the fold, beyond A', with A' on the polyline): with the
+    robust-end polish (``END_POLISH``) the curve stays on the truth; held as a hard end the
+    polyline's end drags it off (so the polish matters here)."""
+    from curverecon.curve import bundle as bundle_module
+
+    scene = make_scene(np.random.default_rng(5), 8, with_curve=True)
+    curves = [np.asarray(c, float) for c in scene.observations.curves]
+    c3 = curves[3]
+    d = (c3[0] - c3[3]) / np.hypot(*(c3[0] - c3[3]))
+    hook = c3[0] + np.outer(np.arange(8.0, 0.0, -0.5), d)
+    curves[3] = np.vstack([hook, c3])
+    rot, tr = _truth_poses(scene)
+    errors = {}
+    for polish in (True, False):
+        monkeypatch.setattr(bundle_module, "END_POLISH", polish)
+        res = bundle_adjust(curves, rot, tr, scene.curve_3d)
+        errors[polish] = curve_error(res.curve_points(), scene.curve_3d)
+    assert errors[True] < 0.002, errors
+    assert errors[False] > 2 * errors[True], errors

@@ -16,14 +16,18 @@ Each traced polyline runs from one end to the other in an order the tracer chose
    order with the block after that link reversed (at most ``MAX_AMBIGUOUS_LINKS`` links) are
    reconstructed with their polylines (``curverecon.reconstruct``: the curve bundle fits one
    3-D curve to every frame's polyline); a reversal is kept when its curve reprojects closer to
-   the polylines (mean over frames of the RMS distance): a wrong
+   the polylines (mean over frames of the RMS distance; clearly closer, ``REVERSAL_GAIN``): a wrong
    order cannot be fitted by one rigid curve.  Frame 0 keeps the tracer's order.  Each order
-   is reconstructed twice, with the end tangents the tracer writes (``frame_tangents``) and
-   with the adaptive fit (``curverecon.curve.polyline.end_tangents``), and scores its better
-   fit: the bundle starts from the end-point answer, and poor tangents (a hooked or end-on
-   end) can leave it in a wrong minimum for the right order (bench seed 20: the right order
+   is reconstructed as ``curverecon trace`` writes it (the tracer's end tangents,
+   ``frame_tangents``, marked ``"tangents_from_curve": true``), so the reconstruction fits it
+   twice, with those tangents as measurements and with the polylines alone (the adaptive fit
+   as a start only), and scores its better fit: poor tangents (a hooked or end-on end) can
+   leave the bundle in a wrong minimum for the right order (bench seed 20: the right order
    scored 1.56 px with the adaptive tangents alone, the wrong one 1.07; with both, 0.50
-   against 1.07).
+   against 1.07).  Scored with both kinds of tangents as measurements (as before), held-out
+   seed 1006 (a helix, whose two ends look alike) was reversed: the right order 2.5 px (the
+   end-point answer from hooked-end tangents, which the bundle must not leave), the wrong
+   one 0.07; with the polylines alone the right order fits as well.
 
 (Per-frame checks at a shape from the end points and tangents alone were tried and dropped:
 the end tangents of traced polylines misfit that shape by 5-30 degrees in many frames, as much
@@ -42,7 +46,7 @@ N_SAMPLES = 48
 """Points per polyline in the shape comparison."""
 
 MAX_AMBIGUOUS_LINKS = 2
-"""At most 3 orders (6 reconstructions with the curve bundle, about 5-25 s each for 16 frames)
+"""At most 3 orders (each a reconstruction that fits twice, about 10-60 s for 16 frames)
 decide the ambiguous links; with more, the continuity answer stands (and the command warns)."""
 
 MAX_GAP = 2
@@ -55,6 +59,13 @@ PREDICTION_GAIN = 0.5
 (true polylines, 25 degrees a frame) links across one left-out frame were ordered wrong 9 times
 in 520 without prediction, 3 with gain 1 and 2 with gain 0.5; across two left-out frames 53, 16
 and 16 in 480; at 40 degrees a frame 11, 2 and 2 in 560."""
+
+REVERSAL_GAIN = 0.8
+"""A reversal is kept only when its curve fits below this fraction of the continuity order's
+(mean frame RMS): where both orders fit (a helix's two ends look alike, and a rigid curve
+turned end over end explains either order), continuity decides.  Held-out seed 1006: the
+right order 0.069 px, the wrong one 0.068 (ratio 0.98); seed 20: a reversal that was right
+fitted 0.50 px against 1.07 (0.47)."""
 
 DIRECTION_WEIGHT = 2.0
 """Weight of the end steps' change in the continuity cost.  On 600 links of 40 rendered
@@ -138,11 +149,11 @@ def frame_record(curve: np.ndarray, fit_length: float) -> dict:
 
 def _score(curves: list[np.ndarray], flip: np.ndarray, fit_length: float | None = None) -> float:
     """Mean over frames of the reprojection RMS (px) of the curve reconstructed from the
-    polylines so ordered; with ``fit_length``, the better of the reconstructions with the
-    tracer's tangents (:func:`frame_tangents`) and with the adaptive fit."""
-    if fit_length is None:
-        return _score_with(curves, flip, None)
-    return min(_score_with(curves, flip, fit_length), _score_with(curves, flip, None))
+    polylines so ordered; with ``fit_length``, as ``curverecon trace`` writes them (the
+    tracer's tangents, :func:`frame_tangents`, marked as fitted to the polylines: the
+    reconstruction keeps the better of its fits with them and with the polylines alone);
+    without, the adaptive fit's tangents as measurements."""
+    return _score_with(curves, flip, fit_length)
 
 
 def _score_with(curves: list[np.ndarray], flip: np.ndarray, fit_length: float | None) -> float:
@@ -164,7 +175,10 @@ def _score_with(curves: list[np.ndarray], flip: np.ndarray, fit_length: float | 
             }
         )
     try:
-        rec = reconstruct(observations_from_dict({"format": OBSERVATIONS_FORMAT, "frames": frames}))
+        doc = {"format": OBSERVATIONS_FORMAT, "frames": frames}
+        if fit_length is not None:
+            doc["tangents_from_curve"] = True
+        rec = reconstruct(observations_from_dict(doc))
     except (CurveReconError, ArithmeticError, ValueError, np.linalg.LinAlgError):
         return np.inf  # an order the reconstruction cannot use does not fit
     if not rec.curve_bundle or "frame_rms_px" not in rec.curve_bundle:
@@ -190,7 +204,7 @@ def assign_ends(
                 f = flip.copy()
                 f[k:] = ~f[k:]
                 score = _score(curves, f, fit_length)
-                if score < best:
+                if score < REVERSAL_GAIN * best:
                     flip, best = f, score
             decided = True
     return EndAssignment(flip, ambiguous, decided)
