@@ -297,7 +297,7 @@ def test_hooked_and_end_on_ends_reconstruct_within_one_percent():
     from curverecon.io import observations_from_dict
     from curverecon.options import ReconstructOptions
     from curverecon.pipeline import reconstruct
-    from curverecon.trace.ends import frame_tangents
+    from curverecon.trace.ends import frame_record
 
     rng = np.random.default_rng(1002)
     scene = tumbling_scene(rng, 16, family="bezier")
@@ -309,18 +309,7 @@ def test_hooked_and_end_on_ends_reconstruct_within_one_percent():
     flip = assign_ends(curves, o.ambiguity_ratio, use_reconstruction=False).flip
     curves = [c[::-1] if f else c for c, f in zip(curves, flip, strict=True)]
     swapped = np.hypot(*(curves[0][0] - truths[0][-1])) < np.hypot(*(curves[0][0] - truths[0][0]))
-    frames = []
-    for c in curves:
-        ta, tb = frame_tangents(c, o.tangent_fit_length)
-        frames.append(
-            {
-                "A": list(c[0]),
-                "B": list(c[-1]),
-                "tangent_A": list(ta),
-                "tangent_B": list(tb),
-                "curve": c.tolist(),
-            }
-        )
+    frames = [frame_record(c, o.tangent_fit_length) for c in curves]
     obs = observations_from_dict(
         {"format": "curverecon.observations/1", "frames": frames, "tangents_from_curve": True}
     )

@@ -149,14 +149,10 @@ def frame_record(curve: np.ndarray, fit_length: float) -> dict:
 
 def _score(curves: list[np.ndarray], flip: np.ndarray, fit_length: float | None = None) -> float:
     """Mean over frames of the reprojection RMS (px) of the curve reconstructed from the
-    polylines so ordered; with ``fit_length``, as ``curverecon trace`` writes them (the
-    tracer's tangents, :func:`frame_tangents`, marked as fitted to the polylines: the
+    polylines so ordered; with ``fit_length``, as ``curverecon trace`` writes them
+    (:func:`frame_record`: the tracer's tangents, marked as fitted to the polylines: the
     reconstruction keeps the better of its fits with them and with the polylines alone);
     without, the adaptive fit's tangents as measurements."""
-    return _score_with(curves, flip, fit_length)
-
-
-def _score_with(curves: list[np.ndarray], flip: np.ndarray, fit_length: float | None) -> float:
     from curverecon.errors import CurveReconError
     from curverecon.io import OBSERVATIONS_FORMAT, observations_from_dict
     from curverecon.pipeline import reconstruct
@@ -164,13 +160,16 @@ def _score_with(curves: list[np.ndarray], flip: np.ndarray, fit_length: float | 
     frames = []
     for c, f in zip(curves, flip, strict=True):
         c = c[::-1] if f else c
-        ta, tb = end_tangents(c) if fit_length is None else frame_tangents(c, fit_length)
+        if fit_length is not None:
+            frames.append(frame_record(c, fit_length))
+            continue
+        ta, tb = end_tangents(c)
         frames.append(
             {
-                "A": list(c[0]),
-                "B": list(c[-1]),
-                "tangent_A": list(ta),
-                "tangent_B": list(tb),
+                "A": c[0].tolist(),
+                "B": c[-1].tolist(),
+                "tangent_A": ta.tolist(),
+                "tangent_B": tb.tolist(),
                 "curve": c.tolist(),
             }
         )
