@@ -811,12 +811,12 @@ def _damped_solve(
         pd &= _positive_definite(sc)
     dec = None
     if decrement:
-        su_lam = sc.copy()
-        su_lam.reshape(k, 16)[:, ::5] -= lam[:, None] * su
+        sc_u = sc.copy()  # the Schur complement with U undamped
+        sc_u.reshape(k, 16)[:, ::5] -= lam[:, None] * su
         dec = np.full(k, np.inf)
-        ok = (lam <= DECREMENT_MAX_LAMBDA) & _positive_definite(su_lam)
+        ok = (lam <= DECREMENT_MAX_LAMBDA) & _positive_definite(sc_u)
         if ok.any():
-            dec[ok] = np.einsum("kia,kia->k", rhs[ok], _solve(su_lam[ok], rhs[ok]))
+            dec[ok] = np.einsum("kia,kia->k", rhs[ok], _solve(sc_u[ok], rhs[ok]))
     dg = _solve(sc, rhs)[..., 0]
     if not np.isfinite(dg).all():
         singular = ~np.all(np.isfinite(dg), axis=1) & np.all(np.isfinite(sc), axis=(1, 2))
