@@ -20,6 +20,8 @@ gradient of 60 grey levels).  Per sequence:
 Seeds 0.. are those the tracer's options were set on; the ``*_heldout`` keys repeat the
 figures on seeds 1000.. (not used for tuning).  ``trace_seconds_per_frame_512``: the median
 wall time of ``trace_image`` on a rendered 512 x 512 frame (one thread).
+The sequences run on every core (``_map_sequences``: fork processes, the end-to-end ones first);
+each draws from its own seed, so the figures do not depend on the scheduling.
 ``python -m bench.trace [--quick]`` prints the figures as JSON.
 """
 
@@ -95,6 +97,29 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
     return out
 
 
+def _one(job: tuple[int, bool]) -> dict:
+    return _sequence(*job)
+
+
+def _map_sequences(jobs: list[tuple[int, bool]]) -> list[dict]:
+    """``_sequence`` of every (seed, end_to_end) job, in order, on every core (fork processes;
+    the end-to-end jobs, the long ones, first).  Each sequence draws from its own seed: the
+    results do not depend on the scheduling."""
+    import multiprocessing as mp
+    import os
+
+    workers = min(len(jobs), os.cpu_count() or 1)
+    if workers <= 1:
+        return [_one(j) for j in jobs]
+    order = sorted(range(len(jobs)), key=lambda i: not jobs[i][1])
+    with mp.get_context("fork").Pool(workers, maxtasksperchild=1) as pool:
+        results = pool.map(_one, [jobs[i] for i in order], chunksize=1)
+    out: list[dict] = [{}] * len(jobs)
+    for i, r in zip(order, results, strict=True):
+        out[i] = r
+    return out
+
+
 def _speed_512(repeats: int) -> float:
     from curverecon.trace.frame import trace_image
     from curverecon.trace.render import RenderOptions, render_frame, tumbling_scene
@@ -136,8 +161,10 @@ def run(quick: bool = False) -> dict:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     n_trace, n_e2e = (6, 2) if quick else (21, 12)
     n_held, n_held_e2e = (3, 1) if quick else (9, 4)
-    main = [_sequence(s, s < n_e2e) for s in range(n_trace)]
-    held = [_sequence(1000 + s, s < n_held_e2e) for s in range(n_held)]
+    jobs = [(s, s < n_e2e) for s in range(n_trace)]
+    jobs += [(1000 + s, s < n_held_e2e) for s in range(n_held)]
+    results = _map_sequences(jobs)
+    main, held = results[:n_trace], results[n_trace:]
     out = _summary(main, "")
     out.update(_summary(held, "_heldout"))
     out["trace_seconds_per_frame_512"] = round(_speed_512(5 if quick else 20), 4)
