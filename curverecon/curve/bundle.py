@@ -45,10 +45,11 @@ Schur complement (:func:`_schur_solve`): O(N) per step, no dense Jacobian of all
 same steps as the dense solve, to rounding; the covariance of the curve likewise,
 :func:`_curve_covariance`).  Stages (:func:`bundle_adjust`): a coarse curve (``K_COARSE``
 control points) with the start poses; every frame's pose searched again against that curve
-(:func:`_resect`: a sweep over the poses that put A, B on the polyline's ends - the wrong-branch
-poses that degree-off end tangents leave are beyond LM's reach - and a regauge when frame 0's
-own pose moves); the coarse fit again; then the full curve; then a polish with robust ends
-(``END_POLISH``: a traced end hooked back along the line of sight ends its polyline at the fold).
+(:func:`_resect_starts`: a sweep over the poses that put A, B on the polyline's ends - the
+wrong-branch poses that degree-off end tangents leave are beyond LM's reach - refined for every
+frame at once by :func:`_resect_all`, and a regauge when frame 0's own pose moves); the coarse
+fit again; then the full curve; then a polish with robust ends (``END_POLISH``: a traced end
+hooked back along the line of sight ends its polyline at the fold).
 :func:`refine_reconstruction` retries from frame 0's polyline at depth 0 when a frame still fits
 clearly worse than the others (``UNEVEN_RATIO``), then from other frames' polylines
 (:func:`bundle_from_frame`, ``CurveOptions.bundle_extra_starts``), and keeps the lowest cost.
@@ -537,6 +538,7 @@ class _Problem:
         self.v_hi = self.v_lo + vcnt - 1  # index of each polyline's last vertex
         self.v_tree = None
         self.v_bound = 0.0
+        self._last = None  # (state, foot points, reverse-term search) of the last evaluation
         self.n_rev = len(self.rev_basis)
 
     def _nearest_vertex(self, pts: np.ndarray, fid: np.ndarray) -> np.ndarray:
@@ -675,13 +677,25 @@ class _Problem:
         jp[:, :, 1, 4] = 1.0
         return r, jc.reshape(n, 4, -1), jp.reshape(n, 4, 5) / scale
 
-    def evaluate(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, jac: bool = True):
+    def evaluate(
+        self,
+        ctrl: np.ndarray,
+        m: np.ndarray,
+        b: np.ndarray,
+        jac: bool = True,
+        curve_jac: bool = True,
+    ):
         """Every frame's rows of :meth:`frame_rows` at once (the same residuals, in another
         order) and the regulariser's.  Returns (r, jc, jp, frame of each row (-1: the
-        regulariser), per-frame RMS px); jc, jp None without ``jac``."""
+        regulariser), per-frame RMS px); jc, jp None without ``jac``, jc None without
+        ``curve_jac`` (the pose search)."""
         n, s, basis = self.n, self.sigma, self.basis
         fid = self.q_fid
-        u = self._all_foot_points(ctrl, m, b)
+        # LM evaluates each accepted state twice (the trial, then the Jacobian): the searches
+        # (foot points, the reverse term's nearest polyline segments) are kept for the last state
+        key = (ctrl.tobytes(), m.tobytes(), b.tobytes())
+        cached = self._last if self._last is not None and self._last[0] == key else None
+        u = cached[1] if cached else self._all_foot_points(ctrl, m, b)
         c, xl = self._span_local(self._projected_spans(ctrl, m, b), fid, u)
         e = ((c[:, 3] * xl + c[:, 2]) * xl + c[:, 1]) * xl + c[:, 0] - self.q_all
         tan = ((3.0 * c[:, 3] * xl + 2.0 * c[:, 2]) * xl + c[:, 1]) * basis.spans
@@ -698,7 +712,8 @@ class _Problem:
         xs = self.rev_basis @ ctrl
         ps = (np.einsum("rc,njc->nrj", xs, m[:, :2]) + b[:, None, :2]).reshape(-1, 2)
         rfid = np.repeat(np.arange(n), self.n_rev)
-        rev_dir, rev_r = self._to_polylines(ps, rfid)
+        rev_dir, rev_r = cached[2] if cached else self._to_polylines(ps, rfid)
+        self._last = (key, u, (rev_dir, rev_r))
         r = np.concatenate([r_fw, rev_r])
         rows_f = np.concatenate([fid, rfid])
         wt = np.concatenate([np.ones(len(u)), np.asarray(self.rev_weight)[rfid]])
@@ -720,7 +735,7 @@ class _Problem:
             yy = np.einsum("ijc,ic->ij", mr, xx)
             wj = np.where(big, HUBER_K / np.maximum(fa, 1e-300), 1.0) * wt
             scale = (wj / s)[:, None]
-            jcs.append(self._jc_rows(nus, dm) * scale)
+            jcs.append(self._jc_rows(nus, dm) * scale if curve_jac else None)
             jps.append(self._jp_rows(dirs, yy) * scale)
         # the polyline's end points are the images of A and B
         er, ejc, ejp = self._end_rows(ctrl, m, b, self.end_img, s, jac)
@@ -760,7 +775,8 @@ class _Problem:
             res[0] = res[0] * pw[rows_f]
             er = er * pw[:, None]
             if jac:
-                jcs[0] = jcs[0] * pw[rows_f][:, None]
+                if curve_jac:
+                    jcs[0] = jcs[0] * pw[rows_f][:, None]
                 jps[0] = jps[0] * pw[rows_f][:, None]
                 ejc = ejc * pw[:, None, None]
                 ejp = ejp * pw[:, None, None]
@@ -816,15 +832,17 @@ class _Problem:
         rows = np.concatenate([rows, np.full(len(reg), -1)])
         if not jac:
             return rr, None, None, rows, rms
-        jc = np.vstack(jcs) * fw[rows[: len(rows) - len(reg)]][:, None]
         jp = np.vstack(jps) * fw[rows[: len(rows) - len(reg)]][:, None]
+        jp = np.vstack([jp, np.zeros((len(reg), 5))])
+        if not curve_jac:
+            return rr, None, jp, rows, rms
+        jc = np.vstack(jcs) * fw[rows[: len(rows) - len(reg)]][:, None]
         jreg = np.zeros((len(reg), self.n_curve))
         for cc in range(3):
             col = self.cidx[:, cc]
             ok = col >= 0
             jreg[cc::3][:, col[ok]] = self.dreg[:, ok] * wreg
         jc = np.vstack([jc, jreg])
-        jp = np.vstack([jp, np.zeros((len(reg), 5))])
         return rr, jc, jp, rows, rms
 
     def residuals(
@@ -869,6 +887,44 @@ class _Problem:
             w[i] = jcs[lo:hi].T @ pi
             gp[i] = pi.T @ res[lo:hi]
         return r, (u, gc, v, w, gp), rms
+
+    def subset(self, frames: Sequence[int]) -> _Problem:
+        """The problem of the given frames alone (repeats allowed: one per pose to refine),
+        with their weights; for the pose search (:func:`_resect_all`)."""
+        fr = np.asarray(frames, int)
+        sub = _Problem(
+            [self.polys[i] for i in fr],
+            self.sigma,
+            self.k,
+            None if self.ends is None else np.asarray(self.ends)[fr],
+            None if self.tangents is None else np.asarray(self.tangents)[fr],
+            self.point_sigma,
+            self.tangent_sigma,
+        )
+        sub.poly_w = np.asarray(self.poly_w, float)[fr]
+        sub.frame_w = np.asarray(self.frame_w, float)[fr]
+        sub.smooth_weight = self.smooth_weight
+        sub.robust_ends = self.robust_ends
+        sub.rev_weight = [self.rev_weight[i] for i in fr]
+        return sub
+
+    def frame_costs(self, r: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """(N,) each frame's sum of squared residuals (the regulariser's rows left out)."""
+        keep = rows >= 0
+        return np.bincount(rows[keep], r[keep] ** 2, minlength=self.n)
+
+    def pose_normal_equations(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
+        """Per frame (every frame, the curve fixed): (cost (N,), V = Jp^T Jp (N, 5, 5),
+        gp = Jp^T r (N, 5))."""
+        r, _, jp, rows, _ = self.evaluate(ctrl, m, b, True, curve_jac=False)
+        keep = rows >= 0
+        r, jp, rows = r[keep], jp[keep], rows[keep]
+        order = np.argsort(rows, kind="stable")
+        starts = np.searchsorted(rows[order], np.arange(self.n))
+        jps, res = jp[order], r[order]
+        v = np.add.reduceat(np.einsum("ri,rj->rij", jps, jps), starts, axis=0)
+        gp = np.add.reduceat(jps * res[:, None], starts, axis=0)
+        return np.bincount(rows, r**2, minlength=self.n), v, gp
 
     def apply(self, ctrl, m, b, dx):
         c2 = ctrl.copy()
@@ -1034,13 +1090,13 @@ def _rot_zyx(theta: float, tau: float, delta: float) -> np.ndarray:
     return rz @ ry @ rx
 
 
-def _resect(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int):
+def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int):
     """Best pose of frame i for the fixed curve: a sweep over the poses that put A, B on the
     polyline's ends (both signs of tau, rotation about AB in 10-degree steps), scored by the
     mean squared distance of the projected curve from the polyline.  The best two are refined
     by LM if they score below ``RESECT_GAIN`` times the current pose (a frame on the right
-    branch scores near the noise level, far below any grid pose).  Returns (m_i, b_i, cost) of
-    the best refined pose, or None when no sweep pose beats the current one."""
+    branch scores near the noise level, far below any grid pose).  Returns the (m_i, b_i) to
+    refine (:func:`_resect_all`), none when no sweep pose beats the current one."""
     from scipy.spatial import cKDTree
 
     poly = prob.polys[i]
@@ -1071,23 +1127,109 @@ def _resect(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i:
         for score, _, mm in cands[:2]
         if score < RESECT_GAIN * current
     ]
-    if not starts:
-        return None
+    return starts
 
-    def residual(mm, bb, jac=True):
-        r, _, jp, _ = prob.frame_rows(ctrl, mm, bb, i, jac, curve_jac=False)
-        return r, jp
 
-    def apply(mm, bb, dx):
-        b2 = bb.copy()
-        b2[:2] += dx[3:5]
-        return _expm_so3(dx[:3]) @ mm, b2
+def _expm_so3_batch(w: np.ndarray) -> np.ndarray:
+    """:func:`_expm_so3` of every row of w (n, 3)."""
+    th = np.linalg.norm(w, axis=1)
+    k = np.zeros((len(w), 3, 3))
+    k[:, 0, 1], k[:, 0, 2], k[:, 1, 2] = -w[:, 2], w[:, 1], -w[:, 0]
+    k[:, 1, 0], k[:, 2, 0], k[:, 2, 1] = w[:, 2], -w[:, 1], w[:, 0]
+    small = th < 1e-12
+    ts = np.where(small, 1.0, th)
+    a = np.where(small, 1.0, np.sin(ts) / ts)
+    c = np.where(small, 0.0, (1 - np.cos(ts)) / ts**2)
+    return np.eye(3) + a[:, None, None] * k + c[:, None, None] * (k @ k)
 
-    best = None
-    for mm, bb in starts:
-        (m2, b2), cost, _, _ = _lm(residual, apply, (mm, bb), 15, rel_tol=1e-4)
-        if best is None or cost < best[2]:
-            best = (m2, b2, cost)
+
+def _lm_poses(prob: _Problem, ctrl, m, b, max_iter: int, rel_tol: float, lam0: float = 1e-3):
+    """:func:`_lm` on each frame's pose alone (the curve fixed), every frame of ``prob`` at
+    once: the frames are independent, so each keeps its own damping, iteration count and
+    stopping test, exactly as separate runs would (the frames still running are evaluated,
+    in a smaller problem once half have stopped).  Returns (m, b, cost per frame)."""
+    n = prob.n
+    m, b = m.copy(), b.copy()
+    lam = np.full(n, lam0)
+    it = np.zeros(n, int)
+    active = np.ones(n, bool)
+    sub, sel = prob, np.arange(n)
+
+    def normal(mm, bb):
+        c_s, v_s, g_s = sub.pose_normal_equations(ctrl, mm[sel], bb[sel])
+        c, v, g = np.full(n, np.inf), np.zeros((n, 5, 5)), np.zeros((n, 5))
+        c[sel], v[sel], g[sel] = c_s, v_s, g_s
+        return c, v, g
+
+    cost, v, gp = normal(m, b)
+    eye5 = np.eye(5)
+    while active.any():
+        if active.sum() <= len(sel) // 2:
+            sel = np.flatnonzero(active)
+            sub = prob.subset(sel)
+        it[active] += 1
+        dv = np.einsum("nii->ni", v)
+        diag = np.maximum(dv, 1e-12 * np.maximum(dv.max(axis=1), 1e-300)[:, None])
+        inner = active.copy()
+        improved = np.zeros(n, bool)
+        tries = np.zeros(n, int)
+        m_new, b_new, cost2 = m.copy(), b.copy(), cost.copy()
+        while inner.any():
+            idx = np.flatnonzero(inner)
+            a = v[idx] + lam[idx, None, None] * diag[idx][:, :, None] * eye5
+            dx = np.full((len(idx), 5), np.nan)
+            try:
+                dx = -np.linalg.solve(a, gp[idx][:, :, None])[:, :, 0]
+            except np.linalg.LinAlgError:
+                for j, ii in enumerate(idx):
+                    try:
+                        dx[j] = -np.linalg.solve(a[j], gp[ii])
+                    except np.linalg.LinAlgError:
+                        pass
+            solved = np.all(np.isfinite(dx), axis=1)
+            mt, bt = m.copy(), b.copy()
+            ok_idx = idx[solved]
+            mt[ok_idx] = _expm_so3_batch(dx[solved, :3]) @ m[ok_idx]
+            bt[ok_idx, :2] += dx[solved, 3:5]
+            r2, _, _, rows, _ = sub.evaluate(ctrl, mt[sel], bt[sel], jac=False)
+            c2 = np.full(n, np.inf)
+            c2[sel] = sub.frame_costs(r2, rows)
+            good = np.zeros(n, bool)
+            good[ok_idx] = np.isfinite(c2[ok_idx]) & (c2[ok_idx] < cost[ok_idx])
+            m_new[good], b_new[good], cost2[good] = mt[good], bt[good], c2[good]
+            improved |= good
+            bad = inner & ~good
+            lam[bad] *= 10.0
+            tries[bad] += 1
+            inner &= ~good & (tries < 10)
+        active &= improved  # a frame no step improves has converged
+        rel = (cost - cost2) / np.maximum(cost, 1e-300)
+        m[active], b[active] = m_new[active], b_new[active]
+        lam[active] = np.maximum(lam[active] / 10.0, 1e-9)
+        cost_all, v_all, gp_all = normal(m, b)
+        cost[active], v[active], gp[active] = cost_all[active], v_all[active], gp_all[active]
+        active &= ~(rel < rel_tol) & (it < max_iter)
+    return m, b, cost
+
+
+def _resect_all(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, frames):
+    """:func:`_resect_starts` of the given frames, the starts refined by LM on their poses
+    (at most 15 iterations), all at once.  Returns {frame: (m_i, b_i, cost) of its best
+    refined pose} for the frames with a start."""
+    owner, ms, bs = [], [], []
+    for i in frames:
+        for mm, bb in _resect_starts(prob, ctrl, m[i], b[i], i):
+            owner.append(i)
+            ms.append(mm)
+            bs.append(bb)
+    if not owner:
+        return {}
+    sub = prob.subset(owner)
+    m2, b2, cost = _lm_poses(sub, ctrl, np.array(ms), np.array(bs), 15, 1e-4)
+    best: dict = {}
+    for j, i in enumerate(owner):
+        if i not in best or cost[j] < best[i][2]:
+            best[i] = (m2[j], b2[j], float(cost[j]))
     return best
 
 
@@ -1152,7 +1294,7 @@ def bundle_adjust(
         (flagged as contradicting the given end points and tangents; needs ``ends``).
 
     Stages: a coarse curve (``K_COARSE`` control points) with the start poses; every frame's
-    pose searched again against that curve (``_resect``: the wrong-branch poses the end
+    pose searched again against that curve (``_resect_all``: the wrong-branch poses the end
     tangents leave are far from the right ones, beyond LM's reach) and the coarse fit repeated
     (``RESECT_ROUNDS``); then the full curve.
 
@@ -1214,13 +1356,12 @@ def bundle_adjust(
     if resect_first:
         # the start poses were made for another curve: every frame's pose searched against the
         # start curve before it is bent to fit them
-        for i in range(1, n):
-            if not use_poly[i]:
-                continue
-            found = _resect(prob, ctrl, m[i], b[i], i)
-            cur = float(np.sum(prob.frame_rows(ctrl, m[i], b[i], i, jac=False)[0] ** 2))
-            if found is not None and found[2] < cur:
-                m[i], b[i] = found[0], found[1]
+        found = _resect_all(prob, ctrl, m, b, [i for i in range(1, n) if use_poly[i]])
+        r, _, _, rows, _ = prob.evaluate(ctrl, m, b, jac=False)
+        cur = prob.frame_costs(r, rows)
+        for i, (mi, bi, ci) in found.items():
+            if ci < cur[i]:
+                m[i], b[i] = mi, bi
     cost_start = float(np.sum(prob.residuals(ctrl, m, b, jac=False)[0] ** 2))
     coarse = {"max_iter": min(max_iter, COARSE_MAX_ITER), "rel_tol": COARSE_REL_TOL}
     (ctrl, m, b), cost, total_it, _ = _lm_bundle(prob, (ctrl, m, b), **coarse)
@@ -1236,16 +1377,12 @@ def bundle_adjust(
             (ctrl, m, b), _, it, _ = _lm_bundle(prob, (ctrl, m, b), **coarse)
             total_it += it
             prob.frame_w = np.ones(n)
-        for i in range(n):
-            if not use_poly[i]:
-                continue
-            cur = float(np.sum(prob.frame_rows(ctrl, m[i], b[i], i, jac=False)[0] ** 2))
-            found = _resect(prob, ctrl, m[i], b[i], i)
-            if found is None:
-                continue
-            mi, bi, ci = found
-            if ci < cur:
-                changed = changed or ci < 0.9 * cur
+        r, _, _, rows, _ = prob.evaluate(ctrl, m, b, jac=False)
+        cur = prob.frame_costs(r, rows)
+        found = _resect_all(prob, ctrl, m, b, [i for i in range(n) if use_poly[i]])
+        for i, (mi, bi, ci) in found.items():
+            if ci < cur[i]:
+                changed = changed or ci < 0.9 * cur[i]
                 m[i], b[i] = mi, bi
         if not np.allclose(m[0], np.eye(3), atol=1e-12):
             ctrl, m, b = _regauge(ctrl, m, b)
