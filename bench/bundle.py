@@ -24,8 +24,12 @@ code), seeds from 1000 on (not the seeds the defaults were tuned on, 0-30).  Mea
   tangents): fraction of scenes with alpha, beta, phi all within 1 degree.
 - ``bundle_time_ratio_20_frames``: 1 px, 20 frames: median over scenes of the reconstruction's
   CPU time with polylines over the time of the same frames without polylines.
-  ``bundle_time_ratio_1000_frames``: not measured (null): the bundle's dense normal equations
-  (3K + 5N parameters) do not fit in memory at 1,000 frames; see the issue's item 6.
+  ``bundle_time_ratio_1000_frames``: not measured (null).  The bundle's normal equations are
+  now formed in blocks (Schur complement on the poses, O(N) memory and time per step), but the
+  curve stage before it does not scale: the branch choice by the curve
+  (``curve.branches.resolve_branches_with_curves``) runs section 4 on every frame for every
+  candidate switch, O(N^2): about 90 % of the time at 60 frames (profiled), hours at 1,000; see the
+  issue's item 6.
 """
 
 from __future__ import annotations

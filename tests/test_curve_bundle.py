@@ -169,10 +169,12 @@ def test_command_bundle_switch_and_keys(tmp_path):
 def test_starts_from_other_frames_come_back_in_frame_0_coordinates():
     """``bundle_from_frame``: every start pose the identity (nothing known), the start curve
     one frame's polyline at depth 0.  Whichever frame is the reference, the answer is in frame
-    0's camera coordinates (frame 0's pose the identity, A at depth 0); from frames 0, 1, 5
-    and 7 it is the true curve, and its cost the same from each (the cost does not depend on
-    the reference frame, so starts compare by it).  Not from every frame: from frames 2, 3, 4
-    and 6 of this scene the fit ends 2.7-8.8 % off (hence several starts)."""
+    0's camera coordinates (frame 0's pose the identity, A at depth 0), and the starts compare
+    by cost (it does not depend on the reference frame): those that reach the true curve cost
+    the same, every start that ends off costs far more.  Which starts reach it is not stable:
+    from these identity poses a perturbation of the polylines by 1e-10 px (or the rounding of
+    another but equivalent solve) moves the starts from frames 0, 1, 5 and 7 between the true
+    curve and basins 1.5-120 % off (hence several starts); at least two reach it."""
     from curverecon.curve.bundle import bundle_from_frame
 
     scene = make_scene(np.random.default_rng(5), 8, with_curve=True)
@@ -180,20 +182,21 @@ def test_starts_from_other_frames_come_back_in_frame_0_coordinates():
     n = len(curves)
     rot = np.tile(np.eye(3), (n, 1, 1))
     tr = np.array([[c[0][0], c[0][1], 0.0] for c in curves])
-    costs = []
+    good, bad = [], []
     for ref in (0, 1, 5, 7, 3):
         res = bundle_from_frame(curves, rot, tr, ref)
         assert np.allclose(res.m[0], np.eye(3), atol=1e-9) and np.allclose(res.b[0], 0.0)
         assert abs(res.control[0, 2]) < 1e-9  # A at depth 0
-        if ref == 3:
-            assert res.cost > 10 * max(costs)  # a wrong basin costs more
-            continue
         pts = res.curve_points()
-        assert np.allclose(pts[0, :2], scene.truth.A3[0, :2], atol=0.05)
-        assert curve_error(pts, scene.curve_3d) < 1e-4, ref
-        assert np.max(res.rms) < 0.05
-        costs.append(res.cost)
-    assert max(costs) < 1.01 * min(costs)
+        if curve_error(pts, scene.curve_3d) < 1e-4:
+            assert np.allclose(pts[0, :2], scene.truth.A3[0, :2], atol=0.05)
+            assert np.max(res.rms) < 0.05
+            good.append(res.cost)
+        else:
+            bad.append(res.cost)
+    assert len(good) >= 2
+    assert max(good) < 1.01 * min(good)
+    assert not bad or min(bad) > 10 * max(good)  # a wrong basin costs more
     with pytest.raises(CurveReconError):
         bundle_from_frame(curves, rot, tr, n)
 

@@ -37,13 +37,19 @@ parametrisation) removes that freedom; its weight is ``SMOOTH_WEIGHT`` relative 
 point's residual.  The two control points at each end are left out: including them bent the end
 tangents (2 degrees on alpha, noise-free).
 
-Levenberg-Marquardt on the dense normal equations (a few hundred residuals per frame and
-3K + 5(N - 1) parameters).  Stages (:func:`bundle_adjust`): a coarse curve (``K_COARSE``
+Levenberg-Marquardt (a few hundred residuals per frame and 3K + 5(N - 1) parameters): every
+frame's rows are evaluated at once (:meth:`_Problem.evaluate`; the projected curve per knot span
+as a cubic, so foot points cost a gather of 8 coefficients) and the normal equations are formed
+in blocks, the 5 x 5 pose blocks (a frame's rows see only its own pose) eliminated by their
+Schur complement (:func:`_schur_solve`): O(N) per step, no dense Jacobian of all the poses (the
+same steps as the dense solve, to rounding; the covariance of the curve likewise,
+:func:`_curve_covariance`).  Stages (:func:`bundle_adjust`): a coarse curve (``K_COARSE``
 control points) with the start poses; every frame's pose searched again against that curve
-(:func:`_resect`: a sweep over the poses that put A, B on the polyline's ends - the wrong-branch
-poses that degree-off end tangents leave are beyond LM's reach - and a regauge when frame 0's
-own pose moves); the coarse fit again; then the full curve; then a polish with robust ends
-(``END_POLISH``: a traced end hooked back along the line of sight ends its polyline at the fold).
+(:func:`_resect_starts`: a sweep over the poses that put A, B on the polyline's ends - the
+wrong-branch poses that degree-off end tangents leave are beyond LM's reach - refined for every
+frame at once by :func:`_resect_all`, and a regauge when frame 0's own pose moves); the coarse
+fit again; then the full curve; then a polish with robust ends (``END_POLISH``: a traced end
+hooked back along the line of sight ends its polyline at the fold).
 :func:`refine_reconstruction` retries from frame 0's polyline at depth 0 when a frame still fits
 clearly worse than the others (``UNEVEN_RATIO``), then from other frames' polylines
 (:func:`bundle_from_frame`, ``CurveOptions.bundle_extra_starts``), and keeps the lowest cost.
@@ -311,6 +317,7 @@ class _Problem:
         self.rev_weight = [
             np.sqrt(REVERSE_WEIGHT * max(len(p) - 2, 1) / len(self.rev_basis)) for p in polys
         ]
+        self._setup_batch()
 
     def _to_polyline(self, pts: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
         """Direction and signed distance of image points from frame i's polyline (normal of the
@@ -389,10 +396,18 @@ class _Problem:
         return np.concatenate(r), np.vstack(jc), np.vstack(jp)
 
     def frame_rows(
-        self, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int, jac: bool = True
+        self,
+        ctrl: np.ndarray,
+        mi: np.ndarray,
+        bi: np.ndarray,
+        i: int,
+        jac: bool = True,
+        curve_jac: bool = True,
     ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray | None, float]:
         """Frame i's residuals, their Jacobians with respect to the curve parameters and to the
-        frame's pose increment (w, b), and the RMS point distance (pixels)."""
+        frame's pose increment (w, b), and the RMS point distance (pixels).  ``curve_jac``
+        False: the polyline rows of the curve Jacobian are left zero (the pose search needs
+        only the pose Jacobian)."""
         poly = self.polys[i]
         basis, s = self.basis, self.sigma
         u = self.foot_points(ctrl, mi, bi, i)
@@ -430,7 +445,7 @@ class _Problem:
             q = len(r)
             jc = np.zeros((q, self.n_curve))
             dm = direc @ mi[:2]  # (Q, 3)
-            for c in range(3):
+            for c in range(3 if curve_jac else 0):
                 col = self.cidx[:, c]
                 ok = col >= 0
                 jc[:, col[ok]] += nus[:, ok] * dm[:, c : c + 1]
@@ -507,41 +522,409 @@ class _Problem:
             return rr * fw, None, None, rms
         return rr * fw, np.vstack(jcs) * fw, np.vstack(jps) * fw, rms
 
+    # ---- all frames at once (the LM's residuals; frame_rows is the per-frame reference) ----
+
+    def _setup_batch(self) -> None:
+        polys, n = self.polys, self.n
+        cnt = np.array([len(p) - 2 for p in polys])
+        self.q_all = np.vstack([p[1:-1] for p in polys])
+        self.q_fid = np.repeat(np.arange(n), cnt)
+        self.q_cnt = cnt
+        self.end_img = np.stack([np.stack([p[0], p[-1]]) for p in polys])  # (N, 2, 2)
+        vcnt = np.array([len(p) for p in polys])
+        self.v_all = np.vstack(polys)
+        self.v_fid = np.repeat(np.arange(n), vcnt)
+        self.v_lo = np.concatenate([[0], np.cumsum(vcnt)[:-1]])
+        self.v_hi = self.v_lo + vcnt - 1  # index of each polyline's last vertex
+        self.v_tree = None
+        self.v_bound = 0.0
+        self._last = None  # (state, foot points, reverse-term search) of the last evaluation
+        self.n_rev = len(self.rev_basis)
+
+    def _nearest_vertex(self, pts: np.ndarray, fid: np.ndarray) -> np.ndarray:
+        """Global index (into ``v_all``) of the nearest vertex of each point's own polyline."""
+        from scipy.spatial import cKDTree
+
+        need = float(np.max(np.abs(pts))) if len(pts) else 0.0
+        if self.v_tree is None or not need <= self.v_bound:
+            # frames apart along a third axis by more than any in-frame distance
+            self.v_bound = 4.0 * max(need, float(np.max(np.abs(self.v_all))), 1.0)
+            self.v_off = 4.0 * self.v_bound + 1.0
+            self.v_tree = cKDTree(np.column_stack([self.v_all, self.v_fid * self.v_off]))
+        if not np.all(np.isfinite(pts)):
+            pts = np.nan_to_num(pts, nan=0.0, posinf=0.0, neginf=0.0)
+        return self.v_tree.query(np.column_stack([pts, fid * self.v_off]))[1]
+
+    def _to_polylines(self, pts: np.ndarray, fid: np.ndarray):
+        """:meth:`_to_polyline` for points of many frames (``fid``: each point's frame)."""
+        j = self._nearest_vertex(pts, fid)
+        lo, hi = self.v_lo[fid], self.v_hi[fid]
+        poly = self.v_all
+        best_d = np.full(len(pts), np.inf)
+        best_dir = np.zeros((len(pts), 2))
+        best_r = np.zeros(len(pts))
+        for js in (np.maximum(j - 1, lo), np.minimum(j, hi - 1)):
+            s0 = poly[js]
+            seg = poly[js + 1] - s0
+            len2 = np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-300)
+            t = np.einsum("ij,ij->i", pts - s0, seg) / len2
+            inside = ((t > 0) | (js > lo)) & ((t < 1) | (js < hi - 1))
+            t = np.clip(t, 0.0, 1.0)
+            e = pts - (s0 + t[:, None] * seg)
+            d = np.einsum("ij,ij->i", e, e)
+            nrm = np.column_stack([-seg[:, 1], seg[:, 0]]) / np.sqrt(len2)[:, None]
+            off = e / np.maximum(np.sqrt(d), 1e-300)[:, None]
+            dirn = np.where(inside[:, None], nrm, off)
+            take = d < best_d
+            best_d = np.where(take, d, best_d)
+            best_dir = np.where(take[:, None], dirn, best_dir)
+            best_r = np.where(take, np.einsum("ij,ij->i", dirn, e), best_r)
+        return best_dir, best_r
+
+    def _all_foot_points(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """:meth:`foot_points` of every frame's interior polyline points at once."""
+        from scipy.spatial import cKDTree
+
+        n, q, fid = self.n, self.q_all, self.q_fid
+        g = len(self.u_grid)
+        proj = np.einsum("gc,njc->ngj", self.n_grid @ ctrl, m[:, :2]) + b[:, None, :2]
+        flat = proj.reshape(-1, 2)
+        if not np.all(np.isfinite(flat)):
+            flat = np.nan_to_num(flat, nan=0.0, posinf=0.0, neginf=0.0)
+        off = 4.0 * max(float(np.max(np.abs(flat))), float(np.max(np.abs(q))), 1.0) + 1.0
+        tree = cKDTree(np.column_stack([flat, np.repeat(np.arange(n), g) * off]))
+        j = tree.query(np.column_stack([q, fid * off]))[1] - fid * g
+        best_u = np.zeros(len(q))
+        best_d = np.full(len(q), np.inf)
+        du = self.u_grid[1] - self.u_grid[0]
+        for js in (np.maximum(j - 1, 0), np.minimum(j, g - 2)):
+            s0, s1 = proj[fid, js], proj[fid, js + 1]
+            seg = s1 - s0
+            len2 = np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-300)
+            t = np.clip(np.einsum("ij,ij->i", q - s0, seg) / len2, 0.0, 1.0)
+            d = np.sum((s0 + t[:, None] * seg - q) ** 2, axis=1)
+            take = d < best_d
+            best_d = np.where(take, d, best_d)
+            best_u = np.where(take, self.u_grid[js] + t * du, best_u)
+        u = best_u
+        # the projected curve per knot span as a cubic in the span's local coordinate: a point's
+        # value and derivatives cost a gather of 4 x 2 coefficients, not of K basis functions
+        ps = self._projected_spans(ctrl, m, b)
+        spans = self.basis.spans
+        for _ in range(2):  # Newton on |p(u) - q|^2
+            c, x = self._span_local(ps, fid, u)
+            e = ((c[:, 3] * x + c[:, 2]) * x + c[:, 1]) * x + c[:, 0] - q
+            d1 = ((3.0 * c[:, 3] * x + 2.0 * c[:, 2]) * x + c[:, 1]) * spans
+            dd = (6.0 * c[:, 3] * x + 2.0 * c[:, 2]) * spans**2
+            g1 = np.einsum("ij,ij->i", d1, e)
+            g2 = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", dd, e)
+            step = np.where(g2 > 0, -g1 / np.where(g2 > 0, g2, 1.0), 0.0)
+            u = np.clip(u + np.clip(step, -du, du), 0.0, 1.0)
+        return u
+
+    def _projected_spans(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """(N, spans, 4, 2): every frame's projected curve, per knot span the power-series
+        coefficients in the span's local coordinate."""
+        sc = np.einsum("sdk,kc->sdc", self.basis.coef, ctrl)
+        ps = np.einsum("sdc,njc->nsdj", sc, m[:, :2])
+        ps[:, :, 0] += b[:, None, :2]
+        return ps
+
+    def _span_local(self, ps: np.ndarray, fid: np.ndarray, u: np.ndarray):
+        """Coefficients (Q, 4, 2) of each point's span (frame ``fid``) and the local coordinate
+        (Q, 1) of u in it."""
+        t = np.clip(u, 0.0, 1.0) * self.basis.spans
+        j = np.minimum(t.astype(int), self.basis.spans - 1)
+        return ps[fid, j], (t - j)[:, None]
+
+    def _jc_rows(self, nus: np.ndarray, dm: np.ndarray) -> np.ndarray:
+        """Curve-parameter Jacobian rows ``sum_k nus[r, k] dm[r, c]`` at the free (k, c)."""
+        jc = np.zeros((len(nus), self.n_curve))
+        for c in range(3):
+            col = self.cidx[:, c]
+            ok = col >= 0
+            jc[:, col[ok]] += nus[:, ok] * dm[:, c : c + 1]
+        return jc
+
+    @staticmethod
+    def _jp_rows(direc: np.ndarray, yy: np.ndarray) -> np.ndarray:
+        """Pose-increment Jacobian rows of ``direc . y`` (d y / d w = -[Y]x, then b)."""
+        jp = np.empty((len(direc), 5))
+        jp[:, 0] = -direc[:, 1] * yy[:, 2]
+        jp[:, 1] = direc[:, 0] * yy[:, 2]
+        jp[:, 2] = -direc[:, 0] * yy[:, 1] + direc[:, 1] * yy[:, 0]
+        jp[:, 3:5] = direc
+        return jp
+
+    def _end_rows(self, ctrl, m, b, pts, scale, jac):
+        """2-D offsets of the projected A, B of every frame from ``pts`` (N, 2, 2): residual
+        rows (N, 4) [A x, A y, B x, B y] and their Jacobians (N, 4, n_curve), (N, 4, 5)."""
+        n = self.n
+        yp = np.einsum("nij,ej->nei", m, ctrl[[0, -1]])  # (N, 2, 3)
+        r = ((yp[:, :, :2] + b[:, None, :2]) - pts).reshape(n, 4) / scale
+        if not jac:
+            return r, None, None
+        jc = np.zeros((n, 2, 2, self.n_curve))
+        for e, w in enumerate((0, self.k - 1)):
+            ok = self.cidx[w] >= 0
+            jc[:, e][:, :, self.cidx[w][ok]] = m[:, :2][:, :, ok] / scale
+        jp = np.zeros((n, 2, 2, 5))
+        jp[:, :, 0, 1] = yp[:, :, 2]
+        jp[:, :, 0, 2] = -yp[:, :, 1]
+        jp[:, :, 0, 3] = 1.0
+        jp[:, :, 1, 0] = -yp[:, :, 2]
+        jp[:, :, 1, 2] = yp[:, :, 0]
+        jp[:, :, 1, 4] = 1.0
+        return r, jc.reshape(n, 4, -1), jp.reshape(n, 4, 5) / scale
+
+    def evaluate(
+        self,
+        ctrl: np.ndarray,
+        m: np.ndarray,
+        b: np.ndarray,
+        jac: bool = True,
+        curve_jac: bool = True,
+    ):
+        """Every frame's rows of :meth:`frame_rows` at once (the same residuals, in another
+        order) and the regulariser's.  Returns (r, jc, jp, frame of each row (-1: the
+        regulariser), per-frame RMS px); jc, jp None without ``jac``, jc None without
+        ``curve_jac`` (the pose search)."""
+        n, s, basis = self.n, self.sigma, self.basis
+        fid = self.q_fid
+        # LM evaluates each accepted state twice (the trial, then the Jacobian): the searches
+        # (foot points, the reverse term's nearest polyline segments) are kept for the last state
+        key = (ctrl.tobytes(), m.tobytes(), b.tobytes())
+        cached = self._last if self._last is not None and self._last[0] == key else None
+        u = cached[1] if cached else self._all_foot_points(ctrl, m, b)
+        c, xl = self._span_local(self._projected_spans(ctrl, m, b), fid, u)
+        e = ((c[:, 3] * xl + c[:, 2]) * xl + c[:, 1]) * xl + c[:, 0] - self.q_all
+        tan = ((3.0 * c[:, 3] * xl + 2.0 * c[:, 2]) * xl + c[:, 1]) * basis.spans
+        tn = np.sqrt(np.einsum("ij,ij->i", tan, tan))
+        nrm = np.column_stack([-tan[:, 1], tan[:, 0]]) / np.maximum(tn, 1e-300)[:, None]
+        interior = (u > 0.0) & (u < 1.0) & (tn > 0)
+        dist2 = np.einsum("ij,ij->i", e, e)
+        dist = np.sqrt(dist2)
+        direc = np.where(interior[:, None], nrm, e / np.maximum(dist, 1e-300)[:, None])
+        r_fw = np.einsum("ij,ij->i", direc, e)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            rms = np.sqrt(np.bincount(fid, dist2, minlength=n) / self.q_cnt)
+        # reverse term
+        xs = self.rev_basis @ ctrl
+        ps = (np.einsum("rc,njc->nrj", xs, m[:, :2]) + b[:, None, :2]).reshape(-1, 2)
+        rfid = np.repeat(np.arange(n), self.n_rev)
+        rev_dir, rev_r = cached[2] if cached else self._to_polylines(ps, rfid)
+        self._last = (key, u, (rev_dir, rev_r))
+        r = np.concatenate([r_fw, rev_r])
+        rows_f = np.concatenate([fid, rfid])
+        wt = np.concatenate([np.ones(len(u)), np.asarray(self.rev_weight)[rfid]])
+        a = np.abs(r) / s
+        big = a > HUBER_K
+        fa = np.where(big, np.sqrt(np.maximum(2.0 * HUBER_K * a - HUBER_K**2, 0.0)), a)
+        w = np.where(big, fa / np.maximum(a, 1e-300), 1.0) * wt
+        res = [w * r / s]
+        frames = [rows_f]
+        jcs, jps = [], []
+        if jac:
+            nu = basis.values(u)
+            x = nu @ ctrl
+            nus = np.vstack([nu, np.tile(self.rev_basis, (n, 1))])
+            xx = np.vstack([x, np.tile(xs, (n, 1))])
+            dirs = np.vstack([direc, rev_dir])
+            mr = m[rows_f]
+            dm = np.einsum("ij,ijc->ic", dirs, mr[:, :2])
+            yy = np.einsum("ijc,ic->ij", mr, xx)
+            wj = np.where(big, HUBER_K / np.maximum(fa, 1e-300), 1.0) * wt
+            scale = (wj / s)[:, None]
+            jcs.append(self._jc_rows(nus, dm) * scale if curve_jac else None)
+            jps.append(self._jp_rows(dirs, yy) * scale)
+        # the polyline's end points are the images of A and B
+        er, ejc, ejp = self._end_rows(ctrl, m, b, self.end_img, s, jac)
+        if self.robust_ends:
+            # Huber on each 2-D offset by its length (see _huber_points)
+            v = er.reshape(n, 2, 2)
+            al = np.hypot(v[..., 0], v[..., 1])
+            bigp = al > HUBER_K
+            f = np.sqrt(np.maximum(2.0 * HUBER_K * al - HUBER_K**2, 1e-300))
+            uu = v / np.maximum(al, 1e-300)[..., None]
+            outer = uu[..., :, None] * uu[..., None, :]
+            across = (f / np.maximum(al, 1e-300))[..., None, None]
+            along = (HUBER_K / f)[..., None, None]
+            g = across * (np.eye(2) - outer) + along * outer
+            g = np.where(bigp[..., None, None], g, np.eye(2))
+            er = (v * np.where(bigp, f / np.maximum(al, 1e-300), 1.0)[..., None]).reshape(n, 4)
+            if jac:
+                ejc = np.einsum("neij,nejc->neic", g, ejc.reshape(n, 2, 2, -1)).reshape(n, 4, -1)
+                ejp = np.einsum("neij,nejc->neic", g, ejp.reshape(n, 2, 2, 5)).reshape(n, 4, 5)
+            # ... A and B themselves on the polyline (quadratic)
+            ye = np.einsum("nij,ej->nei", m, ctrl[[0, -1]]) + b[:, None, :]  # (N, 2, 3)
+            efid = np.repeat(np.arange(n), 2)
+            od, orr = self._to_polylines(ye[:, :, :2].reshape(-1, 2), efid)
+            er = np.concatenate([er, orr.reshape(n, 2) / s], axis=1)
+            if jac:
+                yp = (ye - b[:, None, :]).reshape(-1, 3)
+                odm = np.einsum("ij,ijc->ic", od, m[efid, :2]).reshape(n, 2, 3)
+                oc = np.zeros((n, 2, self.n_curve))
+                for row, w_ in enumerate((0, self.k - 1)):
+                    ok = self.cidx[w_] >= 0
+                    oc[:, row][:, self.cidx[w_][ok]] = odm[:, row][:, ok]
+                op = self._jp_rows(od, yp).reshape(n, 2, 5)
+                ejc = np.concatenate([ejc, oc / s], axis=1)
+                ejp = np.concatenate([ejp, op / s], axis=1)
+        pw = np.asarray(self.poly_w, float)
+        if np.any(pw != 1.0):
+            res[0] = res[0] * pw[rows_f]
+            er = er * pw[:, None]
+            if jac:
+                if curve_jac:
+                    jcs[0] = jcs[0] * pw[rows_f][:, None]
+                jps[0] = jps[0] * pw[rows_f][:, None]
+                ejc = ejc * pw[:, None, None]
+                ejp = ejp * pw[:, None, None]
+        blocks_r, blocks_c, blocks_p = [er], [ejc], [ejp]
+        if self.ends is not None:  # given A', B'
+            gr, gjc, gjp = self._end_rows(ctrl, m, b, self.ends, self.point_sigma, jac)
+            blocks_r.append(gr)
+            blocks_c.append(gjc)
+            blocks_p.append(gjp)
+        if self.tangents is not None:  # given tangent directions (lines)
+            ts = self.tangent_sigma
+            out = np.zeros((n, 2))
+            jt = np.zeros((n, 2, self.n_curve))
+            jtp = np.zeros((n, 2, 5))
+            for row, (lo, hi) in enumerate(((0, 1), (-1, -2))):
+                v3 = np.einsum("nij,j->ni", m, ctrl[hi] - ctrl[lo])
+                v = v3[:, :2]
+                ob = self.tangents[:, row]
+                ok = np.all(np.isfinite(ob), axis=1)
+                with np.errstate(invalid="ignore"):
+                    ang = np.arctan2(v[:, 1], v[:, 0]) - np.arctan2(ob[:, 1], ob[:, 0])
+                    val = ((ang + np.pi / 2) % np.pi - np.pi / 2) / ts
+                out[:, row] = np.where(ok, val, 0.0)
+                if jac:
+                    vv = np.maximum(np.einsum("ij,ij->i", v, v), 1e-300)
+                    g = np.column_stack([-v[:, 1], v[:, 0]]) / vv[:, None] / ts
+                    g = np.where(ok[:, None], g, 0.0)
+                    gm = np.einsum("nj,njc->nc", g, m[:, :2])
+                    for cc in range(3):
+                        if self.cidx[hi, cc] >= 0:
+                            jt[:, row, self.cidx[hi, cc]] += gm[:, cc]
+                        if self.cidx[lo, cc] >= 0:
+                            jt[:, row, self.cidx[lo, cc]] -= gm[:, cc]
+                    jtp[:, row, 0] = -g[:, 1] * v3[:, 2]
+                    jtp[:, row, 1] = g[:, 0] * v3[:, 2]
+                    jtp[:, row, 2] = -g[:, 0] * v3[:, 1] + g[:, 1] * v3[:, 0]
+            blocks_r.append(out)
+            blocks_c.append(jt)
+            blocks_p.append(jtp)
+        per = np.concatenate(blocks_r, axis=1)  # (N, rows per frame)
+        res.append(per.reshape(-1))
+        frames.append(np.repeat(np.arange(n), per.shape[1]))
+        if jac:
+            jcs.append(np.concatenate(blocks_c, axis=1).reshape(-1, self.n_curve))
+            jps.append(np.concatenate(blocks_p, axis=1).reshape(-1, 5))
+        fw = np.sqrt(np.asarray(self.frame_w, float))
+        rows = np.concatenate(frames)
+        rr = np.concatenate(res) * fw[rows]
+        # difference regulariser on the control points (see the module docstring)
+        wreg = self.smooth_weight / self.sigma
+        reg = ((self.dreg @ ctrl) * wreg).reshape(-1)
+        rr = np.concatenate([rr, reg])
+        rows = np.concatenate([rows, np.full(len(reg), -1)])
+        if not jac:
+            return rr, None, None, rows, rms
+        jp = np.vstack(jps) * fw[rows[: len(rows) - len(reg)]][:, None]
+        jp = np.vstack([jp, np.zeros((len(reg), 5))])
+        if not curve_jac:
+            return rr, None, jp, rows, rms
+        jc = np.vstack(jcs) * fw[rows[: len(rows) - len(reg)]][:, None]
+        jreg = np.zeros((len(reg), self.n_curve))
+        for cc in range(3):
+            col = self.cidx[:, cc]
+            ok = col >= 0
+            jreg[cc::3][:, col[ok]] = self.dreg[:, ok] * wreg
+        jc = np.vstack([jc, jreg])
+        return rr, jc, jp, rows, rms
+
     def residuals(
         self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, jac: bool = True, poses: bool = True
     ) -> tuple[np.ndarray, np.ndarray | None, np.ndarray]:
         """(weighted residuals, Jacobian or None, per-frame RMS point distance in pixels).
 
         poses: False for the Jacobian with respect to the curve's parameters alone (the poses
-        held fixed; ``n_curve`` columns)."""
-        rows_r: list[np.ndarray] = []
-        rows_j: list[np.ndarray] = []
-        rms = np.zeros(self.n)
-        n_col = self.n_par if poses else self.n_curve
-        for i in range(self.n):
-            r, jc, jp, rms[i] = self.frame_rows(ctrl, m[i], b[i], i, jac)
-            rows_r.append(r)
-            if jac and not poses:
-                rows_j.append(jc)
-            elif jac:
-                full = np.zeros((len(r), self.n_par))
-                full[:, : self.n_curve] = jc
-                if i > 0:
-                    off = self.n_curve + 5 * (i - 1)
-                    full[:, off : off + 5] = jp
-                rows_j.append(full)
-        # difference regulariser on the control points (see the module docstring)
-        wreg = self.smooth_weight / self.sigma
-        rr = (self.dreg @ ctrl) * wreg
-        rows_r.append(rr.reshape(-1))
-        if jac:
-            jreg = np.zeros((rr.size, n_col))
-            for c in range(3):
-                col = self.cidx[:, c]
-                ok = col >= 0
-                jreg[c::3][:, col[ok]] = self.dreg[:, ok] * wreg
-            rows_j.append(jreg)
-        return np.concatenate(rows_r), (np.vstack(rows_j) if jac else None), rms
+        held fixed; ``n_curve`` columns).  Dense: the LM itself uses :meth:`normal_equations`."""
+        r, jc, jp, rows, rms = self.evaluate(ctrl, m, b, jac)
+        if not jac:
+            return r, None, rms
+        if not poses:
+            return r, jc, rms
+        full = np.zeros((len(r), self.n_par))
+        full[:, : self.n_curve] = jc
+        sel = np.flatnonzero(rows > 0)
+        off = self.n_curve + 5 * (rows[sel] - 1)
+        full[sel[:, None], off[:, None] + np.arange(5)] = jp[sel]
+        return r, full, rms
+
+    def normal_equations(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
+        """Residuals and the normal equations in blocks: (r, U = Jc^T Jc, gc = Jc^T r, per frame
+        i >= 1 V_i = Jp_i^T Jp_i, W_i = Jc_i^T Jp_i, gp_i = Jp_i^T r_i, per-frame RMS).  The
+        pose blocks are 5 x 5 and independent of each other (a frame's rows see only its own
+        pose), so the LM solves through their Schur complement (:func:`_schur_solve`)."""
+        r, jc, jp, rows, rms = self.evaluate(ctrl, m, b, True)
+        u = jc.T @ jc
+        gc = jc.T @ r
+        n = self.n
+        order = np.argsort(rows, kind="stable")
+        rs = rows[order]
+        starts = np.searchsorted(rs, np.arange(n + 1))
+        v = np.zeros((n, 5, 5))
+        w = np.zeros((n, self.n_curve, 5))
+        gp = np.zeros((n, 5))
+        jcs, jps, res = jc[order], jp[order], r[order]
+        for i in range(1, n):
+            lo, hi = starts[i], starts[i + 1]
+            pi = jps[lo:hi]
+            v[i] = pi.T @ pi
+            w[i] = jcs[lo:hi].T @ pi
+            gp[i] = pi.T @ res[lo:hi]
+        return r, (u, gc, v, w, gp), rms
+
+    def subset(self, frames: Sequence[int]) -> _Problem:
+        """The problem of the given frames alone (repeats allowed: one per pose to refine),
+        with their weights; for the pose search (:func:`_resect_all`)."""
+        fr = np.asarray(frames, int)
+        sub = _Problem(
+            [self.polys[i] for i in fr],
+            self.sigma,
+            self.k,
+            None if self.ends is None else np.asarray(self.ends)[fr],
+            None if self.tangents is None else np.asarray(self.tangents)[fr],
+            self.point_sigma,
+            self.tangent_sigma,
+        )
+        sub.poly_w = np.asarray(self.poly_w, float)[fr]
+        sub.frame_w = np.asarray(self.frame_w, float)[fr]
+        sub.smooth_weight = self.smooth_weight
+        sub.robust_ends = self.robust_ends
+        sub.rev_weight = [self.rev_weight[i] for i in fr]
+        return sub
+
+    def frame_costs(self, r: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """(N,) each frame's sum of squared residuals (the regulariser's rows left out)."""
+        keep = rows >= 0
+        return np.bincount(rows[keep], r[keep] ** 2, minlength=self.n)
+
+    def pose_normal_equations(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
+        """Per frame (every frame, the curve fixed): (cost (N,), V = Jp^T Jp (N, 5, 5),
+        gp = Jp^T r (N, 5))."""
+        r, _, jp, rows, _ = self.evaluate(ctrl, m, b, True, curve_jac=False)
+        keep = rows >= 0
+        r, jp, rows = r[keep], jp[keep], rows[keep]
+        order = np.argsort(rows, kind="stable")
+        starts = np.searchsorted(rows[order], np.arange(self.n))
+        jps, res = jp[order], r[order]
+        v = np.add.reduceat(np.einsum("ri,rj->rij", jps, jps), starts, axis=0)
+        gp = np.add.reduceat(jps * res[:, None], starts, axis=0)
+        return np.bincount(rows, r**2, minlength=self.n), v, gp
 
     def apply(self, ctrl, m, b, dx):
         c2 = ctrl.copy()
@@ -605,6 +988,66 @@ def _lm(
     return state, cost, it, converged
 
 
+def _schur_solve(blocks, lam: float) -> np.ndarray:
+    """The LM step ``-(J^T J + lam D)^-1 J^T r`` (D: Marquardt's diagonal of J^T J, floored
+    at 1e-12 of its largest entry, as in :func:`_lm`) from the normal equations' blocks of
+    :meth:`_Problem.normal_equations`: the per-frame 5 x 5 pose blocks eliminated (Schur
+    complement on the curve's parameters), then back-substituted.  The same step as the
+    dense solve (to rounding) at O(N) cost instead of O(N^3).  Raises LinAlgError if singular."""
+    u, gc, v, w, gp = blocks
+    du = np.diag(u)
+    dv = np.einsum("nii->ni", v[1:])
+    top = max(float(np.max(du)), float(np.max(dv)) if dv.size else 0.0, 1e-300)
+    floor = 1e-12 * top
+    a = u + lam * np.diag(np.maximum(du, floor))
+    vd = v[1:] + lam * np.maximum(dv, floor)[:, :, None] * np.eye(5)
+    # (V + lam D)^-1 [W^T | gp] for every frame at once
+    rhs = np.concatenate([np.transpose(w[1:], (0, 2, 1)), gp[1:, :, None]], axis=2)
+    sol = np.linalg.solve(vd, rhs)  # (N - 1, 5, n_curve + 1)
+    s = a - np.einsum("ncp,npk->ck", w[1:], sol[:, :, :-1])
+    rc = gc - np.einsum("ncp,np->c", w[1:], sol[:, :, -1])
+    dc = -np.linalg.solve(s, rc)
+    dp = -(sol[:, :, -1] + np.einsum("npk,k->np", sol[:, :, :-1], dc))
+    return np.concatenate([dc, dp.reshape(-1)])
+
+
+def _lm_bundle(prob, state, max_iter: int, lam: float = 1e-3, rel_tol: float = REL_TOL):
+    """:func:`_lm` on the bundle's joint problem (curve and every pose), the steps from the
+    normal equations' blocks (:func:`_schur_solve`): no dense Jacobian of all the poses.
+    Returns (state, cost, iterations, converged)."""
+    r, blocks, _ = prob.normal_equations(*state)
+    cost = float(r @ r)
+    it, converged = 0, False
+    while it < max_iter:
+        it += 1
+        improved = False
+        for _ in range(10):
+            try:
+                dx = _schur_solve(blocks, lam)
+            except np.linalg.LinAlgError:
+                lam *= 10.0
+                continue
+            new = prob.apply(*state, dx)
+            r2 = prob.evaluate(*new, jac=False)[0]
+            cost2 = float(r2 @ r2)
+            if np.isfinite(cost2) and cost2 < cost:
+                improved = True
+                break
+            lam *= 10.0
+        if not improved:
+            converged = True
+            break
+        rel = (cost - cost2) / max(cost, 1e-300)
+        state = new
+        lam = max(lam / 10.0, 1e-9)
+        r, blocks, _ = prob.normal_equations(*state)
+        cost = float(r @ r)
+        if rel < rel_tol:
+            converged = True
+            break
+    return state, cost, it, converged
+
+
 def _gauss_newton_tsvd(residual, p, max_iter: int, rcond: float, abs_tol: float):
     """Gauss-Newton with truncated-SVD steps on ``residual(p, jac) -> (r, J, ...)``.
 
@@ -647,13 +1090,13 @@ def _rot_zyx(theta: float, tau: float, delta: float) -> np.ndarray:
     return rz @ ry @ rx
 
 
-def _resect(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int):
+def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int):
     """Best pose of frame i for the fixed curve: a sweep over the poses that put A, B on the
     polyline's ends (both signs of tau, rotation about AB in 10-degree steps), scored by the
     mean squared distance of the projected curve from the polyline.  The best two are refined
     by LM if they score below ``RESECT_GAIN`` times the current pose (a frame on the right
-    branch scores near the noise level, far below any grid pose).  Returns (m_i, b_i, cost) of
-    the best refined pose, or None when no sweep pose beats the current one."""
+    branch scores near the noise level, far below any grid pose).  Returns the (m_i, b_i) to
+    refine (:func:`_resect_all`), none when no sweep pose beats the current one."""
     from scipy.spatial import cKDTree
 
     poly = prob.polys[i]
@@ -684,23 +1127,109 @@ def _resect(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i:
         for score, _, mm in cands[:2]
         if score < RESECT_GAIN * current
     ]
-    if not starts:
-        return None
+    return starts
 
-    def residual(mm, bb, jac=True):
-        r, _, jp, _ = prob.frame_rows(ctrl, mm, bb, i, jac)
-        return r, jp
 
-    def apply(mm, bb, dx):
-        b2 = bb.copy()
-        b2[:2] += dx[3:5]
-        return _expm_so3(dx[:3]) @ mm, b2
+def _expm_so3_batch(w: np.ndarray) -> np.ndarray:
+    """:func:`_expm_so3` of every row of w (n, 3)."""
+    th = np.linalg.norm(w, axis=1)
+    k = np.zeros((len(w), 3, 3))
+    k[:, 0, 1], k[:, 0, 2], k[:, 1, 2] = -w[:, 2], w[:, 1], -w[:, 0]
+    k[:, 1, 0], k[:, 2, 0], k[:, 2, 1] = w[:, 2], -w[:, 1], w[:, 0]
+    small = th < 1e-12
+    ts = np.where(small, 1.0, th)
+    a = np.where(small, 1.0, np.sin(ts) / ts)
+    c = np.where(small, 0.0, (1 - np.cos(ts)) / ts**2)
+    return np.eye(3) + a[:, None, None] * k + c[:, None, None] * (k @ k)
 
-    best = None
-    for mm, bb in starts:
-        (m2, b2), cost, _, _ = _lm(residual, apply, (mm, bb), 15, rel_tol=1e-4)
-        if best is None or cost < best[2]:
-            best = (m2, b2, cost)
+
+def _lm_poses(prob: _Problem, ctrl, m, b, max_iter: int, rel_tol: float, lam0: float = 1e-3):
+    """:func:`_lm` on each frame's pose alone (the curve fixed), every frame of ``prob`` at
+    once: the frames are independent, so each keeps its own damping, iteration count and
+    stopping test, exactly as separate runs would (the frames still running are evaluated,
+    in a smaller problem once half have stopped).  Returns (m, b, cost per frame)."""
+    n = prob.n
+    m, b = m.copy(), b.copy()
+    lam = np.full(n, lam0)
+    it = np.zeros(n, int)
+    active = np.ones(n, bool)
+    sub, sel = prob, np.arange(n)
+
+    def normal(mm, bb):
+        c_s, v_s, g_s = sub.pose_normal_equations(ctrl, mm[sel], bb[sel])
+        c, v, g = np.full(n, np.inf), np.zeros((n, 5, 5)), np.zeros((n, 5))
+        c[sel], v[sel], g[sel] = c_s, v_s, g_s
+        return c, v, g
+
+    cost, v, gp = normal(m, b)
+    eye5 = np.eye(5)
+    while active.any():
+        if active.sum() <= len(sel) // 2:
+            sel = np.flatnonzero(active)
+            sub = prob.subset(sel)
+        it[active] += 1
+        dv = np.einsum("nii->ni", v)
+        diag = np.maximum(dv, 1e-12 * np.maximum(dv.max(axis=1), 1e-300)[:, None])
+        inner = active.copy()
+        improved = np.zeros(n, bool)
+        tries = np.zeros(n, int)
+        m_new, b_new, cost2 = m.copy(), b.copy(), cost.copy()
+        while inner.any():
+            idx = np.flatnonzero(inner)
+            a = v[idx] + lam[idx, None, None] * diag[idx][:, :, None] * eye5
+            dx = np.full((len(idx), 5), np.nan)
+            try:
+                dx = -np.linalg.solve(a, gp[idx][:, :, None])[:, :, 0]
+            except np.linalg.LinAlgError:
+                for j, ii in enumerate(idx):
+                    try:
+                        dx[j] = -np.linalg.solve(a[j], gp[ii])
+                    except np.linalg.LinAlgError:
+                        pass
+            solved = np.all(np.isfinite(dx), axis=1)
+            mt, bt = m.copy(), b.copy()
+            ok_idx = idx[solved]
+            mt[ok_idx] = _expm_so3_batch(dx[solved, :3]) @ m[ok_idx]
+            bt[ok_idx, :2] += dx[solved, 3:5]
+            r2, _, _, rows, _ = sub.evaluate(ctrl, mt[sel], bt[sel], jac=False)
+            c2 = np.full(n, np.inf)
+            c2[sel] = sub.frame_costs(r2, rows)
+            good = np.zeros(n, bool)
+            good[ok_idx] = np.isfinite(c2[ok_idx]) & (c2[ok_idx] < cost[ok_idx])
+            m_new[good], b_new[good], cost2[good] = mt[good], bt[good], c2[good]
+            improved |= good
+            bad = inner & ~good
+            lam[bad] *= 10.0
+            tries[bad] += 1
+            inner &= ~good & (tries < 10)
+        active &= improved  # a frame no step improves has converged
+        rel = (cost - cost2) / np.maximum(cost, 1e-300)
+        m[active], b[active] = m_new[active], b_new[active]
+        lam[active] = np.maximum(lam[active] / 10.0, 1e-9)
+        cost_all, v_all, gp_all = normal(m, b)
+        cost[active], v[active], gp[active] = cost_all[active], v_all[active], gp_all[active]
+        active &= ~(rel < rel_tol) & (it < max_iter)
+    return m, b, cost
+
+
+def _resect_all(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, frames):
+    """:func:`_resect_starts` of the given frames, the starts refined by LM on their poses
+    (at most 15 iterations), all at once.  Returns {frame: (m_i, b_i, cost) of its best
+    refined pose} for the frames with a start."""
+    owner, ms, bs = [], [], []
+    for i in frames:
+        for mm, bb in _resect_starts(prob, ctrl, m[i], b[i], i):
+            owner.append(i)
+            ms.append(mm)
+            bs.append(bb)
+    if not owner:
+        return {}
+    sub = prob.subset(owner)
+    m2, b2, cost = _lm_poses(sub, ctrl, np.array(ms), np.array(bs), 15, 1e-4)
+    best: dict = {}
+    for j, i in enumerate(owner):
+        if i not in best or cost[j] < best[i][2]:
+            best[i] = (m2[j], b2[j], float(cost[j]))
     return best
 
 
@@ -765,7 +1294,7 @@ def bundle_adjust(
         (flagged as contradicting the given end points and tangents; needs ``ends``).
 
     Stages: a coarse curve (``K_COARSE`` control points) with the start poses; every frame's
-    pose searched again against that curve (``_resect``: the wrong-branch poses the end
+    pose searched again against that curve (``_resect_all``: the wrong-branch poses the end
     tangents leave are far from the right ones, beyond LM's reach) and the coarse fit repeated
     (``RESECT_ROUNDS``); then the full curve.
 
@@ -827,16 +1356,15 @@ def bundle_adjust(
     if resect_first:
         # the start poses were made for another curve: every frame's pose searched against the
         # start curve before it is bent to fit them
-        for i in range(1, n):
-            if not use_poly[i]:
-                continue
-            found = _resect(prob, ctrl, m[i], b[i], i)
-            cur = float(np.sum(prob.frame_rows(ctrl, m[i], b[i], i, jac=False)[0] ** 2))
-            if found is not None and found[2] < cur:
-                m[i], b[i] = found[0], found[1]
+        found = _resect_all(prob, ctrl, m, b, [i for i in range(1, n) if use_poly[i]])
+        r, _, _, rows, _ = prob.evaluate(ctrl, m, b, jac=False)
+        cur = prob.frame_costs(r, rows)
+        for i, (mi, bi, ci) in found.items():
+            if ci < cur[i]:
+                m[i], b[i] = mi, bi
     cost_start = float(np.sum(prob.residuals(ctrl, m, b, jac=False)[0] ** 2))
     coarse = {"max_iter": min(max_iter, COARSE_MAX_ITER), "rel_tol": COARSE_REL_TOL}
-    (ctrl, m, b), cost, total_it, _ = _lm(prob.residuals, prob.apply, (ctrl, m, b), **coarse)
+    (ctrl, m, b), cost, total_it, _ = _lm_bundle(prob, (ctrl, m, b), **coarse)
     limit = RMS_LIMIT_SIGMA * sigma + RMS_LIMIT_PX
     for _ in range(int(RESECT_ROUNDS)):
         changed = False
@@ -846,23 +1374,19 @@ def bundle_adjust(
         if _uneven(rms, sigma):
             ref = min(limit, _uneven_level(rms, sigma))
             prob.frame_w = 1.0 / (1.0 + (rms / ref) ** 4)
-            (ctrl, m, b), _, it, _ = _lm(prob.residuals, prob.apply, (ctrl, m, b), **coarse)
+            (ctrl, m, b), _, it, _ = _lm_bundle(prob, (ctrl, m, b), **coarse)
             total_it += it
             prob.frame_w = np.ones(n)
-        for i in range(n):
-            if not use_poly[i]:
-                continue
-            cur = float(np.sum(prob.frame_rows(ctrl, m[i], b[i], i, jac=False)[0] ** 2))
-            found = _resect(prob, ctrl, m[i], b[i], i)
-            if found is None:
-                continue
-            mi, bi, ci = found
-            if ci < cur:
-                changed = changed or ci < 0.9 * cur
+        r, _, _, rows, _ = prob.evaluate(ctrl, m, b, jac=False)
+        cur = prob.frame_costs(r, rows)
+        found = _resect_all(prob, ctrl, m, b, [i for i in range(n) if use_poly[i]])
+        for i, (mi, bi, ci) in found.items():
+            if ci < cur[i]:
+                changed = changed or ci < 0.9 * cur[i]
                 m[i], b[i] = mi, bi
         if not np.allclose(m[0], np.eye(3), atol=1e-12):
             ctrl, m, b = _regauge(ctrl, m, b)
-        (ctrl, m, b), cost, it, _ = _lm(prob.residuals, prob.apply, (ctrl, m, b), **coarse)
+        (ctrl, m, b), cost, it, _ = _lm_bundle(prob, (ctrl, m, b), **coarse)
         total_it += it
         if not changed:
             break
@@ -870,12 +1394,12 @@ def bundle_adjust(
     if k > k_coarse:
         ctrl = fit_spline(prob.basis.values(np.linspace(0.0, 1.0, 200)) @ ctrl, k)
         prob = problem(k)
-        (ctrl, m, b), cost, it, converged = _lm(prob.residuals, prob.apply, (ctrl, m, b), max_iter)
+        (ctrl, m, b), cost, it, converged = _lm_bundle(prob, (ctrl, m, b), max_iter)
         total_it += it
     if END_POLISH:
         prob = problem(k)
         prob.robust_ends = True
-        (ctrl, m, b), cost, it, converged = _lm(prob.residuals, prob.apply, (ctrl, m, b), max_iter)
+        (ctrl, m, b), cost, it, converged = _lm_bundle(prob, (ctrl, m, b), max_iter)
         total_it += it
     rms = prob.residuals(ctrl, m, b, jac=False)[2]
     crit = _bic(prob, rms, prob.n_par, 2.0)
@@ -887,7 +1411,7 @@ def bundle_adjust(
         ctrl2 = np.linalg.lstsq(_Basis(k2).values(u), prob.basis.values(u) @ ctrl, rcond=None)[0]
         prob2 = problem(k2)
         prob2.robust_ends = END_POLISH
-        (c2, m2, b2), cost2, it, conv2 = _lm(prob2.residuals, prob2.apply, (ctrl2, m, b), max_iter)
+        (c2, m2, b2), cost2, it, conv2 = _lm_bundle(prob2, (ctrl2, m, b), max_iter)
         total_it += it
         rms2 = prob2.residuals(c2, m2, b2, jac=False)[2]
         crit2 = _bic(prob2, rms2, prob2.n_par, 2.0)
@@ -1139,13 +1663,25 @@ def extra_start_frames(n: int, count: int) -> list[int]:
     return out
 
 
-def _shape_std(result: BundleResult, prob_k: int, jac: np.ndarray) -> np.ndarray | None:
-    """Standard deviations of (c, alpha, beta, phi) from the bundle's covariance (residuals in
-    units of sigma, so the covariance is (J^T J)^-1), propagated through the end geometry."""
-    n_curve = 3 * prob_k - 1
+def _curve_covariance(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
+    """Covariance of the curve's parameters with every pose marginalised out: the curve block
+    of (J^T J)^+ through the Schur complement on the per-frame pose blocks (residuals in units
+    of sigma).  None if it is not finite."""
+    _, (u, _, v, w, _), _ = prob.normal_equations(ctrl, m, b)
     try:
-        cov = np.linalg.pinv(jac.T @ jac)[:n_curve, :n_curve]
+        vinv_wt = np.linalg.solve(v[1:], np.transpose(w[1:], (0, 2, 1)))
+        s = u - np.einsum("ncp,npk->ck", w[1:], vinv_wt)
+        cov = np.linalg.pinv(s)
     except np.linalg.LinAlgError:
+        return None
+    return cov if np.all(np.isfinite(cov)) else None
+
+
+def _shape_std(result: BundleResult, prob_k: int, cov: np.ndarray | None) -> np.ndarray | None:
+    """Standard deviations of (c, alpha, beta, phi) from the bundle's covariance of the curve's
+    parameters (:func:`_curve_covariance`), propagated through the end geometry."""
+    n_curve = 3 * prob_k - 1
+    if cov is None:
         return None
     idx = np.full((prob_k, 3), -1, dtype=int)
     flat = [j for j in range(3 * prob_k) if j != 2]
@@ -1206,19 +1742,25 @@ def curve_point_std(
     b: np.ndarray,
     u: np.ndarray,
     d_red: np.ndarray | None = None,
+    cov: np.ndarray | None = None,
 ) -> np.ndarray | None:
     """Standard deviation (pixels; root of the trace of the 3x3 covariance) of the fitted
     curve's points at parameters u, from the fit's covariance (residuals in units of sigma, so
     (J^T J)^-1; the poses marginalised out when they were fitted).  ``d_red``: the pinned
     parametrisation of :func:`fit_curve_fixed_poses` (poses fixed: the std is then the curve's
-    alone, given the end-point answer's poses).  None if the covariance is not finite."""
-    _, jac, _ = prob.residuals(ctrl, m, b, jac=True, poses=d_red is None)
+    alone, given the end-point answer's poses).  ``cov``: the curve parameters' covariance if
+    already known (:func:`_curve_covariance`).  None if the covariance is not finite."""
     if d_red is not None:
+        _, jac, _ = prob.residuals(ctrl, m, b, jac=True, poses=False)
         jac = jac @ d_red
-    try:
-        cov = np.linalg.pinv(jac.T @ jac)
-    except np.linalg.LinAlgError:
-        return None
+        try:
+            cov = np.linalg.pinv(jac.T @ jac)
+        except np.linalg.LinAlgError:
+            return None
+    elif cov is None:
+        cov = _curve_covariance(prob, ctrl, m, b)
+        if cov is None:
+            return None
     nb = _Basis(len(ctrl)).values(u)
     var = np.zeros(len(u))
     for c in range(3):
@@ -1228,8 +1770,6 @@ def curve_point_std(
         g[:, col[ok]] = nb[:, ok]
         if d_red is not None:
             g = g @ d_red
-        else:
-            g = np.pad(g, ((0, 0), (0, cov.shape[0] - g.shape[1])))
         var += np.einsum("ij,jk,ik->i", g, cov, g)
     if not np.all(np.isfinite(var)):
         return None
@@ -1483,9 +2023,9 @@ def refine_reconstruction(
         float(np.radians(tangent_sigma_deg)),
     )
     prob.poly_w = mask.astype(float)
-    _, jac, _ = prob.residuals(br.control, br.m, br.b)
-    std = _shape_std(br, k, jac)
-    point_std = curve_point_std(prob, br.control, br.m, br.b, u_out)
+    cov = _curve_covariance(prob, br.control, br.m, br.b)
+    std = _shape_std(br, k, cov)
+    point_std = curve_point_std(prob, br.control, br.m, br.b, u_out, cov=cov)
     limit = o.flag_rms_sigma * br.sigma + o.flag_rms_px
     bad = [int(i) for i in np.flatnonzero((br.rms > limit) & mask)]
     if bad:
