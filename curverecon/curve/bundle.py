@@ -264,6 +264,35 @@ def _huber_points(r: np.ndarray, jc: np.ndarray, jp: np.ndarray, k: float = HUBE
     return r, jc, jp
 
 
+def _segment_offsets(
+    poly: np.ndarray, pts: np.ndarray, j: np.ndarray, lo, hi
+) -> tuple[np.ndarray, np.ndarray]:
+    """Direction and signed distance of points from a polyline: the nearer of the two segments
+    at each point's nearest vertex ``j`` (the segment's normal; beyond the polyline's ends the
+    offset direction).  ``poly`` holds the vertices, each point's polyline its indices
+    ``lo``..``hi`` (scalars for one polyline, or one per point for many stacked)."""
+    best_d = np.full(len(pts), np.inf)
+    best_dir = np.zeros((len(pts), 2))
+    best_r = np.zeros(len(pts))
+    for js in (np.maximum(j - 1, lo), np.minimum(j, hi - 1)):
+        s0 = poly[js]
+        seg = poly[js + 1] - s0
+        len2 = np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-300)
+        t = np.einsum("ij,ij->i", pts - s0, seg) / len2
+        inside = ((t > 0) | (js > lo)) & ((t < 1) | (js < hi - 1))
+        t = np.clip(t, 0.0, 1.0)
+        e = pts - (s0 + t[:, None] * seg)
+        d = np.einsum("ij,ij->i", e, e)
+        nrm = np.column_stack([-seg[:, 1], seg[:, 0]]) / np.sqrt(len2)[:, None]
+        off = e / np.maximum(np.sqrt(d), 1e-300)[:, None]
+        dirn = np.where(inside[:, None], nrm, off)
+        take = d < best_d
+        best_d = np.where(take, d, best_d)
+        best_dir = np.where(take[:, None], dirn, best_dir)
+        best_r = np.where(take, np.einsum("ij,ij->i", dirn, e), best_r)
+    return best_dir, best_r
+
+
 class _Problem:
     """Residuals and Jacobians of the bundle for one state (control points, m, b)."""
 
@@ -323,28 +352,7 @@ class _Problem:
         """Direction and signed distance of image points from frame i's polyline (normal of the
         nearest segment; the offset direction beyond the polyline's ends)."""
         poly = self.polys[i]
-        j = self.trees[i].query(pts)[1]
-        best_d = np.full(len(pts), np.inf)
-        best_dir = np.zeros((len(pts), 2))
-        best_r = np.zeros(len(pts))
-        g = len(poly)
-        for js in (np.maximum(j - 1, 0), np.minimum(j, g - 2)):
-            s0 = poly[js]
-            seg = poly[js + 1] - s0
-            len2 = np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-300)
-            t = np.einsum("ij,ij->i", pts - s0, seg) / len2
-            inside = ((t > 0) | (js > 0)) & ((t < 1) | (js < g - 2))
-            t = np.clip(t, 0.0, 1.0)
-            e = pts - (s0 + t[:, None] * seg)
-            d = np.einsum("ij,ij->i", e, e)
-            nrm = np.column_stack([-seg[:, 1], seg[:, 0]]) / np.sqrt(len2)[:, None]
-            off = e / np.maximum(np.sqrt(d), 1e-300)[:, None]
-            dirn = np.where(inside[:, None], nrm, off)
-            take = d < best_d
-            best_d = np.where(take, d, best_d)
-            best_dir = np.where(take[:, None], dirn, best_dir)
-            best_r = np.where(take, np.einsum("ij,ij->i", dirn, e), best_r)
-        return best_dir, best_r
+        return _segment_offsets(poly, pts, self.trees[i].query(pts)[1], 0, len(poly) - 1)
 
     def foot_points(self, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int) -> np.ndarray:
         """Curve parameter u of the foot point of each interior polyline point of frame i."""
@@ -558,28 +566,7 @@ class _Problem:
     def _to_polylines(self, pts: np.ndarray, fid: np.ndarray):
         """:meth:`_to_polyline` for points of many frames (``fid``: each point's frame)."""
         j = self._nearest_vertex(pts, fid)
-        lo, hi = self.v_lo[fid], self.v_hi[fid]
-        poly = self.v_all
-        best_d = np.full(len(pts), np.inf)
-        best_dir = np.zeros((len(pts), 2))
-        best_r = np.zeros(len(pts))
-        for js in (np.maximum(j - 1, lo), np.minimum(j, hi - 1)):
-            s0 = poly[js]
-            seg = poly[js + 1] - s0
-            len2 = np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-300)
-            t = np.einsum("ij,ij->i", pts - s0, seg) / len2
-            inside = ((t > 0) | (js > lo)) & ((t < 1) | (js < hi - 1))
-            t = np.clip(t, 0.0, 1.0)
-            e = pts - (s0 + t[:, None] * seg)
-            d = np.einsum("ij,ij->i", e, e)
-            nrm = np.column_stack([-seg[:, 1], seg[:, 0]]) / np.sqrt(len2)[:, None]
-            off = e / np.maximum(np.sqrt(d), 1e-300)[:, None]
-            dirn = np.where(inside[:, None], nrm, off)
-            take = d < best_d
-            best_d = np.where(take, d, best_d)
-            best_dir = np.where(take[:, None], dirn, best_dir)
-            best_r = np.where(take, np.einsum("ij,ij->i", dirn, e), best_r)
-        return best_dir, best_r
+        return _segment_offsets(self.v_all, pts, j, self.v_lo[fid], self.v_hi[fid])
 
     def _all_foot_points(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
         """:meth:`foot_points` of every frame's interior polyline points at once."""
