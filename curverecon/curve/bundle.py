@@ -925,59 +925,9 @@ class _Problem:
         return c2, m2, b2
 
 
-def _lm(
-    residual,
-    apply,
-    state,
-    max_iter: int,
-    lam: float = 1e-3,
-    rel_tol: float = REL_TOL,
-    abs_tol: float = 0.0,
-):
-    """Levenberg-Marquardt (Marquardt's diagonal scaling) on ``residual(*state) -> (r, J, ...)``;
-    ``apply(*state, dx)`` makes the new state.  Stops when the cost falls by less than
-    ``rel_tol`` of itself or ``abs_tol`` (noise-free fits: the relative test never stops a cost
-    falling towards zero).  Returns (state, cost, iterations, converged)."""
-    r, jac, *_ = residual(*state)
-    cost = float(r @ r)
-    it, converged = 0, False
-    while it < max_iter:
-        it += 1
-        jtj = jac.T @ jac
-        g = jac.T @ r
-        diag = np.maximum(np.diag(jtj), 1e-12 * max(float(np.max(np.diag(jtj))), 1e-300))
-        improved = False
-        for _ in range(10):
-            try:
-                dx = -np.linalg.solve(jtj + lam * np.diag(diag), g)
-            except np.linalg.LinAlgError:
-                lam *= 10.0
-                continue
-            new = apply(*state, dx)
-            r2 = residual(*new, jac=False)[0]
-            cost2 = float(r2 @ r2)
-            if np.isfinite(cost2) and cost2 < cost:
-                improved = True
-                break
-            lam *= 10.0
-        if not improved:
-            converged = True
-            break
-        rel = (cost - cost2) / max(cost, 1e-300)
-        cost_prev = cost
-        state = new
-        lam = max(lam / 10.0, 1e-9)
-        r, jac, *_ = residual(*state)
-        cost = float(r @ r)
-        if rel < rel_tol or cost_prev - cost < abs_tol:
-            converged = True
-            break
-    return state, cost, it, converged
-
-
 def _schur_solve(blocks, lam: float) -> np.ndarray:
     """The LM step ``-(J^T J + lam D)^-1 J^T r`` (D: Marquardt's diagonal of J^T J, floored
-    at 1e-12 of its largest entry, as in :func:`_lm`) from the normal equations' blocks of
+    at 1e-12 of its largest entry) from the normal equations' blocks of
     :meth:`_Problem.normal_equations`: the per-frame 5 x 5 pose blocks eliminated (Schur
     complement on the curve's parameters), then back-substituted.  The same step as the
     dense solve (to rounding) at O(N) cost instead of O(N^3).  Raises LinAlgError if singular."""
@@ -999,9 +949,11 @@ def _schur_solve(blocks, lam: float) -> np.ndarray:
 
 
 def _lm_bundle(prob, state, max_iter: int, lam: float = 1e-3, rel_tol: float = REL_TOL):
-    """:func:`_lm` on the bundle's joint problem (curve and every pose), the steps from the
-    normal equations' blocks (:func:`_schur_solve`): no dense Jacobian of all the poses.
-    Returns (state, cost, iterations, converged)."""
+    """Levenberg-Marquardt (Marquardt's diagonal scaling) on the bundle's joint problem (curve
+    and every pose), the steps from the normal equations' blocks (:func:`_schur_solve`): no
+    dense Jacobian of all the poses.  A step is taken when it lowers the cost (lambda times 10
+    until it does, at most 10 times; then converged), lambda / 10 after it; stops when the cost
+    falls by less than ``rel_tol`` of itself.  Returns (state, cost, iterations, converged)."""
     r, blocks, _ = prob.normal_equations(*state)
     cost = float(r @ r)
     it, converged = 0, False
@@ -1131,8 +1083,9 @@ def _expm_so3_batch(w: np.ndarray) -> np.ndarray:
 
 
 def _lm_poses(prob: _Problem, ctrl, m, b, max_iter: int, rel_tol: float, lam0: float = 1e-3):
-    """:func:`_lm` on each frame's pose alone (the curve fixed), every frame of ``prob`` at
-    once: the frames are independent, so each keeps its own damping, iteration count and
+    """Levenberg-Marquardt (as :func:`_lm_bundle`) on each frame's pose alone (the curve
+    fixed), every frame of ``prob`` at once: the frames are independent, so each keeps its own
+    damping, iteration count and
     stopping test, exactly as separate runs would (the frames still running are evaluated,
     in a smaller problem once half have stopped).  Returns (m, b, cost per frame)."""
     n = prob.n
