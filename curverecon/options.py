@@ -294,7 +294,8 @@ class MinimalOptions:
     bound_tolerance: float = 1e-6
     """Slack on C >= c'^2, A, B >= 0 and 0 <= P <= 1 (dimensionless, after scaling)."""
     polish_iterations: int = 6
-    """Newton iterations on the four lean equations in (c, tan alpha, tan beta, cos phi)."""
+    """Newton iterations on the tracked (unsquared) system for each real solution; the tracker
+    ends every path with up to 3 already, so this is a margin (it stops at 1e-15 relative)."""
     duplicate_frames: float = 1e-9
     """Two frames whose observables (c', d', e') agree to this (relative) are one view."""
     tangent_along_chord_deg: float = 1e-6

@@ -136,10 +136,10 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         lambda: _polynomial_module("derivations.squaring", "polynomial_12p.py"),
     ),
     (
-        "minimal_lean.py",
+        "minimal_unsquared.py",
         "the four-frame minimal problem and its start system, solved by monodromy "
         "(derivations/minimal.py)",
-        lambda: _system_module("derivations.minimal", "minimal_lean.py"),
+        lambda: _system_module("derivations.minimal", "minimal_unsquared.py"),
     ),
 )
 

@@ -182,13 +182,23 @@ def residual_12_numerator() -> PolyElement:
 
 
 @cache
-def lean_polynomial() -> PolyElement:
-    """The lean polynomial in (c, tan_alpha, tan_beta, cos_phi, cp, dp, ep) (steps 3 and 4)."""
+def unsquared_parts() -> tuple[PolyElement, PolyElement]:
+    """(E, O) of step 3: (12*) r1^2 r2^2 c^2K = E + sin(phi) sin(tau) O, in the working ring.
+
+    Neither contains sin(phi) or sin(tau); the minimal solver's system (``derivations.minimal``)
+    keeps this unsquared form, with sin(phi) sin(tau) as an unknown of its own.
+    """
     num = residual_12_numerator()
     # step 3: sin(phi)^2 = 1 - cos(phi)^2; sin(tau)^2 = (c^2 - c'^2)/c^2 (times c^2 per power)
     num = reduce_square(num, 4, 1 - _cph**2, _W.one)
     num = reduce_square(num, 5, _c**2 - _cp**2, _c**2)
-    even, odd = split_odd(num, (4, 5))  # num = even + sin(phi) sin(tau) odd
+    return split_odd(num, (4, 5))  # num = even + sin(phi) sin(tau) odd
+
+
+@cache
+def lean_polynomial() -> PolyElement:
+    """The lean polynomial in (c, tan_alpha, tan_beta, cos_phi, cp, dp, ep) (steps 3 and 4)."""
+    even, odd = unsquared_parts()
     # step 4: even^2 = sin(phi)^2 sin(tau)^2 odd^2, times c^2
     sq = _c**2 * even**2 - (1 - _cph**2) * (_c**2 - _cp**2) * odd**2
     sq, content = strip_monomial_content(sq)

@@ -1,4 +1,4 @@
-"""The minimal problem: four frames of the lean polynomial, every solution (issue 12).
+"""The minimal problem: four frames, every solution (issue 12), as an unsquared system.
 
 Four frames give four lean equations (``derivations.lean``, NOTES item 4) in the four unknowns
 (c, tan(alpha), tan(beta), cos(phi)).  This module turns them into the system the runtime's
@@ -19,10 +19,31 @@ Reduction (each step a fact checked below, on the lean polynomial's terms):
    -> (-phi, -delta, -tau) leaves a, b and cos(phi) unchanged: it is the same solution.
 3. Lengths are homogeneous (degree 16 in c, c', d', e'), so the runtime divides all of them by
    one length before solving; C is then dimensionless.
+4. The system tracked is not the lean polynomial itself but its unsquared form.  The lean
+   polynomial is c^2 E^2 - sin(phi)^2 sin(tau)^2 c^2 O^2 over c^10 (``lean.unsquared_parts``):
+   a product (E~ - cp s O~)(E~ + cp s O~) with E = c^4 E~, O = c^6 a b cp O~ and
+   s = C tan(alpha) tan(beta) sin(phi) sin(tau).  E~ and O~ are polynomials in
+   (C, A, B, P, m) (their terms have the parity of step 2, checked below), so s_i =
+   -E~_i / (cp_i O~_i) is unchanged by the sign moves of step 2 and each frame contributes an
+   unknown s_i with
+
+       E~_i + cp_i s_i O~_i = 0,    s_i^2 = C A B (1 - P)(C - cp_i^2)        (unsquared (12*))
+
+   and the lean equation is their product (checked below: E~^2 - cp^2 s^2 O~^2 equals the
+   reduced lean polynomial modulo m^2 - A B P).  A solution of the lean system fixes every s_i
+   (s_i = -E~_i / (cp_i O~_i)), so the counts agree (104 = msolve's count; the facts record it).
+   Why: the squared equation has a double root wherever s_i = 0, a near-double one where the
+   curve is nearly flat (phi near 0 or 180 degrees) or AB nearly parallel to the image
+   (c' near c), and there the lean system's Jacobian at the truth is singular to 1e-9 relative
+   and paths merged or stalled.  The unsquared system is regular there (its derivative in s_i
+   is cp_i O~_i): on fresh noise-free scenes it lists the truth where the lean system did not
+   (README, "The four-frame solver").  Its equations are also of lower degree (C^2 and degree 1
+   in A, B, P, m, against C^4 A^2 B^2 P^2), so a tracking step costs less.
 
 The start system: random complex parameters (cp_i, dp_i, ep_i) for the four frames (seeded).
-One solution is made by construction (random complex C, A, B, P, m = sqrt(A B P); then each
-frame's cp_i, dp_i random and ep_i a root of that frame's equation, a quartic in ep_i).
+One solution is made by construction (random complex C, A, B, P, m = sqrt(A B P),
+s_i = sqrt(C A B (1 - P)(C - cp_i^2)); then each frame's cp_i, dp_i random and ep_i a root of
+that frame's first equation, a quadratic in ep_i).
 Monodromy then loops the parameters around random triangles, tracking every known solution with
 the runtime's own tracker (``curverecon.solvers.homotopy``); endpoints not seen before are added
 until the count reaches the independent Groebner-basis count of ``derivations.minimal_count``
@@ -52,7 +73,11 @@ MAX_LOOPS = 60
 POLISH_DPS = 30
 
 C, A, B, P, M = sp.symbols("C A B P m")
-UNKNOWNS = (C, A, B, P, M)
+S = tuple(sp.Symbol(f"s{i}") for i in range(FRAMES))
+REDUCED = (C, A, B, P, M)
+"""The lean system's unknowns after step 2 (one per orbit)."""
+UNKNOWNS = REDUCED + S
+"""The tracked system's unknowns (step 4): s_i = C tan(alpha) tan(beta) sin(phi) sin(tau_i)."""
 PARAMETERS = tuple(sp.Symbol(f"{name}{i}") for i in range(FRAMES) for name in ("cp", "dp", "ep"))
 
 
@@ -70,14 +95,21 @@ def reduced_term(
     return (i // 2, (j - odd) // 2, (k - odd) // 2, (n - odd) // 2, odd)
 
 
-@cache
-def frame_equation() -> sp.Expr:
-    """The lean polynomial of one frame in (C, A, B, P, m) and symbols cp, dp, ep."""
+def _reduce(poly, shift: tuple[int, int, int, int]) -> sp.Expr:  # type: ignore[no-untyped-def]
+    """A working-ring polynomial divided by c^i a^j b^k cp^l (``shift``), in (C, A, B, P, m)
+    and symbols cp, dp, ep (steps 1 and 2); raises if a term does not reduce."""
     cp, dp, ep = sp.symbols("cp dp ep")
+    n = len(poly.ring.gens)
     expr = sp.Integer(0)
-    for mono, coeff in lean.lean_polynomial().terms():
-        red = reduced_term(mono[:4])
-        o = mono[4:]
+    for mono, coeff in poly.terms():
+        # working ring of lean.unsquared_parts: (c, ta, tb, cos_phi, sin_phi, sin_tau, cp,
+        # dp, ep); the lean ring drops the two sines
+        unk, obs = mono[:4], mono[n - 3 :]
+        unk = (unk[0] - shift[0], unk[1] - shift[1], unk[2] - shift[2], unk[3])
+        obs = (obs[0] - shift[3], obs[1], obs[2])
+        if min(unk) < 0 or min(obs) < 0:
+            raise ValueError("the shift does not divide every term")
+        red = reduced_term(unk)
         expr += (
             int(coeff)
             * C ** red[0]
@@ -85,19 +117,66 @@ def frame_equation() -> sp.Expr:
             * B ** red[2]
             * P ** red[3]
             * M ** red[4]
-            * cp ** o[0]
-            * dp ** o[1]
-            * ep ** o[2]
+            * cp ** obs[0]
+            * dp ** obs[1]
+            * ep ** obs[2]
         )
     return expr
 
 
-def equations() -> tuple[sp.Expr, ...]:
-    """Four frame equations (parameters cp_i, dp_i, ep_i) and m^2 - A B P."""
+@cache
+def frame_equation() -> sp.Expr:
+    """The lean polynomial of one frame in (C, A, B, P, m) and symbols cp, dp, ep."""
+    return _reduce(lean.lean_polynomial(), (0, 0, 0, 0))
+
+
+@cache
+def frame_parts() -> tuple[sp.Expr, sp.Expr]:
+    """(E~, O~) of step 4: E = c^4 E~ and O = c^6 tan(alpha) tan(beta) cp O~, reduced.
+
+    The powers divided out are the monomial content of E and O (``lean.strip_monomial_content``
+    finds exactly these, checked in ``unsquared_facts``).
+    """
+    even, odd = lean.unsquared_parts()
+    return _reduce(even, (4, 0, 0, 0)), _reduce(odd, (6, 1, 1, 1))
+
+
+def frame_system(i: int) -> tuple[sp.Expr, sp.Expr]:
+    """Frame i's two equations of step 4 (unsquared (12*) and the definition of s_i)."""
     cp, dp, ep = sp.symbols("cp dp ep")
-    base = frame_equation()
-    pa = PARAMETERS
-    eqs = [base.subs({cp: pa[3 * i], dp: pa[3 * i + 1], ep: pa[3 * i + 2]}) for i in range(FRAMES)]
+    e_t, o_t = frame_parts()
+    pa = PARAMETERS[3 * i : 3 * i + 3]
+    sub = {cp: pa[0], dp: pa[1], ep: pa[2]}
+    unsquared = sp.expand((e_t + cp * S[i] * o_t).subs(sub))
+    definition = sp.expand(S[i] ** 2 - C * A * B * (1 - P) * (C - pa[0] ** 2))
+    return unsquared, definition
+
+
+@cache
+def unsquared_facts() -> dict[str, object]:
+    """Checks of step 4 on the polynomials (exact, SymPy)."""
+    cp = sp.Symbol("cp")
+    even, odd = lean.unsquared_parts()
+    e_t, o_t = frame_parts()
+    s_sq = C * A * B * (1 - P) * (C - cp**2)
+    product = sp.expand(e_t**2 - cp**2 * s_sq * o_t**2)
+    # modulo m^2 - A B P: reduce every power of m above 1
+    diff = sp.rem(sp.Poly(product - frame_equation(), M), sp.Poly(M**2 - A * B * P, M))
+    return {
+        "unsquared_content_E": lean.strip_monomial_content(even)[1][:4],
+        "unsquared_content_O": lean.strip_monomial_content(odd)[1][:4]
+        + lean.strip_monomial_content(odd)[1][6:7],
+        "unsquared_product_is_lean": diff.is_zero,
+        "unsquared_terms_E": len(sp.Add.make_args(e_t)),
+        "unsquared_terms_O": len(sp.Add.make_args(o_t)),
+    }
+
+
+def equations() -> tuple[sp.Expr, ...]:
+    """Step 4's system: per frame the unsquared (12*) (parameters cp_i, dp_i, ep_i), per frame
+    the definition of s_i, and m^2 - A B P."""
+    frames = [frame_system(i) for i in range(FRAMES)]
+    eqs = [f[0] for f in frames] + [f[1] for f in frames]
     eqs.append(M**2 - A * B * P)
     return tuple(eqs)
 
@@ -114,7 +193,7 @@ def _tables(eqs: tuple[sp.Expr, ...]) -> SimpleNamespace:
         TERMS=np.array([t[:3] for t in terms], dtype=np.int64),
         COEFFICIENTS=np.array([t[3] for t in terms], dtype=np.float64),
         START_PARAMETERS=np.zeros(len(PARAMETERS), complex),
-        START_SOLUTIONS=np.zeros((1, 5), complex),
+        START_SOLUTIONS=np.zeros((1, len(UNKNOWNS)), complex),
     )
 
 
@@ -126,22 +205,25 @@ def _round(z: complex, digits: int = 15) -> complex:
 def _first_solution(rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
     """Parameters q0 and one solution x0 there, by construction (module docstring)."""
     cp, dp, ep = sp.symbols("cp dp ep")
-    base = frame_equation()
+    e_t, o_t = frame_parts()
 
     def crandn(*shape: int) -> np.ndarray:
         return (rng.normal(size=shape) + 1j * rng.normal(size=shape)) / np.sqrt(2)
 
     x = crandn(4) + np.array([1.5, 1.0, 1.0, 0.5])
-    x0 = np.array([x[0], x[1], x[2], x[3], np.sqrt(x[1] * x[2] * x[3])])
-    x0 = np.array([_round(z) for z in x0])
-    subs = dict(zip(UNKNOWNS, (sp.Float(0) + sp.sympify(complex(z)) for z in x0), strict=True))
-    q = []
+    x0 = np.array([_round(z) for z in (x[0], x[1], x[2], x[3], np.sqrt(x[1] * x[2] * x[3]))])
+    subs = dict(zip(REDUCED, (sp.Float(0) + sp.sympify(complex(z)) for z in x0), strict=True))
+    q: list[complex] = []
+    s_values: list[complex] = []
     for _ in range(FRAMES):
         cpv, dpv = (_round(z) for z in crandn(2) + 1.0)
-        quartic = sp.Poly(sp.expand(base.subs(subs).subs({cp: complex(cpv), dp: complex(dpv)})), ep)
-        roots = np.roots([complex(c) for c in quartic.all_coeffs()])
+        s_i = _round(np.sqrt(x0[0] * x0[1] * x0[2] * (1 - x0[3]) * (x0[0] - cpv**2)))
+        unsquared = (e_t + cp * sp.sympify(s_i) * o_t).subs(subs)
+        quadratic = sp.Poly(sp.expand(unsquared.subs({cp: cpv, dp: dpv})), ep)
+        roots = np.roots([complex(c) for c in quadratic.all_coeffs()])
         q += [cpv, dpv, _round(roots[np.argmin(np.abs(roots - 1.0))])]
-    return np.array(q), x0
+        s_values.append(s_i)
+    return np.array(q), np.concatenate([x0, s_values])
 
 
 def _newton_float(sys_, x: np.ndarray, q: np.ndarray, iters: int = 8) -> np.ndarray:
@@ -264,10 +346,12 @@ def polish(eqs: tuple[sp.Expr, ...], q0: np.ndarray, sols: np.ndarray) -> np.nda
                 x = [xi - dx[i] for i, xi in enumerate(x)]
             out.append([complex(float(z.real), float(z.imag)) for z in x])
     arr = np.array(out)
-    # sort by Re C, then Im C, Re A, ... (rounded, so that rounding noise cannot reorder rows)
+    # sort by Re C, then Re A, ..., then Im C, ... (rounded, so that rounding noise cannot
+    # reorder rows)
+    last = arr.shape[1] - 1
     order = np.lexsort(
-        [np.round(arr[:, k].imag, 9) for k in range(4, -1, -1)]
-        + [np.round(arr[:, k].real, 9) for k in range(4, -1, -1)]
+        [np.round(arr[:, k].imag, 9) for k in range(last, -1, -1)]
+        + [np.round(arr[:, k].real, 9) for k in range(last, -1, -1)]
     )
     return arr[order]
 
@@ -278,32 +362,37 @@ def minimal_system() -> PolynomialSystem:
     eqs = equations()
     q0, sols, facts = monodromy()
     sols = polish(eqs, q0, sols)
-    n_terms = len(lean.lean_polynomial().terms())
     facts = dict(facts)
+    checks = unsquared_facts()
+    if not checks["unsquared_product_is_lean"]:
+        raise AssertionError("step 4: E~^2 - cp^2 s^2 O~^2 is not the reduced lean polynomial")
+    facts.update(checks)
     facts.update(
         {
             "solutions": len(sols),
             "solutions_original_variables": 4 * len(sols),
             "frames": FRAMES,
-            "lean_terms_per_frame": n_terms,
+            "lean_terms_per_frame": len(lean.lean_polynomial().terms()),
             "seed": SEED,
         }
     )
     return PolynomialSystem(
-        name="minimal_lean",
+        name="minimal_unsquared",
         unknowns=UNKNOWNS,
         parameters=PARAMETERS,
         equations=eqs,
-        equation_names=tuple(f"lean polynomial, frame {i}" for i in range(FRAMES))
+        equation_names=tuple(f"unsquared (12*), frame {i}" for i in range(FRAMES))
+        + tuple(f"s{i}**2 - C*A*B*(1 - P)*(C - cp{i}**2)" for i in range(FRAMES))
         + ("m**2 - A*B*P",),
         start_parameters=tuple(complex(z) for z in q0),
         start_solutions=tuple(tuple(complex(z) for z in row) for row in sols),
         doc=(
-            "The four-frame minimal problem of the lean polynomial (issue 12), reduced by its "
-            "symmetry: unknowns C = c^2, A = tan(alpha)^2, B = tan(beta)^2, P = cos(phi)^2, "
-            "m = tan(alpha) tan(beta) cos(phi) (one unknown vector per orbit of four solutions "
-            "in (tan alpha, tan beta, cos phi)); parameters (cp, dp, ep) of each frame, all "
-            "lengths divided by one common length.  START_SOLUTIONS are every solution at "
+            "The four-frame minimal problem (issue 12) in its unsquared form, reduced by the "
+            "lean polynomial's symmetry: unknowns C = c^2, A = tan(alpha)^2, B = tan(beta)^2, "
+            "P = cos(phi)^2, m = tan(alpha) tan(beta) cos(phi) (one unknown vector per orbit of "
+            "four solutions in (tan alpha, tan beta, cos phi)) and per frame s_i = C tan(alpha) "
+            "tan(beta) sin(phi) sin(tau_i); parameters (cp, dp, ep) of each frame, all lengths "
+            "divided by one common length.  START_SOLUTIONS are every solution at "
             "START_PARAMETERS, found by monodromy; curverecon.solvers.homotopy tracks them to "
             "any frames' parameters."
         ),

@@ -220,7 +220,7 @@ def _polynomial_section() -> list[str]:
 
 
 def _start_system_section() -> list[str]:
-    """How generated/minimal_lean.py's start system was solved (derivations/minimal.py)."""
+    """How generated/minimal_unsquared.py's start system was solved (derivations/minimal.py)."""
     from derivations import minimal
 
     facts = minimal.minimal_system().facts
@@ -232,6 +232,12 @@ def _start_system_section() -> list[str]:
         f"({facts['solutions_original_variables']} in (C, tan alpha, tan beta, cos phi)), in "
         f"{facts['monodromy_loops']} loops; equal to msolve's count: "
         f"{facts['monodromy_count_equals_msolve']}.\n",
+        f"- Step 4, exact (SymPy): E~ has {facts['unsquared_terms_E']} terms and O~ "
+        f"{facts['unsquared_terms_O']} (the lean polynomial {facts['lean_terms_per_frame']}); "
+        f"the monomial content of E is c^4 and of O is c^6 tan(alpha) tan(beta) c' (exponents of "
+        f"(c, tan alpha, tan beta, cos phi[, c']): {facts['unsquared_content_E']}, "
+        f"{facts['unsquared_content_O']}); E~^2 - c'^2 s^2 O~^2 equals the reduced lean "
+        f"polynomial modulo m^2 - A B P: {facts['unsquared_product_is_lean']}.\n",
         "- `curverecon.solvers.minimal.solve` tracks these to the frames' parameters "
         "(`curverecon.solvers.homotopy`: RK4 predictor, Newton corrector, failed or jumped paths "
         "retried along fresh complex detours and counted, never dropped).\n",

@@ -14,7 +14,7 @@
 - ``lean_polynomial``: single-squaring elimination, grouped by observable monomial
   (derivations/lean.py)
 - ``polynomial_12p``: the paper's (12'), grouped by observable monomial (derivations/squaring.py)
-- ``minimal_lean``: the four-frame minimal problem and its start system, solved by monodromy
+- ``minimal_unsquared``: the four-frame minimal problem and its start system, solved by monodromy
   (derivations/minimal.py)
 """
 
@@ -24,5 +24,5 @@ __all__ = (
     "frame_equations",
     "lean_polynomial",
     "polynomial_12p",
-    "minimal_lean",
+    "minimal_unsquared",
 )

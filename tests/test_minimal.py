@@ -14,7 +14,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from curverecon.generated import measurement_model, minimal_lean
+from curverecon.generated import measurement_model, minimal_unsquared
 
 from curverecon.errors import CurveReconError
 from curverecon.io import observations_to_dict
@@ -56,10 +56,47 @@ def test_count_on_a_random_complex_instance_equals_the_derived_count(seed) -> No
     # distinct endpoints, each a solution of the system at the target
     d = np.linalg.norm(x[:, None] - x[None], axis=2) + np.eye(len(x))
     assert d.min() > 1e-6
-    assert len(x) == minimal_lean.FACTS["solutions"] == 104
+    assert len(x) == minimal_unsquared.FACTS["solutions"] == 104
     for row in x:
         f, jac = system.evaluate(row, target)
         assert np.linalg.norm(np.linalg.solve(jac, f)) < 1e-9 * (1 + np.linalg.norm(row))
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3, 100017])
+def test_the_unsquared_system_holds_on_the_3d_construction(seed) -> None:
+    """The tracked system's extra unknowns mean what derivations/minimal.py says: with sin(tau_i)
+    the depth of B - A over c in frame i of the 3-D scene, s_i = C tan(alpha) tan(beta)
+    sin(phi) sin(tau_i) with one sign for the whole scene (the sign convention of phi) solves
+    all nine equations, and the other sign does not."""
+    sc = make_scene(np.random.default_rng(seed), 4)
+    t, obs = sc.truth, sc.observations
+    scale = float(np.mean(obs.cp))
+    q = np.column_stack([obs.cp, obs.dp, obs.ep]).ravel() / scale
+    big_c, ta, tb = (t.c / scale) ** 2, np.tan(t.alpha), np.tan(t.beta)
+    sin_tau = (t.B3 - t.A3)[:, 2] / t.c
+    reduced = [big_c, ta**2, tb**2, np.cos(t.phi) ** 2, ta * tb * np.cos(t.phi)]
+    s = big_c * ta * tb * np.sin(t.phi) * sin_tau
+    system = minimal._system()
+    residuals = []
+    for sign in (1.0, -1.0):
+        x = np.array(reduced + list(sign * s), dtype=complex)
+        f, jac = system.evaluate(x, q)
+        # relative to the size of the terms: the Jacobian's row norms times |x|
+        residuals.append(np.max(np.abs(f) / (np.abs(jac) @ (1 + np.abs(x)))))
+    assert min(residuals) < 1e-13
+    assert max(residuals) > 1e-4
+
+
+@pytest.mark.parametrize("seed", [100006, 100017, 100023, 100039])
+def test_nearly_flat_curves_list_the_truth(seed) -> None:
+    """phi within 14 degrees of 0 or 180 degrees (in the issue's 5-175 range): the squared lean
+    system had a near-double root at the truth and lost it on each of these scenes."""
+    sc = make_scene(np.random.default_rng(seed), 4)
+    truth = _truth(sc)
+    assert min(truth[3], np.pi - truth[3]) < np.radians(14)
+    res = minimal.solve(sc.observations)
+    err = np.abs(res.shapes - truth) / np.array([truth[0], 1, 1, 1])
+    assert err.max(axis=1).min() < 1e-9, (truth, res.shapes)
 
 
 def test_the_truth_is_among_the_solutions(solved) -> None:

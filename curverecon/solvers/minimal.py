@@ -1,14 +1,17 @@
 """The complete minimal solver: four frames, every shape that fits them exactly (issue 12).
 
 Four frames give four lean equations (``generated/lean_polynomial.py``) in the four unknowns
-(c, tan(alpha), tan(beta), cos(phi)).  ``make derive`` reduces them by their symmetry to a system
-in (C, A, B, P, m) = (c^2, tan^2(alpha), tan^2(beta), cos^2(phi), tan(alpha) tan(beta) cos(phi))
-with 104 complex solutions for generic frames (``generated/minimal_lean.py``; docs/derivation.md
-gives the count, its independent check and the symmetry), and solves it once at generic complex
-parameters.  :func:`solve` tracks those 104 solutions to the given frames
+(c, tan(alpha), tan(beta), cos(phi)).  ``make derive`` reduces them by their symmetry to
+(C, A, B, P, m) = (c^2, tan^2(alpha), tan^2(beta), cos^2(phi), tan(alpha) tan(beta) cos(phi))
+and undoes the lean polynomial's one squaring: each frame keeps the unsquared (12*) with an
+unknown s_i = C tan(alpha) tan(beta) sin(phi) sin(tau_i) of its own, so that nearly flat curves
+and frames with c' near c are regular solutions, not near-double ones
+(``generated/minimal_unsquared.py``, 9 equations in 9 unknowns; docs/derivation.md gives the
+count, 104 for generic frames, its independent check and the symmetry).  It is solved once at
+generic complex parameters; :func:`solve` tracks those 104 solutions to the given frames
 (:mod:`curverecon.solvers.homotopy`), keeps the real ones that are shapes (C >= c'^2 in every
-frame, A, B >= 0, 0 <= P <= 1), polishes each by Newton's method on the four lean equations in
-float64, and solves every frame's pose for it (:func:`curverecon.solvers.pose.poses_from_shape`).
+frame, A, B >= 0, 0 <= P <= 1), polishes each by Newton's method on that system in float64,
+and solves every frame's pose for it (:func:`curverecon.solvers.pose.poses_from_shape`).
 
 Conventions: c in input units; alpha, beta in [0, pi/2] and phi in [0, pi], radians (one
 representative per orbit: the signs of tan(alpha), tan(beta) only orient the tangent lines, and
@@ -23,13 +26,15 @@ from functools import cache
 import numpy as np
 
 from curverecon.errors import CurveReconError
-from curverecon.generated import lean_polynomial, minimal_lean
+from curverecon.generated import minimal_unsquared
 from curverecon.model.observations import Observations, wrap_line_angle
 from curverecon.options import MinimalOptions
 from curverecon.solvers import homotopy
 from curverecon.solvers.pose import poses_from_shape
 
 FRAMES = 4
+REDUCED_UNKNOWNS = 5
+"""(C, A, B, P, m) come first in ``minimal_unsquared.UNKNOWNS``."""
 
 
 @dataclass
@@ -61,7 +66,7 @@ class MinimalResult:
 
 @cache
 def _system() -> homotopy.PolynomialSystem:
-    return homotopy.PolynomialSystem.from_module(minimal_lean)
+    return homotopy.PolynomialSystem.from_module(minimal_unsquared)
 
 
 def check_four_frames(obs: Observations, options: MinimalOptions | None = None) -> None:
@@ -89,15 +94,17 @@ def check_four_frames(obs: Observations, options: MinimalOptions | None = None) 
                 )
 
 
-def _lean_newton(
-    shape: np.ndarray, cp: np.ndarray, dp: np.ndarray, ep: np.ndarray, iterations: int
+def _polish(
+    system: homotopy.PolynomialSystem, x: np.ndarray, q: np.ndarray, iterations: int
 ) -> np.ndarray:
-    """Newton's method on the four lean equations in (c, tan alpha, tan beta, cos phi)."""
-    om = lean_polynomial.observable_matrix(cp, dp, ep)
-    x = shape.astype(float).copy()
+    """Newton's method in float64 on the tracked (unsquared) system at the frames' parameters.
+
+    Real solutions stay real (real system, real start).  Not on the lean equations: where s_i
+    is near 0 (a nearly flat curve, c' near c) their root is near-double and Newton's method
+    there lost up to 2e-4 of the angle that the unsquared system had to 1e-11 (seed 300005).
+    """
     for _ in range(iterations):
-        f = om @ lean_polynomial.unknown_columns(*x)
-        jac = om @ lean_polynomial.unknown_columns_jacobian(*x)
+        f, jac = system.evaluate(x, q)
         try:
             step = np.linalg.solve(jac, f)
         except np.linalg.LinAlgError:
@@ -121,9 +128,9 @@ def solve(obs: Observations, options: MinimalOptions | None = None) -> MinimalRe
     x = tracked.solutions
     ok = np.all(np.isfinite(x), axis=1)
     real = ok & np.all(np.abs(x.imag) <= o.real_tolerance * (1 + np.abs(x)), axis=1)
-    xr = x[real].real
+    xr = np.array([_polish(_system(), row, target, o.polish_iterations).real for row in x[real]])
     tol = o.bound_tolerance
-    c2, a2, b2, p2, m = xr.T if xr.size else np.zeros((5, 0))
+    c2, a2, b2, p2, m = xr[:, :REDUCED_UNKNOWNS].T if xr.size else np.zeros((REDUCED_UNKNOWNS, 0))
     inside = (
         (c2 >= np.max(cp) ** 2 * (1 - tol))
         & (a2 >= -tol)
@@ -132,19 +139,18 @@ def solve(obs: Observations, options: MinimalOptions | None = None) -> MinimalRe
         & (p2 <= 1 + tol)
     )
     shapes, poses, residuals = [], [], []
-    for c2k, a2k, b2k, mk in zip(c2[inside], a2[inside], b2[inside], m[inside], strict=True):
+    for c2k, a2k, b2k, p2k, mk in zip(
+        c2[inside], a2[inside], b2[inside], p2[inside], m[inside], strict=True
+    ):
         ta, tb = np.sqrt(max(a2k, 0.0)), np.sqrt(max(b2k, 0.0))
         cos_phi = float(np.clip(mk / (ta * tb), -1.0, 1.0)) if ta * tb > 0 else 0.0
-        lean = _lean_newton(
-            np.array([np.sqrt(c2k), ta, tb, cos_phi]), cp, dp, ep, o.polish_iterations
-        )
-        c = abs(lean[0]) * scale
+        # phi from (sin, cos): well conditioned near 0 and 180 degrees, where arccos is not
         shape = np.array(
             [
-                c,
-                np.arctan(abs(lean[1])),
-                np.arctan(abs(lean[2])),
-                np.arccos(np.clip(np.sign(lean[1] * lean[2]) * lean[3], -1.0, 1.0)),
+                np.sqrt(max(c2k, 0.0)) * scale,
+                np.arctan(ta),
+                np.arctan(tb),
+                np.arctan2(np.sqrt(max(1.0 - p2k, 0.0)), cos_phi),
             ]
         )
         pose, misfit = poses_from_shape(obs, shape)
