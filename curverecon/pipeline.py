@@ -3,7 +3,10 @@
 It reads like the README's "How it works" (docs/architecture.md draws it):
 
 1. hypotheses: the global search over the shape (``robust.search``), seeded by the paper's
-   linearisation when it is determined (``solvers.linear``);
+   linearisation when it is determined (``solvers.linear``); when the answer of steps 2-5 has
+   outlier frames, also LO-RANSAC over four-frame samples of the minimal solver
+   (``robust.frame_samples``), whose shape replaces the search's if it explains the frames
+   better;
 2. maximum likelihood on all frames (``refine.ml``) from the best hypothesis;
 3. outlier frames (``robust.outliers``), then, with few frames, single frames tried on their
    other pose branch (``robust.branches``);
@@ -39,8 +42,9 @@ from curverecon.refine.ml import refine
 from curverecon.robust.alternatives import equally_good_fits
 from curverecon.robust.branches import flip_ambiguous_frames
 from curverecon.robust.four_frames import add_minimal_solutions
+from curverecon.robust.frame_samples import fixed_shape_fit, frame_sample_hypothesis
 from curverecon.robust.outliers import find_outlier_frames
-from curverecon.robust.search import Candidate, robust_start
+from curverecon.robust.search import Candidate, robust_cost, robust_start
 from curverecon.solvers import minimal
 from curverecon.solvers.linear import frame_matrix, min_frames, solve_linear
 from curverecon.solvers.pose import poses_from_shape
@@ -124,6 +128,10 @@ def reconstruct_end_points(
     if not cands:
         raise CurveReconError("no shape fits the data (the search found no candidate)")
     rec = answer_from_hypotheses(obs, cands, opts, progress)
+    if _outliers_suspected(rec, obs, opts):
+        # 1'. outlier frames: hypotheses from four-frame samples (LO-RANSAC on the minimal
+        # solver), kept if their shape explains the frames better than the answer's
+        rec = _with_frame_samples(obs, cands, rec, opts, progress)
     if obs.n_frames == minimal.FRAMES:
         # exactly four frames: every shape that fits them exactly, from the minimal solver
         rec = add_minimal_solutions(rec, obs, ps, ts, opts.minimal)
@@ -181,6 +189,43 @@ def answer_from_hypotheses(
         opts.search,
     )
     return rec
+
+
+def _outliers_suspected(rec: Reconstruction, obs: Observations, opts: ReconstructOptions) -> bool:
+    """Frames flagged as outliers, or a fit too poor for the noise (as ``find_outlier_frames``
+    judges it), with a frame count the four-frame samples are run for."""
+    o = opts.frame_samples
+    if not (o.enabled and opts.method == "auto" and o.min_frames <= obs.n_frames <= o.max_frames):
+        return False
+    if not rec.inliers.all():
+        return True
+    dof = max(int(rec.inliers.sum()) - 4, 1)
+    return rec.chi2 is not None and rec.chi2 > dof + 5.0 * math.sqrt(2.0 * dof) + 10.0
+
+
+def _with_frame_samples(
+    obs: Observations,
+    cands: list[Candidate],
+    rec: Reconstruction,
+    opts: ReconstructOptions,
+    progress: StageProgress | None,
+) -> Reconstruction:
+    """``rec``, or the answer from the four-frame samples' shape when that shape's robust cost
+    on all frames (shape held fixed, every frame at its best pose) is lower than ``rec``'s."""
+    ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
+    o = opts.frame_samples
+    cand, stats = frame_sample_hypothesis(obs, ps, ts, o, opts.minimal, opts.search)
+    if cand is None:
+        return rec
+    current = fixed_shape_fit(obs, rec.shape, ps, ts, opts.search)
+    if not cand.robust_cost < robust_cost(current.frame_chi2, o.truncate):
+        return rec
+    new = answer_from_hypotheses(obs, [cand, *cands], opts, progress)
+    note = (
+        f"outlier frames: the answer comes from LO-RANSAC over {stats.iterations} four-frame "
+        "samples (the global search's best fit was pulled by them)"
+    )
+    return replace(new, warnings=[*new.warnings, note])
 
 
 def _reconstruct_linear(obs: Observations) -> Reconstruction:
