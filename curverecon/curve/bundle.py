@@ -331,6 +331,7 @@ class _Problem:
         flat = [j for j in range(3 * k) if j != 2]
         idx.reshape(-1)[flat] = np.arange(self.n_curve)
         self.cidx = idx
+        self.free_cols = np.array(flat)
         from scipy.spatial import cKDTree
 
         self.trees = [cKDTree(p) for p in polys]
@@ -626,12 +627,9 @@ class _Problem:
 
     def _jc_rows(self, nus: np.ndarray, dm: np.ndarray) -> np.ndarray:
         """Curve-parameter Jacobian rows ``sum_k nus[r, k] dm[r, c]`` at the free (k, c)."""
-        jc = np.zeros((len(nus), self.n_curve))
-        for c in range(3):
-            col = self.cidx[:, c]
-            ok = col >= 0
-            jc[:, col[ok]] += nus[:, ok] * dm[:, c : c + 1]
-        return jc
+        # every (k, c) product at once, then the free columns (P0_z, the depth gauge, left out)
+        full = (nus[:, :, None] * dm[:, None, :]).reshape(len(nus), 3 * self.k)
+        return full[:, self.free_cols]
 
     @staticmethod
     def _jp_rows(direc: np.ndarray, yy: np.ndarray) -> np.ndarray:

@@ -117,17 +117,39 @@ def coplanarity(ab: np.ndarray, tangent_a: np.ndarray, tangent_b: np.ndarray) ->
 
 def _robust_sigma(polys: list[np.ndarray]) -> float:
     """Pixel noise used for weights and gates (never below 0.3 px: polyline discretisation)."""
-    est = [pl.noise_level(p) for p in polys]
+    est = [_noise_level(p) for p in polys]
     return max(float(np.median(est)), 0.3)
 
 
-def _distances_for_frame(pts_xy: np.ndarray, poly: np.ndarray, spacing: float = 0.1) -> np.ndarray:
+#: ``polyline.noise_level`` by content (the branch search reconstructs the same polylines
+#: dozens of times)
+_NOISE: dict[tuple, float] = {}
+
+
+def _noise_level(poly: np.ndarray) -> float:
+    poly = np.ascontiguousarray(poly, dtype=float)
+    key = (poly.shape, poly.tobytes())
+    level = _NOISE.get(key)
+    if level is None:
+        level = pl.noise_level(poly)
+        if len(_NOISE) >= _TREES_MAX:
+            _NOISE.clear()
+        _NOISE[key] = level
+    return level
+
+
+def _distances_for_frame(
+    pts_xy: np.ndarray, poly: np.ndarray, spacing: float = 0.1, bound: float = np.inf
+) -> np.ndarray:
     """Distance (pixels) of points to a polyline via a KD-tree on the densified polyline.
 
     The densified vertices are at most ``spacing`` apart, so the distance is over-estimated by at
     most spacing / 2 (spacing = 0.1 px here, far below the pixel noise the costs are scaled by).
+    ``bound``: distances beyond it are returned as inf (the tree stops searching there: the
+    truncated costs of the candidates need no more, and most candidates are far from most
+    frames' polylines).
     """
-    return _dense_tree(poly, spacing).query(pts_xy)[0]
+    return _dense_tree(poly, spacing).query(pts_xy, distance_upper_bound=bound)[0]
 
 
 #: KD-trees of densified polylines by content: the branch search calls :func:`reconstruct_curve`
@@ -252,7 +274,8 @@ def reconstruct_curve(
         pts0 = np.column_stack([xy[flat_k], flat_z])
         for i in informative:
             pts_i = pts0 @ m[i].T + b[i]
-            dist = _distances_for_frame(pts_i[:, :2], polys[i])
+            # beyond sqrt(trunc) the cost is trunc whatever the distance: the search stops there
+            dist = _distances_for_frame(pts_i[:, :2], polys[i], bound=np.sqrt(trunc) * 1.0001)
             unary += np.minimum(dist**2, trunc)
     unary /= sigma**2
 
