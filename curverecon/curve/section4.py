@@ -176,6 +176,24 @@ def _dense_tree(poly: np.ndarray, spacing: float):
     return tree
 
 
+#: Truncated squared distances of one frame's crossing candidates from another frame's
+#: polyline, by content (see the unary cost of :func:`reconstruct_curve`).
+_UNARY: dict[tuple, np.ndarray] = {}
+_UNARY_MAX = 50_000
+
+
+def _poly_key(poly: np.ndarray) -> bytes:
+    return np.ascontiguousarray(poly, dtype=float).tobytes() + repr(np.shape(poly)).encode()
+
+
+def _project_xy(pts: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Image (x, y) of frame-0 camera points in a frame (``m @ p + b``), row by row: the same
+    rounding for a point whatever rows it comes with (the cache of the unary cost)."""
+    x = pts[:, 0] * m[0, 0] + pts[:, 1] * m[0, 1] + pts[:, 2] * m[0, 2] + b[0]
+    y = pts[:, 0] * m[1, 0] + pts[:, 1] * m[1, 1] + pts[:, 2] * m[1, 2] + b[1]
+    return np.column_stack([x, y])
+
+
 def reconstruct_curve(
     polylines: Sequence[np.ndarray],
     rotations: np.ndarray,
@@ -269,14 +287,31 @@ def reconstruct_curve(
     trunc = (3.0 * sigma + 1.0) ** 2
     flat_k = np.array([k for k in range(k_total) for _ in cand_z[k]], dtype=int)
     flat_z = np.array([z for zs in cand_z for z in zs], dtype=float)
+    flat_f = np.array([f for fs in cand_frame for f in fs], dtype=int)
     unary = np.zeros(len(flat_z))
     if len(flat_z):
         pts0 = np.column_stack([xy[flat_k], flat_z])
+        # each (frame, source frame) block by content: a trial of the branch search that
+        # switches one frame changes only that frame's blocks (its crossings, its distances)
+        rows = {f: np.flatnonzero(flat_f == f) for f in np.unique(flat_f)}
+        src = {f: pts0[idx].tobytes() for f, idx in rows.items()}
         for i in informative:
-            pts_i = pts0 @ m[i].T + b[i]
-            # beyond sqrt(trunc) the cost is trunc whatever the distance: the search stops there
-            dist = _distances_for_frame(pts_i[:, :2], polys[i], bound=np.sqrt(trunc) * 1.0001)
-            unary += np.minimum(dist**2, trunc)
+            dest = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), sigma)
+            part = np.empty(len(flat_z))
+            for f, idx in rows.items():
+                key = (dest, src[f])
+                val = _UNARY.get(key)
+                if val is None:
+                    pts_i = _project_xy(pts0[idx], m[i], b[i])
+                    # beyond sqrt(trunc) the cost is trunc whatever the distance: the search
+                    # stops there
+                    dist = _distances_for_frame(pts_i, polys[i], bound=np.sqrt(trunc) * 1.0001)
+                    val = np.minimum(dist**2, trunc)
+                    if len(_UNARY) >= _UNARY_MAX:
+                        _UNARY.clear()
+                    _UNARY[key] = val
+                part[idx] = val
+            unary += part
     unary /= sigma**2
 
     # Dynamic programme along the curve. States: candidates, plus a "missing" state per sample.
