@@ -1050,12 +1050,15 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     theta = float(np.arctan2(chord[1], chord[0]))
     pts = prob.basis.values(np.linspace(0.0, 1.0, 40)) @ ctrl - a3
     tree = cKDTree(pl.resample(poly, 200)[0])
-    cands = []
-    for tau in sorted({tau_abs, -tau_abs}):
-        for delta in np.radians(np.arange(0.0, 360.0, 10.0)):
-            mm = _rot_zyx(theta, tau, delta) @ cmat.T
-            score = float(np.mean(tree.query(pts @ mm[:2].T + poly[0])[0] ** 2))
-            cands.append((score, len(cands), mm))
+    mms = [
+        _rot_zyx(theta, tau, delta) @ cmat.T
+        for tau in sorted({tau_abs, -tau_abs})
+        for delta in np.radians(np.arange(0.0, 360.0, 10.0))
+    ]
+    # every sweep pose's projected curve in one query (the same distances as one by one)
+    proj = np.stack([pts @ mm[:2].T + poly[0] for mm in mms])
+    dist = tree.query(proj.reshape(-1, 2))[0].reshape(len(mms), len(pts))
+    cands = [(float(np.mean(d**2)), j, mm) for j, (d, mm) in enumerate(zip(dist, mms, strict=True))]
     cands.sort(key=lambda t: t[:2])
     current = float(np.mean(tree.query((pts + a3) @ mi[:2].T + bi[:2])[0] ** 2))
     # only sweep poses that beat the current one even on the coarse grid are refined
