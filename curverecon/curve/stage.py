@@ -9,6 +9,7 @@ the fitted curve (``curve.bundle``).  ``curve3d`` is in frame 0's camera coordin
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import replace
@@ -24,6 +25,9 @@ from curverecon.model.observations import Observations
 from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ReconstructOptions
 
+#: end tangents for section 4's coplanarity check when its result feeds the bundle
+_ANY_TANGENTS = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+
 
 def fit_curve(
     rec: Reconstruction, obs: Observations, options: ReconstructOptions
@@ -35,6 +39,10 @@ def fit_curve(
     o = options.curve
     reconstruct_curve = section4.reconstruct_curve
     bundle = o.bundle and rec.method == "auto"
+    if bundle:
+        # the bundle takes section 4's points only: its coplanarity check (a warning and a
+        # field of the section-4 result) needs no end tangents estimated from every polyline
+        reconstruct_curve = functools.partial(reconstruct_curve, tangents=_ANY_TANGENTS)
     warnings: list[str] = []
     n = len(obs.curves)
     # long sequences with given end points: the end-point answer stays, the curve alone is
