@@ -388,26 +388,27 @@ def reconstruct_curve(
     n_used = np.zeros(k_total, dtype=int)
     depth_std[0] = 0.0
     depth_std[-1] = sigma / max(np.sqrt(len(informative)), 1.0)
-    for k in range(1, k_total - 1):
-        if interpolated[k]:
-            continue
-        zk = np.asarray(cand_z[k])
-        fk = np.asarray(cand_frame[k])
-        sk = np.asarray(cand_std[k])
-        gate = np.maximum(3.0 * sk, 2.0 * sigma)
-        near = np.abs(zk - z_dp[k]) <= gate
-        if not np.any(near):
-            continue
-        # One crossing per frame: the nearest to the DP depth.
-        sel = []
-        for f in np.unique(fk[near]):
-            idx = np.nonzero(near & (fk == f))[0]
-            sel.append(idx[np.argmin(np.abs(zk[idx] - z_dp[k]))])
-        sel = np.asarray(sel)
-        w = 1.0 / sk[sel] ** 2
-        z_ref[k] = float(np.sum(w * zk[sel]) / np.sum(w))
-        depth_std[k] = float(1.0 / np.sqrt(np.sum(w)))
-        n_used[k] = len(sel)
+    if len(flat_z):
+        # every sample at once: the crossings within the gate of the DP depth, one per frame
+        # (the nearest; the first of equals), summed per sample in frame order
+        flat_s = np.array([v for ss in cand_std for v in ss], dtype=float)
+        dz = np.abs(flat_z - z_dp[flat_k])
+        inner = (flat_k > 0) & (flat_k < k_total - 1)
+        near = inner & ~interpolated[flat_k] & (dz <= np.maximum(3.0 * flat_s, 2.0 * sigma))
+        idx = np.flatnonzero(near)
+        idx = idx[np.lexsort((idx, dz[idx], flat_f[idx], flat_k[idx]))]
+        first = np.ones(len(idx), bool)
+        first[1:] = (np.diff(flat_k[idx]) != 0) | (np.diff(flat_f[idx]) != 0)
+        sel = idx[first]
+        if len(sel):
+            ks = flat_k[sel]
+            starts = np.flatnonzero(np.concatenate([[True], np.diff(ks) != 0]))
+            w = 1.0 / flat_s[sel] ** 2
+            sw = np.add.reduceat(w, starts)
+            k_sel = ks[starts]
+            z_ref[k_sel] = np.add.reduceat(w * flat_z[sel], starts) / sw
+            depth_std[k_sel] = 1.0 / np.sqrt(sw)
+            n_used[k_sel] = np.diff(np.append(starts, len(sel)))
 
     # Fill interpolated samples by linear interpolation in arc length.
     known = ~interpolated
