@@ -5,6 +5,11 @@ curve chooses (``curve.branches``); section 4 reconstructs the non-traceable poi
 (``curve.section4``); then, for ``method="auto"`` with ``CurveOptions.bundle``, the curve
 bundle fits the poses and one 3-D curve to every polyline together and the shape comes from
 the fitted curve (``curve.bundle``).  ``curve3d`` is in frame 0's camera coordinates, A at z = 0.
+
+Long sequences (``CurveOptions.curve_search_max_frames``, ``bundle_max_frames``): the branch
+choice and section 4 run on a fixed number of frames spread over the sequence (they cost
+O(N^2) on all); from ``bundle_max_frames`` frames on, with end points given, the end-point
+answer stays and the curve alone is fitted to those frames' polylines with every pose fixed.
 """
 
 from __future__ import annotations
