@@ -198,6 +198,32 @@ class CurveOptions:
     search_samples: int = 60
     """Curve samples per trial reconstruction in the branch search (time only)."""
 
+    curve_search_max_frames: int = 20
+    """With the curve bundle, sequences of more frames choose the pose branches by the curve
+    and build the bundle's start curve (section 4) on this many frames spread over the
+    sequence, not on all: section 4 scores every frame's crossings in every frame (O(N^2)) and
+    the branch search runs it once per candidate switch, hours at 1,000 frames.  The joint
+    refits from the other sign of tau (``refit_*``: one refinement of all N frames per frame)
+    are left out there.  The bundle then fits every frame and searches every frame's pose
+    against the curve itself.  20: the
+    bench's 8- to 20-frame scenes keep the full search (their answers unchanged); at 40 frames
+    (1 px, seeds 7-9, helix, clothoid, random, sharp-ends) the search on 20 frames gave the
+    full search's answers (curve errors 0.15, 0.18, 0.18 %; sharp-ends 0.16 against 0.18 %)
+    in half the time (1.5-3.2 s against 3.4-7.2 s)."""
+
+    bundle_max_frames: int = 200
+    """From this many frames on (end points and tangents given), no joint fit of the poses
+    and the curve: the end-point answer stays and the curve alone is fitted to the polylines of
+    ``curve_search_max_frames`` frames spread over the sequence, every pose fixed - the answer
+    the never-worse test (``never_worse_dchi2``) falls back to.  With this many frames the end
+    points fix the shape more tightly than the curve model's bias: at 1,000 frames (bench seed
+    1400, 1 px) the joint fit took 2 minutes and the never-worse test then refused its shape
+    (outside the end points' 99 % region; seed 1401, random curve: 89 s, refused with
+    end_point_dchi2 85), leaving this answer; this path took 1.8 s (curve
+    0.41 % of its length off; with 50 or 100 frames fitted 0.43, 0.39 %: the end-point poses
+    bound it, not the number of frames).  At 100 frames the joint fit's shape was still taken
+    in 2 of 3 scenes (seeds 1400-1402, 9 s each)."""
+
     refit_dchi2: float = 4.0
     """A joint refit with one frame on its mirrored branch is a candidate if its chi2 is within
     this of the answer's."""

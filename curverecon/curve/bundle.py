@@ -331,6 +331,7 @@ class _Problem:
         flat = [j for j in range(3 * k) if j != 2]
         idx.reshape(-1)[flat] = np.arange(self.n_curve)
         self.cidx = idx
+        self.free_cols = np.array(flat)
         from scipy.spatial import cKDTree
 
         self.trees = [cKDTree(p) for p in polys]
@@ -626,12 +627,9 @@ class _Problem:
 
     def _jc_rows(self, nus: np.ndarray, dm: np.ndarray) -> np.ndarray:
         """Curve-parameter Jacobian rows ``sum_k nus[r, k] dm[r, c]`` at the free (k, c)."""
-        jc = np.zeros((len(nus), self.n_curve))
-        for c in range(3):
-            col = self.cidx[:, c]
-            ok = col >= 0
-            jc[:, col[ok]] += nus[:, ok] * dm[:, c : c + 1]
-        return jc
+        # every (k, c) product at once, then the free columns (P0_z, the depth gauge, left out)
+        full = (nus[:, :, None] * dm[:, None, :]).reshape(len(nus), 3 * self.k)
+        return full[:, self.free_cols]
 
     @staticmethod
     def _jp_rows(direc: np.ndarray, yy: np.ndarray) -> np.ndarray:
@@ -1052,12 +1050,15 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     theta = float(np.arctan2(chord[1], chord[0]))
     pts = prob.basis.values(np.linspace(0.0, 1.0, 40)) @ ctrl - a3
     tree = cKDTree(pl.resample(poly, 200)[0])
-    cands = []
-    for tau in sorted({tau_abs, -tau_abs}):
-        for delta in np.radians(np.arange(0.0, 360.0, 10.0)):
-            mm = _rot_zyx(theta, tau, delta) @ cmat.T
-            score = float(np.mean(tree.query(pts @ mm[:2].T + poly[0])[0] ** 2))
-            cands.append((score, len(cands), mm))
+    mms = [
+        _rot_zyx(theta, tau, delta) @ cmat.T
+        for tau in sorted({tau_abs, -tau_abs})
+        for delta in np.radians(np.arange(0.0, 360.0, 10.0))
+    ]
+    # every sweep pose's projected curve in one query (the same distances as one by one)
+    proj = np.stack([pts @ mm[:2].T + poly[0] for mm in mms])
+    dist = tree.query(proj.reshape(-1, 2))[0].reshape(len(mms), len(pts))
+    cands = [(float(np.mean(d**2)), j, mm) for j, (d, mm) in enumerate(zip(dist, mms, strict=True))]
     cands.sort(key=lambda t: t[:2])
     current = float(np.mean(tree.query((pts + a3) @ mi[:2].T + bi[:2])[0] ** 2))
     # only sweep poses that beat the current one even on the coarse grid are refined
@@ -1734,6 +1735,7 @@ def refine_reconstruction(
     tangent_sigma_deg: float = 1.0,
     n_out: int | None = None,
     options=None,
+    curve_frames: np.ndarray | None = None,
 ):
     """Run the curve bundle on a reconstruction and return the updated answer.
 
@@ -1763,6 +1765,11 @@ def refine_reconstruction(
     alternatives recomputed for the new shape; ``curve3d`` in frame 0's camera coordinates
     with A at z = 0 (the mirror image consistent with the frames' ``A3``, ``B3``, tangents);
     ``info`` the ``curve_bundle`` key of the output (see docs/file-formats.md).
+
+    ``curve_frames`` (long sequences with given end points, ``CurveOptions.bundle_max_frames``):
+    no joint fit; the end-point answer stays and the curve alone is fitted with every pose
+    fixed (as when the never-worse test refuses the bundle) to the polylines of these frames;
+    ``frame_rms_px`` is then measured on every frame.
     """
     from dataclasses import replace
 
@@ -1847,9 +1854,14 @@ def refine_reconstruction(
         """The end-point answer with the curve fitted to the polylines, every pose fixed
         (exact end points: the knots grow as the data ask, the model's own floors lowered;
         otherwise the bundle's curve model with the poses held)."""
-        m, bb = _fixed_pose_frames(rec)
+        m_all, bb_all = _fixed_pose_frames(rec)
         a3, b3, ta3, tb3 = rec.points_3d()
-        polys = _oriented(curves, rec)
+        polys_all = _oriented(curves, rec)
+        # the frames whose polylines the curve is fitted to (frame 0 first: its pose is the
+        # curve's coordinates)
+        sel = np.arange(n) if curve_frames is None else np.asarray(curve_frames, int)
+        polys = [polys_all[i] for i in sel]
+        m, bb, mask = m_all[sel], bb_all[sel], np.asarray(mask, bool)[sel]
 
         def fit(mask: np.ndarray, start: np.ndarray, k0: int):
             return fit_curve_fixed_poses(
@@ -1872,13 +1884,18 @@ def refine_reconstruction(
         flagged = list(extra.get("flagged_frames", []))
         if not flagged and use_given:
             bad = rms > limit
-            if bad.any() and bad.sum() <= o.max_flagged_fraction * n:
-                flagged = [int(i) for i in np.flatnonzero(bad)]
-                flag_warning(flagged, rms)
+            if bad.any() and bad.sum() <= o.max_flagged_fraction * len(sel):
+                flagged = [int(i) for i in sel[np.flatnonzero(bad)]]
+                flag_warning(flagged, np.bincount(sel, rms, minlength=n))
                 mask = ~bad
                 dense = _Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 400)) @ ctrl
                 ctrl, _, rms = fit(mask, dense, k_start)
         k = ctrl.shape[0]
+        rms_all = rms
+        if curve_frames is not None:  # every frame's distance from the curve (one evaluation)
+            rms_all = _Problem(polys_all, sigma, k, None, None, 1.0, 1.0).residuals(
+                ctrl, m_all, bb_all, jac=False
+            )[2]
         u = _arc_parameters(ctrl, n_out or 200)
         curve3d = _Basis(k).values(u) @ ctrl
         prob = _Problem(polys, sigma, k, None, None, 1.0, 1.0)
@@ -1888,7 +1905,7 @@ def refine_reconstruction(
         info = {
             "control_points": int(k),
             "sigma_px": float(sigma),
-            "frame_rms_px": [float(v) for v in rms],
+            "frame_rms_px": [float(v) for v in rms_all],
             "iterations": 0,
             "converged": True,
             "accepted": False,
@@ -1903,6 +1920,8 @@ def refine_reconstruction(
         # confidence region, which has shrunk to float rounding
         start = np.asarray(curve_start, float)
         return fixed_answer(start, N_CONTROL, np.ones(n, bool), {}, exact=True)
+    if curve_frames is not None and not flat:
+        return fixed_answer(np.asarray(curve_start, float), N_CONTROL, np.ones(n, bool), {})
     br = run()
     flagged: list[int] = []
     mask = np.ones(n, bool)

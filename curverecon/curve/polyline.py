@@ -305,11 +305,9 @@ def noise_level(points: np.ndarray, *, window: int = 9) -> float:
     hat = v @ np.linalg.pinv(v)
     centre = hat[half]
     # Residual at the window centre: e = x_c - fitted; Var(e) = sigma^2 * (1 - hat_cc).
-    resid = []
-    for k in range(half, m - half):
-        w = points[k - half : k + half + 1]
-        resid.append(w[half] - centre @ w)
-    r = np.asarray(resid)
+    # every window at once: (m - 2 half, 2, window), each centre's residual
+    w = np.lib.stride_tricks.sliding_window_view(np.asarray(points, float), window, axis=0)
+    r = w[:, :, half] - w @ centre
     var_factor = 1.0 - hat[half, half]
     mad = np.median(np.abs(r)) / 0.6745
     return float(mad / np.sqrt(var_factor))

@@ -117,17 +117,39 @@ def coplanarity(ab: np.ndarray, tangent_a: np.ndarray, tangent_b: np.ndarray) ->
 
 def _robust_sigma(polys: list[np.ndarray]) -> float:
     """Pixel noise used for weights and gates (never below 0.3 px: polyline discretisation)."""
-    est = [pl.noise_level(p) for p in polys]
+    est = [_noise_level(p) for p in polys]
     return max(float(np.median(est)), 0.3)
 
 
-def _distances_for_frame(pts_xy: np.ndarray, poly: np.ndarray, spacing: float = 0.1) -> np.ndarray:
+#: ``polyline.noise_level`` by content (the branch search reconstructs the same polylines
+#: dozens of times)
+_NOISE: dict[tuple, float] = {}
+
+
+def _noise_level(poly: np.ndarray) -> float:
+    poly = np.ascontiguousarray(poly, dtype=float)
+    key = (poly.shape, poly.tobytes())
+    level = _NOISE.get(key)
+    if level is None:
+        level = pl.noise_level(poly)
+        if len(_NOISE) >= _TREES_MAX:
+            _NOISE.clear()
+        _NOISE[key] = level
+    return level
+
+
+def _distances_for_frame(
+    pts_xy: np.ndarray, poly: np.ndarray, spacing: float = 0.1, bound: float = np.inf
+) -> np.ndarray:
     """Distance (pixels) of points to a polyline via a KD-tree on the densified polyline.
 
     The densified vertices are at most ``spacing`` apart, so the distance is over-estimated by at
     most spacing / 2 (spacing = 0.1 px here, far below the pixel noise the costs are scaled by).
+    ``bound``: distances beyond it are returned as inf (the tree stops searching there: the
+    truncated costs of the candidates need no more, and most candidates are far from most
+    frames' polylines).
     """
-    return _dense_tree(poly, spacing).query(pts_xy)[0]
+    return _dense_tree(poly, spacing).query(pts_xy, distance_upper_bound=bound)[0]
 
 
 #: KD-trees of densified polylines by content: the branch search calls :func:`reconstruct_curve`
@@ -152,6 +174,24 @@ def _dense_tree(poly: np.ndarray, spacing: float):
             _TREES.clear()
         _TREES[key] = tree
     return tree
+
+
+#: Truncated squared distances of one frame's crossing candidates from another frame's
+#: polyline, by content (see the unary cost of :func:`reconstruct_curve`).
+_UNARY: dict[tuple, np.ndarray] = {}
+_UNARY_MAX = 50_000
+
+
+def _poly_key(poly: np.ndarray) -> bytes:
+    return np.ascontiguousarray(poly, dtype=float).tobytes() + repr(np.shape(poly)).encode()
+
+
+def _project_xy(pts: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Image (x, y) of frame-0 camera points in a frame (``m @ p + b``), row by row: the same
+    rounding for a point whatever rows it comes with (the cache of the unary cost)."""
+    x = pts[:, 0] * m[0, 0] + pts[:, 1] * m[0, 1] + pts[:, 2] * m[0, 2] + b[0]
+    y = pts[:, 0] * m[1, 0] + pts[:, 1] * m[1, 1] + pts[:, 2] * m[1, 2] + b[1]
+    return np.column_stack([x, y])
 
 
 def reconstruct_curve(
@@ -247,13 +287,31 @@ def reconstruct_curve(
     trunc = (3.0 * sigma + 1.0) ** 2
     flat_k = np.array([k for k in range(k_total) for _ in cand_z[k]], dtype=int)
     flat_z = np.array([z for zs in cand_z for z in zs], dtype=float)
+    flat_f = np.array([f for fs in cand_frame for f in fs], dtype=int)
     unary = np.zeros(len(flat_z))
     if len(flat_z):
         pts0 = np.column_stack([xy[flat_k], flat_z])
+        # each (frame, source frame) block by content: a trial of the branch search that
+        # switches one frame changes only that frame's blocks (its crossings, its distances)
+        rows = {f: np.flatnonzero(flat_f == f) for f in np.unique(flat_f)}
+        src = {f: pts0[idx].tobytes() for f, idx in rows.items()}
         for i in informative:
-            pts_i = pts0 @ m[i].T + b[i]
-            dist = _distances_for_frame(pts_i[:, :2], polys[i])
-            unary += np.minimum(dist**2, trunc)
+            dest = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), sigma)
+            part = np.empty(len(flat_z))
+            for f, idx in rows.items():
+                key = (dest, src[f])
+                val = _UNARY.get(key)
+                if val is None:
+                    pts_i = _project_xy(pts0[idx], m[i], b[i])
+                    # beyond sqrt(trunc) the cost is trunc whatever the distance: the search
+                    # stops there
+                    dist = _distances_for_frame(pts_i, polys[i], bound=np.sqrt(trunc) * 1.0001)
+                    val = np.minimum(dist**2, trunc)
+                    if len(_UNARY) >= _UNARY_MAX:
+                        _UNARY.clear()
+                    _UNARY[key] = val
+                part[idx] = val
+            unary += part
     unary /= sigma**2
 
     # Dynamic programme along the curve. States: candidates, plus a "missing" state per sample.
@@ -330,26 +388,27 @@ def reconstruct_curve(
     n_used = np.zeros(k_total, dtype=int)
     depth_std[0] = 0.0
     depth_std[-1] = sigma / max(np.sqrt(len(informative)), 1.0)
-    for k in range(1, k_total - 1):
-        if interpolated[k]:
-            continue
-        zk = np.asarray(cand_z[k])
-        fk = np.asarray(cand_frame[k])
-        sk = np.asarray(cand_std[k])
-        gate = np.maximum(3.0 * sk, 2.0 * sigma)
-        near = np.abs(zk - z_dp[k]) <= gate
-        if not np.any(near):
-            continue
-        # One crossing per frame: the nearest to the DP depth.
-        sel = []
-        for f in np.unique(fk[near]):
-            idx = np.nonzero(near & (fk == f))[0]
-            sel.append(idx[np.argmin(np.abs(zk[idx] - z_dp[k]))])
-        sel = np.asarray(sel)
-        w = 1.0 / sk[sel] ** 2
-        z_ref[k] = float(np.sum(w * zk[sel]) / np.sum(w))
-        depth_std[k] = float(1.0 / np.sqrt(np.sum(w)))
-        n_used[k] = len(sel)
+    if len(flat_z):
+        # every sample at once: the crossings within the gate of the DP depth, one per frame
+        # (the nearest; the first of equals), summed per sample in frame order
+        flat_s = np.array([v for ss in cand_std for v in ss], dtype=float)
+        dz = np.abs(flat_z - z_dp[flat_k])
+        inner = (flat_k > 0) & (flat_k < k_total - 1)
+        near = inner & ~interpolated[flat_k] & (dz <= np.maximum(3.0 * flat_s, 2.0 * sigma))
+        idx = np.flatnonzero(near)
+        idx = idx[np.lexsort((idx, dz[idx], flat_f[idx], flat_k[idx]))]
+        first = np.ones(len(idx), bool)
+        first[1:] = (np.diff(flat_k[idx]) != 0) | (np.diff(flat_f[idx]) != 0)
+        sel = idx[first]
+        if len(sel):
+            ks = flat_k[sel]
+            starts = np.flatnonzero(np.concatenate([[True], np.diff(ks) != 0]))
+            w = 1.0 / flat_s[sel] ** 2
+            sw = np.add.reduceat(w, starts)
+            k_sel = ks[starts]
+            z_ref[k_sel] = np.add.reduceat(w * flat_z[sel], starts) / sw
+            depth_std[k_sel] = 1.0 / np.sqrt(sw)
+            n_used[k_sel] = np.diff(np.append(starts, len(sel)))
 
     # Fill interpolated samples by linear interpolation in arc length.
     known = ~interpolated

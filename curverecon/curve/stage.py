@@ -5,10 +5,16 @@ curve chooses (``curve.branches``); section 4 reconstructs the non-traceable poi
 (``curve.section4``); then, for ``method="auto"`` with ``CurveOptions.bundle``, the curve
 bundle fits the poses and one 3-D curve to every polyline together and the shape comes from
 the fitted curve (``curve.bundle``).  ``curve3d`` is in frame 0's camera coordinates, A at z = 0.
+
+Long sequences (``CurveOptions.curve_search_max_frames``, ``bundle_max_frames``): the branch
+choice and section 4 run on a fixed number of frames spread over the sequence (they cost
+O(N^2) on all); from ``bundle_max_frames`` frames on, with end points given, the end-point
+answer stays and the curve alone is fitted to those frames' polylines with every pose fixed.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import replace
@@ -24,6 +30,9 @@ from curverecon.model.observations import Observations
 from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ReconstructOptions
 
+#: end tangents for section 4's coplanarity check when its result feeds the bundle
+_ANY_TANGENTS = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+
 
 def fit_curve(
     rec: Reconstruction, obs: Observations, options: ReconstructOptions
@@ -35,9 +44,22 @@ def fit_curve(
     o = options.curve
     reconstruct_curve = section4.reconstruct_curve
     bundle = o.bundle and rec.method == "auto"
+    if bundle:
+        # the bundle takes section 4's points only: its coplanarity check (a warning and a
+        # field of the section-4 result) needs no end tangents estimated from every polyline
+        reconstruct_curve = functools.partial(reconstruct_curve, tangents=_ANY_TANGENTS)
     warnings: list[str] = []
+    n = len(obs.curves)
+    # long sequences with given end points: the end-point answer stays, the curve alone is
+    # fitted (CurveOptions.bundle_max_frames)
+    fixed = bundle and obs.ends_given and n >= o.bundle_max_frames
     try:
-        if rec.branch_alternatives is not None:
+        if bundle and n > o.curve_search_max_frames:
+            # long sequences: the branch choice and the start curve from a fixed-size subset
+            # of the frames (section 4 costs O(N^2): every frame's crossings scored in every
+            # frame); the bundle then fits every frame and searches every pose itself
+            rec, res = _search_on_subset(rec, obs.curves, reconstruct_curve, o)
+        elif rec.branch_alternatives is not None:
             # fixed-shape branch switches first, then the other equally good optima
             # (alternative shapes, joint refits from the other sign of tau); each change is
             # kept only if the recovered curve reprojects clearly better
@@ -75,8 +97,72 @@ def fit_curve(
         tangent_sigma_deg=options.tangent_sigma_deg,
         n_out=None if res is None else len(res.points),
         options=o,
+        curve_frames=subset_frames(n, o.curve_search_max_frames) if fixed else None,
     )
     return replace(rec, curve3d=curve3d, curve_bundle=info, warnings=list(rec.warnings) + warnings)
+
+
+def subset_frames(n: int, count: int) -> np.ndarray:
+    """``count`` frames spread evenly over a sequence of ``n`` (frame 0 first, the curve's
+    reference frame; all of them when ``n <= count``)."""
+    if n <= count:
+        return np.arange(n)
+    return np.unique(np.round(np.linspace(0.0, n - 1, count)).astype(int))
+
+
+def _search_on_subset(rec: Reconstruction, curves, reconstruct_curve, o) -> tuple:
+    """The branch choice by the curve (single-frame switches, shape fixed) and section 4 on
+    ``o.curve_search_max_frames`` frames spread over the sequence; the switches found are
+    applied to the whole reconstruction.  The joint refits (``refit_branches_with_curves``:
+    one refinement of all N frames per frame, O(N^2)) are left out: with this many frames one
+    frame's branch moves the maximum-likelihood shape little, and the curve bundle searches
+    every frame's pose against the curve.  Returns (reconstruction, section-4 result of the
+    subset: its curve is in frame 0's camera coordinates like the whole one's)."""
+    sub = subset_frames(len(curves), o.curve_search_max_frames)
+    sub_curves = [curves[i] for i in sub]
+
+    def pick(a):
+        return None if a is None else np.asarray(a)[sub]
+
+    if rec.branch_alternatives is None:
+        return rec, reconstruct_curve(sub_curves, rec.rotations()[sub], rec.translations()[sub])
+    alt_chi2 = pick(rec.branch_alternative_chi2)
+    if rec.frame_chi2 is not None and np.isfinite(alt_chi2[0]):
+        # frame 0's pose fixes curve3d's coordinates: its other branch is tried by the curve
+        # however its end points rank it (1,000 frames, helix, seed 2001: the other branch at
+        # chi2 + 4.08, just beyond flip_dchi2, was the right one; the curve was 17 % off)
+        alt_chi2 = np.array(alt_chi2, float)
+        alt_chi2[0] = min(alt_chi2[0], float(rec.frame_chi2[0]))
+    part = replace(
+        rec,
+        poses=np.asarray(rec.poses)[sub],
+        inliers=np.asarray(rec.inliers)[sub],
+        frame_chi2=pick(rec.frame_chi2),
+        branch_alternatives=pick(rec.branch_alternatives),
+        branch_alternative_chi2=alt_chi2,
+    )
+    new, res = resolve_branches_with_curves(part, sub_curves, reconstruct_curve, o)
+    if new is part:
+        return rec, res
+    take = sub[np.any(np.asarray(new.poses) != np.asarray(part.poses), axis=1)]
+    poses = np.array(rec.poses)
+    alt = np.array(rec.branch_alternatives)
+    poses[take], alt[take] = rec.branch_alternatives[take], rec.poses[take]
+    fchi2, achi2 = np.array(rec.frame_chi2), np.array(rec.branch_alternative_chi2)
+    fchi2[take], achi2[take] = rec.branch_alternative_chi2[take], rec.frame_chi2[take]
+    out = replace(
+        rec,
+        poses=poses,
+        frame_chi2=fchi2,
+        branch_alternatives=alt,
+        branch_alternative_chi2=achi2,
+        warnings=list(rec.warnings)
+        + [
+            f"frames {[int(i) for i in take]}: pose branch chosen by the curve (their end "
+            "points and tangents fit two branches about equally well)"
+        ],
+    )
+    return out, res
 
 
 def _mean_frame_rms(rec: Reconstruction) -> float:
@@ -120,4 +206,4 @@ def better_fit_to_polylines(
     return replace(other, warnings=[*other.warnings, note])
 
 
-__all__ = ["better_fit_to_polylines", "fit_curve"]
+__all__ = ["better_fit_to_polylines", "fit_curve", "subset_frames"]
