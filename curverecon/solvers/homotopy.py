@@ -187,11 +187,11 @@ _JIT = {"cache": True, "nogil": True, "fastmath": {"contract", "reassoc", "arcp"
 
 
 @numba.njit(**_JIT)
-def _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, want_t):
-    """W[eq, umon] = sum over terms of coef * pmon(q); Wt the same with d pmon/dt (q' = dq)."""
+def _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, want_t, pm, pmt):
+    """W[eq, umon] = sum over terms of coef * pmon(q); Wt the same with d pmon/dt (q' = dq).
+
+    ``pm``, ``pmt``: scratch of one entry per parameter monomial (no allocation per call)."""
     n_pmon = ps.shape[0] - 1
-    pm = np.empty(n_pmon, np.complex128)
-    pmt = np.empty(n_pmon, np.complex128)
     for j in range(n_pmon):
         val = 1.0 + 0.0j
         der = 0.0 + 0.0j
@@ -220,25 +220,47 @@ def _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, wan
 
 
 @numba.njit(**_JIT)
-def _residual_jacobian(us, uv, ue, x, w, f, jac):
+def _residual_jacobian(us, uv, ue, x, w, f, jac, pw, ks, keq):
     """F = W u(x) and F_x = W du/dx."""
-    _residual_jacobian_t(us, uv, ue, x, w, w, f, jac, f, False)
+    _residual_jacobian_t(us, uv, ue, x, w, w, f, jac, f, False, pw, ks, keq)
 
 
 @numba.njit(**_JIT)
-def _residual_jacobian_t(us, uv, ue, x, w, wt, f, jac, ft, want_t):
+def _monomial_equations(terms, n_umon):
+    """CSR of the equations each unknown monomial occurs in: (starts (n_umon + 1), equations);
+    W[a, k] is zero for every other equation a, so the loops skip it."""
+    n_eq = 0
+    for t in range(terms.shape[0]):
+        if terms[t, 0] + 1 > n_eq:
+            n_eq = terms[t, 0] + 1
+    used = np.zeros((n_umon, n_eq), np.bool_)
+    for t in range(terms.shape[0]):
+        used[terms[t, 2], terms[t, 0]] = True
+    starts = np.zeros(n_umon + 1, np.int64)
+    for k in range(n_umon):
+        starts[k + 1] = starts[k] + np.sum(used[k])
+    eqs = np.empty(starts[n_umon], np.int64)
+    for k in range(n_umon):
+        j = starts[k]
+        for a in range(n_eq):
+            if used[k, a]:
+                eqs[j] = a
+                j += 1
+    return starts, eqs
+
+
+@numba.njit(**_JIT)
+def _residual_jacobian_t(us, uv, ue, x, w, wt, f, jac, ft, want_t, pw, ks, keq):
     """F = W u(x), F_x = W du/dx and (``want_t``) F_t = Wt u(x).
 
-    Powers of every unknown come from one table; each monomial's partial derivative in x_v is
-    e_v x_v^(e_v - 1) times the other factors.
+    Powers of every unknown come from one table (``pw``, scratch of shape (n_unknowns, largest
+    exponent + 1)); each monomial's partial derivative in x_v is e_v x_v^(e_v - 1) times the
+    other factors.  ``ks``, ``keq``: the equations each monomial occurs in
+    (:func:`_monomial_equations`).
     """
     n_eq, n_umon = w.shape
     n_var = x.shape[0]
-    max_e = 0
-    for i in range(ue.shape[0]):
-        if ue[i] > max_e:
-            max_e = ue[i]
-    pw = np.empty((n_var, max_e + 1), np.complex128)
+    max_e = pw.shape[1] - 1
     for v in range(n_var):
         pw[v, 0] = 1.0
         for e in range(1, max_e + 1):
@@ -253,7 +275,8 @@ def _residual_jacobian_t(us, uv, ue, x, w, wt, f, jac, ft, want_t):
         val = 1.0 + 0.0j
         for i in range(us[k], us[k + 1]):
             val *= pw[uv[i], ue[i]]
-        for a in range(n_eq):
+        for j in range(ks[k], ks[k + 1]):
+            a = keq[j]
             f[a] += w[a, k] * val
             if want_t:
                 ft[a] += wt[a, k] * val
@@ -265,22 +288,29 @@ def _residual_jacobian_t(us, uv, ue, x, w, wt, f, jac, ft, want_t):
                 else:
                     d *= pw[uv[i2], ue[i2]]
             v = uv[i]
-            for a in range(n_eq):
+            for j in range(ks[k], ks[k + 1]):
+                a = keq[j]
                 jac[a, v] += w[a, k] * d
 
 
 @numba.njit(**_JIT)
-def _solve(a, b, out):
-    """out = a^-1 b by Gaussian elimination with partial pivoting; False if a is singular."""
+def _solve(a, b, out, m, r):
+    """out = a^-1 b by Gaussian elimination with partial pivoting; False if a is singular.
+
+    ``m``, ``r``: scratch of the shapes of ``a`` and ``b``.  Pivots by |Re| + |Im| (within a
+    factor sqrt(2) of the modulus, without its square root)."""
     n = b.shape[0]
-    m = a.copy()
-    r = b.copy()
+    for i in range(n):
+        r[i] = b[i]
+        for k in range(n):
+            m[i, k] = a[i, k]
     for col in range(n):
         piv = col
-        best = abs(m[col, col])
+        best = abs(m[col, col].real) + abs(m[col, col].imag)
         for row in range(col + 1, n):
-            if abs(m[row, col]) > best:
-                best = abs(m[row, col])
+            mag = abs(m[row, col].real) + abs(m[row, col].imag)
+            if mag > best:
+                best = mag
                 piv = row
         if best == 0.0 or not np.isfinite(best):
             return False
@@ -316,13 +346,26 @@ def _norm(x):
 
 
 @numba.njit(**_JIT)
+def _power_table(ue, n_var):
+    """Scratch for the powers of every unknown: (n_var, largest exponent + 1)."""
+    max_e = 0
+    for i in range(ue.shape[0]):
+        if ue[i] > max_e:
+            max_e = ue[i]
+    return np.empty((n_var, max_e + 1), np.complex128)
+
+
+@numba.njit(**_JIT)
 def _evaluate_at(n_eq, us, uv, ue, ps, pv, pe, terms, coef, q, x, f, jac):
     n_umon = us.shape[0] - 1
     w = np.empty((n_eq, n_umon), np.complex128)
     wt = np.empty((n_eq, n_umon), np.complex128)
     dq = np.zeros(q.shape[0], np.complex128)
-    _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, False)
-    _residual_jacobian(us, uv, ue, x, w, f, jac)
+    pm = np.empty(ps.shape[0] - 1, np.complex128)
+    pmt = np.empty(ps.shape[0] - 1, np.complex128)
+    _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, False, pm, pmt)
+    ks, keq = _monomial_equations(terms, n_umon)
+    _residual_jacobian(us, uv, ue, x, w, f, jac, _power_table(ue, x.shape[0]), ks, keq)
 
 
 @numba.njit(**_JIT)
@@ -380,6 +423,12 @@ def _track_paths(
     k4 = np.empty(n_var, np.complex128)
     y = np.empty(n_var, np.complex128)
     dx = np.empty(n_var, np.complex128)
+    pm = np.empty(ps.shape[0] - 1, np.complex128)
+    pmt = np.empty(ps.shape[0] - 1, np.complex128)
+    pw = _power_table(ue, n_var)
+    ks, keq = _monomial_equations(terms, n_umon)
+    lu = np.empty((n_eq, n_var), np.complex128)
+    rhs = np.empty(n_eq, np.complex128)
     for p in range(n_paths):
         x = x_start[p].copy()
         w_at = -1.0
@@ -416,11 +465,13 @@ def _track_paths(
                 if ts != w_at:  # W and Wt at ts (stages 2 and 3 share one; stage 1 reuses
                     # the last accepted step's stage 4)
                     _params_at(q0, q1, d, ts, q, dq)
-                    _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, True)
+                    _coefficient_matrix(
+                        n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, True, pm, pmt
+                    )
                     w_at = ts
-                _residual_jacobian_t(us, uv, ue, y, w, wt, f, jac, ft, True)
+                _residual_jacobian_t(us, uv, ue, y, w, wt, f, jac, ft, True, pw, ks, keq)
                 kk = k1 if stage == 0 else (k2 if stage == 1 else (k3 if stage == 2 else k4))
-                if not _solve(jac, ft, kk):
+                if not _solve(jac, ft, kk, lu, rhs):
                     good = False
                     break
                 for i in range(n_var):
@@ -433,8 +484,8 @@ def _track_paths(
                 good = False
                 prev = 0.0
                 for it in range(n_corr):
-                    _residual_jacobian(us, uv, ue, y, w, f, jac)
-                    if not _solve(jac, f, dx):
+                    _residual_jacobian(us, uv, ue, y, w, f, jac, pw, ks, keq)
+                    if not _solve(jac, f, dx, lu, rhs):
                         break
                     nd = _norm(dx)
                     if it == 0 and nd > tol_pred * scale:
@@ -468,11 +519,11 @@ def _track_paths(
         # final Newton polish at t = 1
         if st == OK:
             _params_at(q0, q1, d, 1.0, q, dq)
-            _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, False)
+            _coefficient_matrix(n_eq, ps, pv, pe, terms, coef, q, dq, n_umon, w, wt, False, pm, pmt)
             w_at = -1.0
             for _ in range(3):
-                _residual_jacobian(us, uv, ue, x, w, f, jac)
-                if not _solve(jac, f, dx):
+                _residual_jacobian(us, uv, ue, x, w, f, jac, pw, ks, keq)
+                if not _solve(jac, f, dx, lu, rhs):
                     break
                 for i in range(n_var):
                     x[i] -= dx[i]
