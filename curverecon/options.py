@@ -335,8 +335,10 @@ class FrameSampleOptions:
     30 % outliers, 20 frames, 1 px / 1 degree: 9 of 10 succeed against 7 of 10 without."""
 
     enabled: bool = True
-    min_frames: int = 5
-    """Fewer frames: four frames are the minimal solver's alone (``robust.four_frames``)."""
+    min_frames: int = 7
+    """Fewer frames: not run.  The outlier test flags at most (N - 5) // 2 frames, none below 7,
+    so a sample's shape would be refitted on all frames anyway; and four frames are the
+    minimal solver's alone (``robust.four_frames``)."""
     max_frames: int = 200
     """More frames: not run.  Each sample scores every frame, and with hundreds of frames one
     frame's pull on the shape is small enough for the outlier test alone (``OutlierOptions``)."""

@@ -85,3 +85,16 @@ def test_clean_frames_do_not_run_the_samples() -> None:
     rec = reconstruct(sc.observations, point_sigma=1.0, tangent_sigma_deg=1.0)
     assert rec.inliers.all()
     assert not any("LO-RANSAC" in w for w in rec.warnings)
+
+
+def test_too_few_frames_to_flag_an_outlier_do_not_run_the_samples() -> None:
+    """Six frames, one of them an outlier: the outlier test can flag none below seven frames
+    (at most (N - 5) // 2), so no sample is drawn (a sample's shape would be refitted on all
+    six frames anyway)."""
+    sc = make_scene(np.random.default_rng(4), 6, 1.0, 1.0)
+    obs = sc.observations
+    ta = obs.tangent_a.copy()
+    c, s = np.cos(0.5), np.sin(0.5)
+    ta[2] = np.array([[c, -s], [s, c]]) @ ta[2]  # 29 degrees off
+    rec = reconstruct(replace(obs, tangent_a=ta), point_sigma=1.0, tangent_sigma_deg=1.0)
+    assert not any("LO-RANSAC" in w for w in rec.warnings)
