@@ -99,6 +99,24 @@ def test_nearly_flat_curves_list_the_truth(seed) -> None:
     assert err.max(axis=1).min() < 1e-9, (truth, res.shapes)
 
 
+def test_a_path_lost_on_the_straight_segment_is_found_by_a_second_homotopy() -> None:
+    """Seed 800,676: the truth's path passes (near) infinity on the straight segment from the
+    start system (tracked carefully it diverges) and a single path retried along detours lands
+    on other paths' endpoints.  A whole second homotopy finds it: nothing is lost."""
+    sc = make_scene(np.random.default_rng(800_676), 4)
+    truth = _truth(sc)
+    obs = sc.observations
+    scale = float(np.mean(obs.cp))
+    target = np.column_stack([obs.cp, obs.dp, obs.ep]).ravel() / scale
+    tracked = homotopy.track(minimal._system(), target)
+    assert tracked.completed >= 1 and tracked.n_failed == 0
+    no_second = replace(homotopy.HomotopyOptions(), full_retries=0)
+    assert homotopy.track(minimal._system(), target, no_second).n_failed >= 1
+    res = minimal.solve(obs)
+    err = np.abs(res.shapes - truth) / np.array([truth[0], 1, 1, 1])
+    assert err.max(axis=1).min() < 1e-9
+
+
 def test_the_truth_is_among_the_solutions(solved) -> None:
     for sc, res in solved:
         truth = _truth(sc)

@@ -70,6 +70,13 @@ class HomotopyOptions:
     """Fresh random detours tried for each failed or duplicated path before it is reported
     (each with half the largest step, a tenth of the predictor tolerance and of the smallest
     step of the try before)."""
+    full_retries: int = 2
+    """Whole second homotopies (every path along one fresh random detour) tried when paths are
+    still lost after ``retries``; their new endpoints fill the lost paths' places.  A single
+    path retried along a detour is a monodromy loop: it ends at *some* solution, often one
+    another path already found, while the lost one can be a path that passes through infinity
+    on the straight segment (seed 800,676: careful tracking diverged, and 1 detour in 8 reached
+    it).  The union of two complete trackings does not depend on that luck."""
     seed: int = 20261125
     """Seed of the detours: the same input gives the same output."""
 
@@ -88,6 +95,8 @@ class TrackResult:
     """Paths that needed at least one fresh detour."""
     recovered: int = 0
     """Paths whose endpoint was found by deflated Newton next to a near-double solution."""
+    completed: int = 0
+    """Lost paths whose place was filled by a new endpoint of a whole second homotopy."""
     failures: dict[str, int] = field(default_factory=dict)
     """Failed paths by reason, after the retries (a path that jumped onto another's endpoint
     counts as 'duplicate'; its status is -1)."""
@@ -696,8 +705,9 @@ def track(
     A retried path follows a fresh random complex detour (the gamma trick) with more careful
     step control at each try (``HomotopyOptions.retries``); its endpoint is accepted only if
     no other path ended there.  Paths that stall just before t = 1 finish by Newton's method
-    there (``_endgame``).  What still fails after
-    ``options.retries`` tries is reported in ``TrackResult.failures`` (a jump as 'duplicate')
+    there (``_endgame``).  Paths still lost then are filled from whole second homotopies
+    (``options.full_retries``: every path along a fresh detour, new endpoints only).  What
+    still fails after that is reported in ``TrackResult.failures`` (a jump as 'duplicate')
     and its endpoint set to NaN: never dropped silently.
     """
     o = options or HomotopyOptions()
@@ -737,6 +747,25 @@ def track(
         status[new_ok[_coincide(x, new_ok, others, duplicate_tolerance)]] = -1
     with np.errstate(all="ignore"):  # deflated Newton may overflow on a path it then rejects
         twins = _recover_twins(system, q1, x, status, rng, duplicate_tolerance)
+    completed = 0
+    for _ in range(o.full_retries):
+        bad = np.flatnonzero(status != OK)
+        if bad.size == 0:
+            break
+        detour = rng.normal(size=q0.shape) + 1j * rng.normal(size=q0.shape)
+        detour *= 0.25 * span / np.linalg.norm(detour)
+        xa, sa, _ = track_once(system, q0, q1, system.start_solutions, detour, o)
+        for y in xa[sa == OK]:
+            known = np.flatnonzero(status == OK)
+            dist = np.linalg.norm(x[known] - y, axis=1)
+            scale = 1.0 + np.minimum(np.linalg.norm(x[known], axis=1), np.linalg.norm(y))
+            if known.size and np.any(dist <= duplicate_tolerance * scale):
+                continue
+            slot, bad = bad[0], bad[1:]
+            x[slot], status[slot] = y, OK
+            completed += 1
+            if bad.size == 0:
+                break
     failures: dict[str, int] = {}
     for code, name in ((-1, "duplicate"), *enumerate(STATUS_NAMES)):
         n = int(np.sum(status == code))
@@ -750,5 +779,6 @@ def track(
         steps=steps,
         retried=int(retried.sum()),
         recovered=twins,
+        completed=completed,
         failures=failures,
     )
