@@ -269,7 +269,9 @@ class CurveOptions:
     """The curve bundle's answer replaces the end-point answer only if its end-point chi2 is
     within this of the end-point answer's, in units of the end-point fit's variance factor
     (chi2 / dof): the 99 % quantile of chi2 with 4 degrees of freedom (the shape), so the
-    answer stays inside the end points' 99 % confidence region (never worse beyond noise)."""
+    answer stays inside the end points' 99 % confidence region (never worse beyond noise).
+    Refused, the end-point answer's std is scaled by sqrt(dchi2 / never_worse_dchi2): the two
+    answers disagree, and the bundle's shape is then just inside the scaled 99 % region."""
 
     variance_floor: float = 1e-30
     """Least variance factor of that test (noise-free end points: float rounding, about 1e-28;

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from curverecon.model.observations import Observations
+from curverecon.options import CurveOptions, ReconstructOptions
 from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
 
@@ -60,3 +61,25 @@ def test_bundle_shape_std_matches_the_spread_over_noise_draws():
     spread = err.std(axis=0, ddof=1) / std
     assert np.all(spread < 1.6), spread
     assert np.all(np.abs(err) / std < 3.5), np.abs(err) / std
+
+
+def test_refused_bundle_widens_the_end_point_std():
+    """A scene (clothoid family, 1 px, 1 degree, 12 frames) whose bundle shape falls outside
+    the end points' 99 % region: the end-point answer stays, its std scaled by
+    sqrt(dchi2 / never_worse_dchi2); unscaled, its own errors were 3.7 and 3.3 std."""
+    scene = make_scene(
+        np.random.default_rng(5212), 12, 1.0, 1.0, with_curve=True, curve_family="clothoid"
+    )
+    rec = reconstruct(scene.observations)
+    off = reconstruct(
+        scene.observations, options=ReconstructOptions(curve=CurveOptions(bundle=False))
+    )
+    info = rec.curve_bundle
+    assert info["accepted"] is False
+    dchi2 = info["end_point_dchi2"]
+    assert dchi2 > CurveOptions().never_worse_dchi2
+    np.testing.assert_allclose(rec.shape, off.shape)
+    np.testing.assert_allclose(rec.std, off.std * np.sqrt(dchi2 / CurveOptions().never_worse_dchi2))
+    z_off = np.abs(off.shape - scene.truth.shape) / off.std
+    z = np.abs(rec.shape - scene.truth.shape) / rec.std
+    assert z_off.max() > 3.0 and z.max() < 3.0, (z_off, z)
