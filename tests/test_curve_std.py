@@ -7,6 +7,8 @@ on the tangents.  Honest: the errors of (c, alpha, beta, phi) over the draws are
 truth within a std (no bias the std does not show) and spread no more than the std says.
 With the former heavy difference penalty (``CurveOptions.bundle_smooth_weight`` 2.0) this
 scene's beta was biased by about 2 std and phi by 1.6 std (spread equal to the std).
+And where the never-worse test refuses the bundle, the end-point answer's std is widened by
+the disagreement (``CurveOptions.never_worse_dchi2``).
 """
 
 from __future__ import annotations
