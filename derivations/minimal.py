@@ -37,8 +37,8 @@ Reduction (each step a fact checked below, on the lean polynomial's terms):
    (c' near c), and there the lean system's Jacobian at the truth is singular to 1e-9 relative
    and paths merged or stalled.  The unsquared system is regular there (its derivative in s_i
    is cp_i O~_i): on fresh noise-free scenes it lists the truth where the lean system did not
-   (README, "The four-frame solver").  Its equations are also of lower degree (C^2 and degree 1
-   in A, B, P, m, against C^4 A^2 B^2 P^2), so a tracking step costs less.
+   (README, "Four frames: the complete minimal solver").  Its equations are also of lower
+   degree (C^2 and degree 1 in A, B, P, m, against C^4 A^2 B^2 P^2), so a step costs less.
 
 The start system: random complex parameters (cp_i, dp_i, ep_i) for the four frames (seeded).
 One solution is made by construction (random complex C, A, B, P, m = sqrt(A B P),
