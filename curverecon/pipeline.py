@@ -131,7 +131,7 @@ def reconstruct_end_points(
     if _outliers_suspected(rec, obs, opts):
         # 1'. outlier frames: hypotheses from four-frame samples (LO-RANSAC on the minimal
         # solver), kept if their shape explains the frames better than the answer's
-        rec = _with_frame_samples(obs, cands, rec, opts, progress)
+        rec = _with_frame_samples(obs, cands, rec, opts)
     if obs.n_frames == minimal.FRAMES:
         # exactly four frames: every shape that fits them exactly, from the minimal solver
         rec = add_minimal_solutions(rec, obs, ps, ts, opts.minimal)
@@ -208,7 +208,6 @@ def _with_frame_samples(
     cands: list[Candidate],
     rec: Reconstruction,
     opts: ReconstructOptions,
-    progress: StageProgress | None,
 ) -> Reconstruction:
     """``rec``, or the answer from the four-frame samples' shape when that shape's robust cost
     on all frames (shape held fixed, every frame at its best pose) is lower than ``rec``'s."""
@@ -220,7 +219,8 @@ def _with_frame_samples(
     current = fixed_shape_fit(obs, rec.shape, ps, ts, opts.search)
     if not cand.robust_cost < robust_cost(current.frame_chi2, o.truncate):
         return rec
-    new = answer_from_hypotheses(obs, [cand, *cands], opts, progress)
+    # steps 2-5 again from the samples' shape (no progress steps: the bar has passed them)
+    new = answer_from_hypotheses(obs, [cand, *cands], opts)
     note = (
         f"outlier frames: the answer comes from LO-RANSAC over {stats.iterations} four-frame "
         "samples (the global search's best fit was pulled by them)"
