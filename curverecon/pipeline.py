@@ -43,7 +43,7 @@ from curverecon.robust.alternatives import equally_good_fits
 from curverecon.robust.branches import flip_ambiguous_frames
 from curverecon.robust.four_frames import add_minimal_solutions
 from curverecon.robust.frame_samples import fixed_shape_fit, frame_sample_hypothesis
-from curverecon.robust.outliers import find_outlier_frames
+from curverecon.robust.outliers import find_outlier_frames, implausible_chi2
 from curverecon.robust.search import Candidate, robust_cost, robust_start
 from curverecon.solvers import minimal
 from curverecon.solvers.linear import frame_matrix, min_frames, solve_linear
@@ -199,8 +199,7 @@ def _outliers_suspected(rec: Reconstruction, obs: Observations, opts: Reconstruc
         return False
     if not rec.inliers.all():
         return True
-    dof = max(int(rec.inliers.sum()) - 4, 1)
-    return rec.chi2 is not None and rec.chi2 > dof + 5.0 * math.sqrt(2.0 * dof) + 10.0
+    return rec.chi2 is not None and implausible_chi2(rec.chi2, int(rec.inliers.sum()))
 
 
 def _with_frame_samples(

@@ -33,6 +33,13 @@ MEDIAN_CHI2_1 = 0.4549364231195724
 """Median of chi2 with one degree of freedom."""
 
 
+def implausible_chi2(chi2: float, n_frames: int) -> bool:
+    """A fit's chi2 too high for the noise: above its n_frames - 4 degrees of freedom by five
+    of their standard deviations plus 10 (outlier frames, or a wrong basin)."""
+    dof = max(n_frames - 4, 1)
+    return chi2 > dof + 5.0 * math.sqrt(2.0 * dof) + 10.0
+
+
 def find_outlier_frames(
     obs: Observations,
     fit: RefineResult,
@@ -55,9 +62,7 @@ def find_outlier_frames(
     # Robust fit (frame-level Cauchy reweighting) so that outlier frames stand out; with an
     # implausible chi2, trimmed refits; then the outlier test on the unweighted, studentised
     # per-frame chi2: drop the worst frame above the threshold, refit, repeat.
-    start_chi2 = fit.chi2
-    dof = max(n - 4, 1)
-    implausible = start_chi2 > dof + 5.0 * math.sqrt(2.0 * dof) + 10.0
+    implausible = implausible_chi2(fit.chi2, n)
     long = n >= o.batch_frames
     st = studentised(obs, fit, w8, o)
     # (a long sequence with a plausible chi2: a frame's pull on the shape is ~4/N of its own,
