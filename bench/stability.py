@@ -82,6 +82,21 @@ def run_linear_scenes(
     return out
 
 
+def failure_rate_listed_at_four(records: list[dict[str, Any]], threshold: float) -> float | None:
+    """Failure rate where a four-frame scene fails only when the truth is not listed.
+
+    Four noise-free frames have several exact solutions (the minimal problem), which the
+    pipeline returns as ``alternatives``; from five frames on the answer must be the truth.
+    """
+    if not records:
+        return None
+    lt = math.log10(threshold)
+    fail = [
+        (r["log10_error_listed"] if r["n_frames"] == 4 else r["log10_error"]) > lt for r in records
+    ]
+    return float(np.mean(fail))
+
+
 def summarise_records(records: list[dict[str, Any]], threshold: float) -> dict[str, Any]:
     """Failure rate (error above ``threshold``), quantiles, and the 1e-9 rate."""
     n = len(records)
