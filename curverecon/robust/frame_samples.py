@@ -6,9 +6,9 @@ degrees off where the truth, refined on the inlier frames alone, had the lower r
 four-frame sample of inliers is not pulled: :class:`FrameSampleEstimator` gives the generic
 loop (:func:`curverecon.robust.ransac.lo_ransac`, PoseLib's calling convention) every real
 shape of a sample (:func:`curverecon.solvers.minimal.solve`), scores a shape on all frames by
-its truncated per-frame tangent misfit (each frame's pose solved for the shape,
-:func:`curverecon.solvers.pose.poses_from_shape`), and refines the best on the frames it
-explains (``refine.start.refine_hypothesis``, the local optimisation).
+its truncated per-frame chi2 with the shape held fixed (:func:`fixed_shape_fit`, the measure
+the answer is then accepted by; ``FrameSampleOptions.score``), and refines the best on the
+frames it explains (``refine.start.refine_hypothesis``, the local optimisation).
 
 :func:`frame_sample_hypothesis` runs the loop and returns the answer as a :class:`Candidate`:
 the shape held fixed and every frame's pose at its best branch, so that its robust cost
@@ -63,6 +63,11 @@ class FrameSampleEstimator:
         minimal_options: MinimalOptions | None = None,
         search: SearchOptions | None = None,
     ) -> None:
+        if options.score not in ("fixed_shape", "tangent"):
+            raise CurveReconError(
+                "FrameSampleOptions.score must be 'fixed_shape' or 'tangent', not "
+                f"{options.score!r}"
+            )
         self.obs = obs
         self.num_data = obs.n_frames
         self.point_sigma = point_sigma
@@ -87,9 +92,16 @@ class FrameSampleEstimator:
         return np.where(np.isfinite(misfit), (misfit / self.tangent_sigma) ** 2, np.inf)
 
     def score_model(self, shape: np.ndarray) -> tuple[float, int]:
-        """(sum of per-frame tangent chi2 truncated at ``options.truncate``, frames below it)."""
-        cost = self._frame_cost(shape)
+        """(sum of per-frame chi2 truncated at ``options.truncate``, frames below it): the
+        chi2 of :func:`fixed_shape_fit`, or the tangent misfit alone (``options.score``)."""
         t = self.options.truncate
+        if self.options.score == "fixed_shape":
+            fit = fixed_shape_fit(
+                self.obs, shape, self.point_sigma, self.tangent_sigma, self.search
+            )
+            cost = fit.frame_chi2
+        else:
+            cost = self._frame_cost(shape)
         return float(np.sum(np.minimum(cost, t))), int(np.sum(cost < t))
 
     def refine_model(self, shape: np.ndarray) -> np.ndarray:
