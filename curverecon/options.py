@@ -404,14 +404,17 @@ class FewFrameSampleOptions:
     max_frames: int = 11
     """More frames: not run.  Where the search counts frames as few (``SearchOptions``'
     ``candidates_few``, below 12 frames) its cost has many shallow minima and the samples
-    pay; the samples cost a fixed 0.2-0.5 s, which the 20-frame reconstruction (0.2 s at most,
-    ``reconstruct_seconds_20_frames``) cannot carry, and noisy data always runs them."""
+    pay; a sample costs a fixed 0.2-0.5 s (a minimal solve, 0.16 s unloaded, and the
+    refinements), which the 20-frame reconstruction (0.2 s at most,
+    ``reconstruct_seconds_20_frames``) cannot carry, and noisy data always runs it."""
     samples: int = 1
     """Samples (spread over the frames, ``robust.frame_samples.spread_samples``), each a
     minimal solve (about 0.16 s).  Exact data: one sample lists the truth with probability
     0.9997 (``minimal_truth_listed_rate``).  Noisy 6-frame, 1 px scenes (accuracy generator,
     seeds 1 and 2, not the bench's, 30 scenes each): successes 42 of 60 without samples, 43
-    with one, 44 with two, at about 0.3 s and 1.3 s more per scene (shared machine)."""
+    with one, 44 with two, where one sample took the mean time per scene from 0.99 s to
+    1.81 s (20 of those scenes, on and off interleaved on one core of the loaded shared
+    machine) and two about twice the extra."""
     refine_per_sample: int = 3
     """Of each sample's solutions, this many with the lowest chi2 on all frames (shape fixed,
     every frame at its best pose) are refined on all frames.  Exact data: the truth's chi2 is
