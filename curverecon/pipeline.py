@@ -3,7 +3,9 @@
 It reads like the README's "How it works" (docs/architecture.md draws it):
 
 1. hypotheses: the global search over the shape (``robust.search``), seeded by the paper's
-   linearisation when it is determined (``solvers.linear``); when the answer of steps 2-5 has
+   linearisation when it is determined (``solvers.linear``); with few frames and no exact fit,
+   also the shapes of a few four-frame samples of the minimal solver, refined on all frames
+   (``robust.frame_samples.few_frame_hypotheses``); when the answer of steps 2-5 has
    outlier frames, also LO-RANSAC over four-frame samples of the minimal solver
    (``robust.frame_samples``), whose shape replaces the search's if it explains the frames
    better;
@@ -42,7 +44,11 @@ from curverecon.refine.ml import refine
 from curverecon.robust.alternatives import equally_good_fits
 from curverecon.robust.branches import flip_ambiguous_frames
 from curverecon.robust.four_frames import add_minimal_solutions
-from curverecon.robust.frame_samples import fixed_shape_fit, frame_sample_hypothesis
+from curverecon.robust.frame_samples import (
+    few_frame_hypotheses,
+    fixed_shape_fit,
+    frame_sample_hypothesis,
+)
 from curverecon.robust.outliers import find_outlier_frames, implausible_chi2
 from curverecon.robust.search import Candidate, robust_cost, robust_start
 from curverecon.solvers import minimal
@@ -125,6 +131,10 @@ def reconstruct_end_points(
     progress.step("hypotheses")
     seeds = _linear_seed(obs, opts.search)
     cands = robust_start(obs, ps, ts, options=opts.search, extra_shapes=seeds)
+    if _few_frame_samples_needed(cands, obs, opts):
+        # few frames, no exact fit: the shapes of a few four-frame samples join the search's
+        extra = few_frame_hypotheses(obs, ps, ts, opts.few_frame_samples, opts.minimal, opts.search)
+        cands = sorted([*cands, *extra], key=lambda c: c.robust_cost)
     if not cands:
         raise CurveReconError("no shape fits the data (the search found no candidate)")
     rec = answer_from_hypotheses(obs, cands, opts, progress)
@@ -189,6 +199,17 @@ def answer_from_hypotheses(
         opts.search,
     )
     return rec
+
+
+def _few_frame_samples_needed(
+    cands: list[Candidate], obs: Observations, opts: ReconstructOptions
+) -> bool:
+    """A frame count the few-frame samples run for (``FewFrameSampleOptions``) and no exact fit
+    among the search's candidates (``SearchOptions.exact_cost``: nothing could beat it)."""
+    o = opts.few_frame_samples
+    if not (o.enabled and opts.method == "auto" and o.min_frames <= obs.n_frames <= o.max_frames):
+        return False
+    return not cands or cands[0].robust_cost > opts.search.exact_cost
 
 
 def _outliers_suspected(rec: Reconstruction, obs: Observations, opts: ReconstructOptions) -> bool:

@@ -16,18 +16,29 @@ the shape held fixed and every frame's pose at its best branch, so that its robu
 (:func:`fixed_shape_fit`).  The pipeline runs it only when the search's answer flags outlier
 frames or fits implausibly (``FrameSampleOptions``): each sample costs one minimal solve
 (about 0.17 s).
+
+With few frames (5 to ``FewFrameSampleOptions.max_frames``) :func:`few_frame_hypotheses` adds
+the shapes of a few samples spread over the frames (:func:`spread_samples`), refined on all
+frames, to the search's candidates when the search found no exact fit: on exact data each
+sample's solutions contain the truth, which fits every frame exactly.
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
 
 from curverecon.errors import CurveReconError
 from curverecon.model.observations import Observations
-from curverecon.options import FrameSampleOptions, MinimalOptions, SearchOptions
-from curverecon.refine.ml import RefineResult, refine
+from curverecon.options import (
+    FewFrameSampleOptions,
+    FrameSampleOptions,
+    MinimalOptions,
+    SearchOptions,
+)
+from curverecon.refine.ml import RefineResult, refine, refine_batch
 from curverecon.refine.start import refine_hypothesis
 from curverecon.robust.ransac import RansacOptions, RansacStats, lo_ransac
 from curverecon.robust.search import Candidate, poses_from_branches, robust_cost, switch_branches
@@ -141,3 +152,58 @@ def frame_sample_hypothesis(
         return None, stats
     fit = fixed_shape_fit(obs, best, point_sigma, tangent_sigma, search)
     return Candidate(fit, robust_cost(fit.frame_chi2, o.truncate), math.nan), stats
+
+
+def spread_samples(n_frames: int, count: int) -> list[np.ndarray]:
+    """Up to ``count`` distinct four-frame samples spread over the frames, deterministically:
+    sample j takes frames floor(i n / 4) + j (mod n), i = 0..3 (a quarter of the sequence
+    apart), repeats skipped; then, if more are asked for, the other samples in lexicographic
+    order."""
+    base = np.arange(minimal.FRAMES) * n_frames // minimal.FRAMES
+    rotations = (tuple(np.sort((base + j) % n_frames)) for j in range(n_frames))
+    others = itertools.combinations(range(n_frames), minimal.FRAMES)
+    out: list[tuple[int, ...]] = []
+    for sample in itertools.chain(rotations, others):
+        if len(out) >= count:
+            break
+        if sample not in out:
+            out.append(tuple(int(i) for i in sample))
+    return [np.array(s) for s in out]
+
+
+def few_frame_hypotheses(
+    obs: Observations,
+    point_sigma: float,
+    tangent_sigma: float,
+    options: FewFrameSampleOptions | None = None,
+    minimal_options: MinimalOptions | None = None,
+    search: SearchOptions | None = None,
+) -> list[Candidate]:
+    """Candidates from the real minimal solutions of ``options.samples`` spread samples (a
+    degenerate sample is replaced by the next of :func:`spread_samples`): of
+    each sample's shapes the ``options.refine_per_sample`` with the lowest chi2 on all frames
+    (shape fixed, every frame at its best branch of (10)) are refined on all frames
+    (``refine.start.refine_hypothesis``); best (lowest robust cost) first."""
+    o = options or FewFrameSampleOptions()
+    w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / tangent_sigma] * 2)
+    meas = obs.measurements()
+    starts: list[np.ndarray] = []
+    solved = 0
+    for sample in spread_samples(obs.n_frames, math.comb(obs.n_frames, minimal.FRAMES)):
+        if solved >= o.samples:
+            break
+        try:
+            shapes = minimal.solve(obs.subset(sample), minimal_options).shapes
+        except CurveReconError:  # a degenerate sample (two equal views, a tangent along A'B'):
+            continue  # the next one
+        solved += 1
+        if shapes.shape[0] == 0:
+            continue
+        poses = switch_branches(obs, shapes, poses_from_branches(obs, shapes), w8)
+        chi2 = refine_batch(meas, shapes, poses, point_sigma, tangent_sigma, max_iter=0)[3]
+        starts += [shapes[k] for k in np.argsort(chi2, kind="stable")[: o.refine_per_sample]]
+    cands = []
+    for shape in starts:
+        fit = refine_hypothesis(obs, shape, point_sigma, tangent_sigma, options=search)
+        cands.append(Candidate(fit, robust_cost(fit.frame_chi2), math.nan))
+    return sorted(cands, key=lambda c: c.robust_cost)
