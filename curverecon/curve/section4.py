@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from curverecon.curve import polyline as pl
+from curverecon.curve.grid_kernel import Grid
 
 #: Crossings flatter than this (|sin| of the angle between the projected line of sight and the
 #: polyline) are rejected as grazing.
@@ -147,9 +148,28 @@ def _distances_for_frame(
     most spacing / 2 (spacing = 0.1 px here, far below the pixel noise the costs are scaled by).
     ``bound``: distances beyond it are returned as inf (the tree stops searching there: the
     truncated costs of the candidates need no more, and most candidates are far from most
-    frames' polylines).
+    frames' polylines).  A finite bound searches a grid of cells one bound wide
+    (``grid_kernel``: the same distances as the tree's, faster for many points).
     """
+    if np.isfinite(bound) and bound > 0:
+        return _dense_grid(poly, spacing, bound).query(pts_xy, bound)
     return _dense_tree(poly, spacing).query(pts_xy, distance_upper_bound=bound)[0]
+
+
+#: Grids of the densified polylines (:class:`grid_kernel.Grid`) by content and bound.
+_GRIDS: dict[tuple, Grid] = {}
+
+
+def _dense_grid(poly: np.ndarray, spacing: float, bound: float) -> Grid:
+    poly = np.ascontiguousarray(poly, dtype=float)
+    key = (poly.shape, poly.tobytes(), spacing, bound)
+    grid = _GRIDS.get(key)
+    if grid is None:
+        grid = Grid(_dense_tree(poly, spacing).data, bound)
+        if len(_GRIDS) >= _TREES_MAX:
+            _GRIDS.clear()
+        _GRIDS[key] = grid
+    return grid
 
 
 #: KD-trees of densified polylines by content: the branch search calls :func:`reconstruct_curve`
@@ -255,9 +275,8 @@ def reconstruct_curve(
 
     # Per-frame crossing candidates for every sample: depth, standard error.
     lengths = [float(pl.arc_length(p)[-1]) for p in polys]
-    cand_z: list[list[float]] = [[] for _ in range(k_total)]
-    cand_frame: list[list[int]] = [[] for _ in range(k_total)]
-    cand_std: list[list[float]] = [[] for _ in range(k_total)]
+    # per frame (in frame order) its candidates' sample, depth, standard error
+    parts: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
     for i in informative:
         origin = (m[i, :, :2] @ xy.T).T + b[i]  # (K, 3): z = 0 point on each line of sight
         extend = 2.0 * sigma + 0.01 * lengths[i]
@@ -278,16 +297,20 @@ def reconstruct_curve(
         g_k = kk[new_group]
         g_z = np.bincount(gid, weights=u, minlength=n_g) / np.maximum(cnt, 1)
         g_s = np.bincount(gid, weights=sn, minlength=n_g) / np.maximum(cnt, 1)
-        for k, z, s in zip(g_k, g_z, g_s, strict=True):
-            cand_z[k].append(float(z))
-            cand_frame[k].append(i)
-            cand_std[k].append(np.sqrt(2.0) * sigma / (view_sin[i] * s))
+        parts.append((g_k, g_z, np.full(len(g_k), i), np.sqrt(2.0) * sigma / (view_sin[i] * g_s)))
 
     # Unary cost of each candidate: truncated squared reprojection distance over all frames.
     trunc = (3.0 * sigma + 1.0) ** 2
-    flat_k = np.array([k for k in range(k_total) for _ in cand_z[k]], dtype=int)
-    flat_z = np.array([z for zs in cand_z for z in zs], dtype=float)
-    flat_f = np.array([f for fs in cand_frame for f in fs], dtype=int)
+    # every candidate, by sample; within a sample in frame order, then the frame's own order
+    if parts:
+        cat_k, cat_z, cat_f, cat_s = (np.concatenate(v) for v in zip(*parts, strict=True))
+    else:
+        cat_k, cat_z, cat_f, cat_s = (np.zeros(0) for _ in range(4))
+    order = np.argsort(cat_k, kind="stable")
+    flat_k = cat_k[order].astype(int)
+    flat_z = cat_z[order].astype(float)
+    flat_f = cat_f[order].astype(int)
+    flat_s = cat_s[order].astype(float)
     unary = np.zeros(len(flat_z))
     if len(flat_z):
         pts0 = np.column_stack([xy[flat_k], flat_z])
@@ -298,19 +321,30 @@ def reconstruct_curve(
         for i in informative:
             dest = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), sigma)
             part = np.empty(len(flat_z))
+            missing = []
             for f, idx in rows.items():
                 key = (dest, src[f])
                 val = _UNARY.get(key)
                 if val is None:
-                    pts_i = _project_xy(pts0[idx], m[i], b[i])
-                    # beyond sqrt(trunc) the cost is trunc whatever the distance: the search
-                    # stops there
-                    dist = _distances_for_frame(pts_i, polys[i], bound=np.sqrt(trunc) * 1.0001)
-                    val = np.minimum(dist**2, trunc)
-                    if len(_UNARY) >= _UNARY_MAX:
-                        _UNARY.clear()
-                    _UNARY[key] = val
-                part[idx] = val
+                    missing.append((key, idx))
+                else:
+                    part[idx] = val
+            if missing:
+                # every missing block of this frame in one query (each point's distance is its
+                # own: the same values as block by block)
+                idx_all = np.concatenate([idx for _, idx in missing])
+                pts_i = _project_xy(pts0[idx_all], m[i], b[i])
+                # beyond sqrt(trunc) the cost is trunc whatever the distance: the search
+                # stops there
+                dist = _distances_for_frame(pts_i, polys[i], bound=np.sqrt(trunc) * 1.0001)
+                val_all = np.minimum(dist**2, trunc)
+                part[idx_all] = val_all
+                if len(_UNARY) + len(missing) > _UNARY_MAX:
+                    _UNARY.clear()
+                off = 0
+                for key, idx in missing:
+                    _UNARY[key] = val_all[off : off + len(idx)]
+                    off += len(idx)
             unary += part
     unary /= sigma**2
 
@@ -320,7 +354,7 @@ def reconstruct_curve(
     step = max(step, 1e-9)
     miss_cost = len(informative) * trunc / sigma**2  # as bad as a candidate every frame rejects
     jump_w = 0.5  # cost per (depth slope)^2, in units of squared sigmas
-    offsets = np.concatenate([[0], np.cumsum([len(c) for c in cand_z])])
+    offsets = np.concatenate([[0], np.cumsum(np.bincount(flat_k, minlength=k_total))])
     zs = [flat_z[offsets[k] : offsets[k + 1]] for k in range(k_total)]
     us = [unary[offsets[k] : offsets[k + 1]] for k in range(k_total)]
     # Endpoint A: depth 0 exactly (translations put A at z = 0).
@@ -391,7 +425,6 @@ def reconstruct_curve(
     if len(flat_z):
         # every sample at once: the crossings within the gate of the DP depth, one per frame
         # (the nearest; the first of equals), summed per sample in frame order
-        flat_s = np.array([v for ss in cand_std for v in ss], dtype=float)
         dz = np.abs(flat_z - z_dp[flat_k])
         inner = (flat_k > 0) & (flat_k < k_total - 1)
         near = inner & ~interpolated[flat_k] & (dz <= np.maximum(3.0 * flat_s, 2.0 * sigma))
