@@ -156,6 +156,17 @@ def _distances_for_frame(
     return _dense_tree(poly, spacing).query(pts_xy, distance_upper_bound=bound)[0]
 
 
+def _nearest_distances(pts_xy: np.ndarray, poly: np.ndarray, grid_w: float) -> np.ndarray:
+    """:func:`_distances_for_frame` without a bound: the grid of cells ``grid_w`` wide for the
+    points that close to the polyline (their nearest vertex is within the 3 x 3 cells around
+    them), the tree for the others."""
+    dist = _distances_for_frame(pts_xy, poly, bound=grid_w)
+    far = ~np.isfinite(dist)
+    if far.any():
+        dist[far] = _distances_for_frame(pts_xy[far], poly)
+    return dist
+
+
 #: Grids of the densified polylines (:class:`grid_kernel.Grid`) by content and bound.
 _GRIDS: dict[tuple, Grid] = {}
 
@@ -204,6 +215,38 @@ _UNARY_MAX = 50_000
 
 def _poly_key(poly: np.ndarray) -> bytes:
     return np.ascontiguousarray(poly, dtype=float).tobytes() + repr(np.shape(poly)).encode()
+
+
+#: Crossing candidates of one frame (:func:`_frame_candidates`) by content.
+_CROSSINGS: dict[tuple, tuple | None] = {}
+
+
+def _frame_candidates(poly, mi, bi, xy, sigma: float, length: float):
+    """Frame i's crossings with frame 0's lines of sight through the samples ``xy`` (frame 0
+    camera -> frame i camera ``mi``, ``bi``), merged where pixel noise splits one: (sample,
+    depth, |sin| of the crossing angle) per candidate, by sample then depth; None if none."""
+    r = mi[:, 2]
+    view_sin = np.hypot(r[0], r[1])
+    origin = (mi[:, :2] @ xy.T).T + bi  # (K, 3): z = 0 point on each line of sight
+    extend = 2.0 * sigma + 0.01 * length
+    kk, u, sn = pl.parallel_line_crossings(poly, origin[:, :2], r[:2], extend=extend)
+    ok = sn >= MIN_CROSSING_SIN
+    kk, u, sn = kk[ok], u[ok], sn[ok]
+    order = np.lexsort((u, kk))
+    kk, u, sn = kk[order], u[order], sn[order]
+    if kk.size == 0:
+        return None
+    # Merge the crossings that pixel noise splits into a tight cluster (wiggles of a noisy
+    # polyline near one true crossing): image distance along the line below 4 sigma.
+    gap_px = np.diff(u) * view_sin
+    new_group = np.concatenate([[True], (np.diff(kk) != 0) | (gap_px > 4.0 * sigma)])
+    gid = np.cumsum(new_group) - 1
+    n_g = int(gid[-1]) + 1 if len(gid) else 0
+    cnt = np.bincount(gid, minlength=n_g)
+    g_k = kk[new_group]
+    g_z = np.bincount(gid, weights=u, minlength=n_g) / np.maximum(cnt, 1)
+    g_s = np.bincount(gid, weights=sn, minlength=n_g) / np.maximum(cnt, 1)
+    return g_k, g_z, g_s
 
 
 def _project_xy(pts: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -277,26 +320,19 @@ def reconstruct_curve(
     lengths = [float(pl.arc_length(p)[-1]) for p in polys]
     # per frame (in frame order) its candidates' sample, depth, standard error
     parts: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+    xy_key = xy.tobytes()
     for i in informative:
-        origin = (m[i, :, :2] @ xy.T).T + b[i]  # (K, 3): z = 0 point on each line of sight
-        extend = 2.0 * sigma + 0.01 * lengths[i]
-        kk, u, sn = pl.parallel_line_crossings(polys[i], origin[:, :2], r[i, :2], extend=extend)
-        ok = sn >= MIN_CROSSING_SIN
-        kk, u, sn = kk[ok], u[ok], sn[ok]
-        order = np.lexsort((u, kk))
-        kk, u, sn = kk[order], u[order], sn[order]
-        if kk.size == 0:  # no usable crossing in this frame
+        # by content: a trial of the branch search changes one frame's pose, not the others'
+        key = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), xy_key, sigma)
+        found = _CROSSINGS.get(key)
+        if found is None:
+            found = _frame_candidates(polys[i], m[i], b[i], xy, sigma, lengths[i])
+            if len(_CROSSINGS) >= _UNARY_MAX:
+                _CROSSINGS.clear()
+            _CROSSINGS[key] = found
+        if found is None:  # no usable crossing in this frame
             continue
-        # Merge the crossings that pixel noise splits into a tight cluster (wiggles of a noisy
-        # polyline near one true crossing): image distance along the line below 4 sigma.
-        gap_px = np.diff(u) * view_sin[i]
-        new_group = np.concatenate([[True], (np.diff(kk) != 0) | (gap_px > 4.0 * sigma)])
-        gid = np.cumsum(new_group) - 1
-        n_g = int(gid[-1]) + 1 if len(gid) else 0
-        cnt = np.bincount(gid, minlength=n_g)
-        g_k = kk[new_group]
-        g_z = np.bincount(gid, weights=u, minlength=n_g) / np.maximum(cnt, 1)
-        g_s = np.bincount(gid, weights=sn, minlength=n_g) / np.maximum(cnt, 1)
+        g_k, g_z, g_s = found
         parts.append((g_k, g_z, np.full(len(g_k), i), np.sqrt(2.0) * sigma / (view_sin[i] * g_s)))
 
     # Unary cost of each candidate: truncated squared reprojection distance over all frames.
@@ -464,9 +500,10 @@ def reconstruct_curve(
 
     # Consistency of every frame with the recovered curve: median reprojection distance.
     frame_residual = np.zeros(n_frames)
+    grid_w = np.sqrt(trunc) * 1.0001  # the unary cost's grids (built already)
     for i in range(n_frames):
         proj_i = points @ m[i].T + b[i]
-        frame_residual[i] = float(np.median(_distances_for_frame(proj_i[:, :2], polys[i])))
+        frame_residual[i] = float(np.median(_nearest_distances(proj_i[:, :2], polys[i], grid_w)))
     limit = 3.0 * sigma + 1.0
     bad_frames = [i for i in range(n_frames) if frame_residual[i] > limit]
     if bad_frames:
