@@ -1013,12 +1013,16 @@ def _gauss_newton_tsvd(residual, p, max_iter: int, rcond: float, abs_tol: float)
     return p, cost
 
 
-def _rot_zyx(theta: float, tau: float, delta: float) -> np.ndarray:
+def _rot_zyx(theta: float, tau: np.ndarray, delta: np.ndarray) -> np.ndarray:
+    """(n, 3, 3) rotations ``Rz(theta) Ry(tau) Rx(delta)`` for n pairs (tau, delta)."""
     ct, st, cd, sd = np.cos(tau), np.sin(tau), np.cos(delta), np.sin(delta)
     ch, sh = np.cos(theta), np.sin(theta)
+    n = len(tau)
     rz = np.array([[ch, -sh, 0.0], [sh, ch, 0.0], [0.0, 0.0, 1.0]])
-    ry = np.array([[ct, 0.0, st], [0.0, 1.0, 0.0], [-st, 0.0, ct]])
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, cd, -sd], [0.0, sd, cd]])
+    ry = np.zeros((n, 3, 3))
+    ry[:, 0, 0], ry[:, 0, 2], ry[:, 1, 1], ry[:, 2, 0], ry[:, 2, 2] = ct, st, 1.0, -st, ct
+    rx = np.zeros((n, 3, 3))
+    rx[:, 0, 0], rx[:, 1, 1], rx[:, 1, 2], rx[:, 2, 1], rx[:, 2, 2] = 1.0, cd, -sd, sd, cd
     return rz @ ry @ rx
 
 
@@ -1045,13 +1049,11 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     theta = float(np.arctan2(chord[1], chord[0]))
     pts = prob.basis.values(np.linspace(0.0, 1.0, 40)) @ ctrl - a3
     tree = cKDTree(pl.resample(poly, 200)[0])
-    mms = [
-        _rot_zyx(theta, tau, delta) @ cmat.T
-        for tau in sorted({tau_abs, -tau_abs})
-        for delta in np.radians(np.arange(0.0, 360.0, 10.0))
-    ]
+    deltas = np.radians(np.arange(0.0, 360.0, 10.0))
+    taus = np.array(sorted({tau_abs, -tau_abs}))
+    mms = _rot_zyx(theta, np.repeat(taus, len(deltas)), np.tile(deltas, len(taus))) @ cmat.T
     # every sweep pose's projected curve in one query (the same distances as one by one)
-    proj = np.stack([pts @ mm[:2].T + poly[0] for mm in mms])
+    proj = np.einsum("pc,mjc->mpj", pts, mms[:, :2]) + poly[0]
     dist = tree.query(proj.reshape(-1, 2))[0].reshape(len(mms), len(pts))
     cands = [(float(np.mean(d**2)), j, mm) for j, (d, mm) in enumerate(zip(dist, mms, strict=True))]
     cands.sort(key=lambda t: t[:2])
