@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from curverecon.curve import polyline as pl
-from curverecon.curve.grid_kernel import Grid
+from curverecon.curve.section4_kernel import Grid, depth_path
 
 #: Crossings flatter than this (|sin| of the angle between the projected line of sight and the
 #: polyline) are rejected as grazing.
@@ -149,7 +149,7 @@ def _distances_for_frame(
     ``bound``: distances beyond it are returned as inf (the tree stops searching there: the
     truncated costs of the candidates need no more, and most candidates are far from most
     frames' polylines).  A finite bound searches a grid of cells one bound wide
-    (``grid_kernel``: the same distances as the tree's, faster for many points).
+    (``section4_kernel.Grid``: the same distances as the tree's, faster for many points).
     """
     if np.isfinite(bound) and bound > 0:
         return _dense_grid(poly, spacing, bound).query(pts_xy, bound)
@@ -167,7 +167,7 @@ def _nearest_distances(pts_xy: np.ndarray, poly: np.ndarray, grid_w: float) -> n
     return dist
 
 
-#: Grids of the densified polylines (:class:`grid_kernel.Grid`) by content and bound.
+#: Grids of the densified polylines (:class:`section4_kernel.Grid`) by content and bound.
 _GRIDS: dict[tuple, Grid] = {}
 
 
@@ -411,46 +411,11 @@ def reconstruct_curve(
     zs[-1] = np.array([zb])
     us[-1] = np.array([0.0])
 
-    big = 1e300
-    cost_prev = us[0].copy()
-    z_prev = zs[0]
-    last_valid_gap = np.zeros(1)  # samples since the state's last real candidate (for missing)
-    back: list[np.ndarray] = []
-    # Each state carries its depth; the "missing" state carries the previous depth forward.
-    state_z = [zs[0]]
-    for k in range(1, k_total):
-        zk = zs[k]
-        # Transition to real candidates.
-        if len(zk):
-            gap = last_valid_gap[None, :] + 1.0
-            slope = (zk[:, None] - z_prev[None, :]) / (step * gap)
-            tot = cost_prev[None, :] + jump_w * slope**2
-            j = np.argmin(tot, axis=1)
-            c_real = tot[np.arange(len(zk)), j] + us[k]
-        else:
-            j = np.zeros(0, dtype=int)
-            c_real = np.zeros(0)
-        # Transition to the missing state (keeps the best previous state's depth).
-        jm = int(np.argmin(cost_prev)) if len(cost_prev) else 0
-        c_miss = cost_prev[jm] + miss_cost if len(cost_prev) else big
-        allow_missing = 0 < k < k_total - 1
-        if allow_missing:
-            new_z = np.concatenate([zk, [z_prev[jm]]])
-            new_cost = np.concatenate([c_real, [c_miss]])
-            new_gap = np.concatenate([np.zeros(len(zk)), [last_valid_gap[jm] + 1.0]])
-            back.append(np.concatenate([j, [jm]]))
-        else:
-            new_z, new_cost, new_gap = zk, c_real, np.zeros(len(zk))
-            back.append(j)
-        z_prev, cost_prev, last_valid_gap = new_z, new_cost, new_gap
-        state_z.append(new_z)
-    # Backtrack.
-    choice = np.zeros(k_total, dtype=int)
-    choice[-1] = int(np.argmin(cost_prev))
-    for k in range(k_total - 1, 0, -1):
-        choice[k - 1] = back[k - 1][choice[k]]
-    interpolated = np.array([choice[k] >= len(zs[k]) for k in range(k_total)], dtype=bool)
-    z_dp = np.array([state_z[k][choice[k]] for k in range(k_total)])
+    # the dynamic programme (section4_kernel.depth_path) on every sample's states at once
+    zz = np.concatenate(zs)
+    uu = np.concatenate(us)
+    offs = np.concatenate([[0], np.cumsum([len(v) for v in zs])]).astype(np.int64)
+    z_dp, interpolated = depth_path(zz, uu, offs, float(step), jump_w, float(miss_cost))
 
     # Refinement: inverse-variance mean of the crossings (one per frame) that agree with the DP.
     z_ref = z_dp.copy()

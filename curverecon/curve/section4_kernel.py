@@ -1,5 +1,8 @@
-"""Distances of points to the nearest of many fixed 2-D points within a bound: a uniform grid
-of cells one bound wide and a numba loop, one core (section 4's unary cost, ``curve.section4``).
+"""Section 4's loops (``curve.section4``) in numba, one core: distances within a bound on a
+uniform grid, and the dynamic programme along the curve.
+
+Distances of points to the nearest of many fixed 2-D points within a bound (:class:`Grid`):
+a uniform grid of cells one bound wide.
 
 Section 4 scores every crossing candidate by its distance from every frame's densified
 polyline, truncated at a bound: a k-d tree query with ``distance_upper_bound`` per (frame,
@@ -77,3 +80,72 @@ def _query(pts, start, x0, y0, cell, nx, ny, q, bound):
         dist = math.sqrt(best)
         out[p] = dist if dist < bound else np.inf
     return out
+
+
+@numba.njit(**_JIT)
+def depth_path(z, u, offs, step, jump_w, miss_cost):
+    """Section 4's dynamic programme along the curve (``section4.reconstruct_curve``): sample k's
+    candidates are depths z[offs[k]:offs[k + 1]] with unary costs u[...]; between samples the
+    cost ``jump_w`` (depth slope)^2, the slope over the samples since the state's last real
+    candidate; every sample but the first and the last also has a "missing" state (the best
+    previous state's depth carried on, at ``miss_cost``).  Returns (z per sample, whether the
+    sample took the missing state).  Ties: the first state, as ``np.argmin``."""
+    kt = offs.shape[0] - 1
+    cap = offs[kt] + kt
+    st_z = np.empty(cap)
+    st_back = np.empty(cap, np.int64)
+    st_off = np.empty(kt + 1, np.int64)
+    cost = np.empty(cap)
+    gap = np.empty(cap)
+    # sample 0: its candidates (one, A at depth 0)
+    n0 = offs[1] - offs[0]
+    st_off[0] = 0
+    for a in range(n0):
+        st_z[a] = z[offs[0] + a]
+        cost[a] = u[offs[0] + a]
+        gap[a] = 0.0
+        st_back[a] = 0
+    st_off[1] = n0
+    for k in range(1, kt):
+        p0, p1 = st_off[k - 1], st_off[k]
+        q = p1
+        for c in range(offs[k], offs[k + 1]):
+            zk = z[c]
+            best = np.inf
+            bj = -1
+            for p in range(p0, p1):
+                s = (zk - st_z[p]) / (step * (gap[p] + 1.0))
+                t = cost[p] + jump_w * (s * s)
+                if bj < 0 or t < best:
+                    best = t
+                    bj = p
+            st_z[q] = zk
+            cost[q] = best + u[c]
+            gap[q] = 0.0
+            st_back[q] = bj - p0
+            q += 1
+        if 0 < k < kt - 1:
+            jm = p0
+            for p in range(p0 + 1, p1):
+                if cost[p] < cost[jm]:
+                    jm = p
+            st_z[q] = st_z[jm]
+            cost[q] = cost[jm] + miss_cost
+            gap[q] = gap[jm] + 1.0
+            st_back[q] = jm - p0
+            q += 1
+        st_off[k + 1] = q
+    # backtrack from the cheapest final state
+    z_dp = np.empty(kt)
+    missing = np.zeros(kt, np.bool_)
+    a0, a1 = st_off[kt - 1], st_off[kt]
+    ch = 0
+    for p in range(a0 + 1, a1):
+        if cost[p] < cost[a0 + ch]:
+            ch = p - a0
+    for k in range(kt - 1, -1, -1):
+        p = st_off[k] + ch
+        z_dp[k] = st_z[p]
+        missing[k] = ch >= offs[k + 1] - offs[k]
+        ch = st_back[p]
+    return z_dp, missing
