@@ -174,7 +174,10 @@ def test_starts_from_other_frames_come_back_in_frame_0_coordinates():
     the same, every start that ends off costs far more.  Which starts reach it is not stable:
     from these identity poses a perturbation of the polylines by 1e-10 px (or the rounding of
     another but equivalent solve) moves the starts from frames 0, 1, 5 and 7 between the true
-    curve and basins 1.5-120 % off (hence several starts); at least two reach it."""
+    curve and basins 1.5-120 % off (hence several starts); at least two reach it.  A start
+    can also reach the true curve without converging within the iteration cap (frame 0's after
+    the numba kernels' rounding: 180 iterations, cost 0.97 against 0.24): such a start is
+    neither good nor bad (only the gauge is checked)."""
     from curverecon.curve.bundle import bundle_from_frame
 
     scene = make_scene(np.random.default_rng(5), 8, with_curve=True)
@@ -188,10 +191,12 @@ def test_starts_from_other_frames_come_back_in_frame_0_coordinates():
         assert np.allclose(res.m[0], np.eye(3), atol=1e-9) and np.allclose(res.b[0], 0.0)
         assert abs(res.control[0, 2]) < 1e-9  # A at depth 0
         pts = res.curve_points()
-        if curve_error(pts, scene.curve_3d) < 1e-4:
+        err = curve_error(pts, scene.curve_3d)
+        if err < 1e-4:
             assert np.allclose(pts[0, :2], scene.truth.A3[0, :2], atol=0.05)
             assert np.max(res.rms) < 0.05
-            good.append(res.cost)
+            if res.converged:
+                good.append(res.cost)
         else:
             bad.append(res.cost)
     assert len(good) >= 2

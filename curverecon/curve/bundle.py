@@ -84,6 +84,12 @@ import numpy as np
 from scipy.interpolate import BSpline
 
 from curverecon.curve import polyline as pl
+from curverecon.curve.bundle_kernel import (
+    foot_parameters,
+    forward_rows,
+    polyline_normal_blocks,
+    segment_offsets,
+)
 from curverecon.options import CurveOptions
 
 #: Control points of the curve's cubic B-spline (default; fewer for short polylines).
@@ -544,76 +550,52 @@ class _Problem:
         self.q_all = np.vstack([p[1:-1] for p in polys])
         self.q_fid = np.repeat(np.arange(n), cnt)
         self.q_cnt = cnt
+        self.q_lo = np.concatenate([[0], np.cumsum(cnt)[:-1]]).astype(np.int64)
         self.end_img = np.stack([np.stack([p[0], p[-1]]) for p in polys])  # (N, 2, 2)
         vcnt = np.array([len(p) for p in polys])
         self.v_all = np.vstack(polys)
         self.v_fid = np.repeat(np.arange(n), vcnt)
         self.v_lo = np.concatenate([[0], np.cumsum(vcnt)[:-1]])
         self.v_hi = self.v_lo + vcnt - 1  # index of each polyline's last vertex
-        self.v_tree = None
-        self.v_bound = 0.0
         self._last = None  # (state, foot points, reverse-term search) of the last evaluation
         self.n_rev = len(self.rev_basis)
 
-    def _nearest_vertex(self, pts: np.ndarray, fid: np.ndarray) -> np.ndarray:
-        """Global index (into ``v_all``) of the nearest vertex of each point's own polyline."""
-        from scipy.spatial import cKDTree
-
-        need = float(np.max(np.abs(pts))) if len(pts) else 0.0
-        if self.v_tree is None or not need <= self.v_bound:
-            # frames apart along a third axis by more than any in-frame distance
-            self.v_bound = 4.0 * max(need, float(np.max(np.abs(self.v_all))), 1.0)
-            self.v_off = 4.0 * self.v_bound + 1.0
-            self.v_tree = cKDTree(np.column_stack([self.v_all, self.v_fid * self.v_off]))
+    def _to_polylines(self, pts: np.ndarray, fid: np.ndarray):
+        """:meth:`_to_polyline` for points of many frames (``fid``: each point's frame): the
+        nearest vertex of the point's own polyline by an exact scan, then
+        :func:`_segment_offsets` (both in ``bundle_kernel.segment_offsets``)."""
         if not np.all(np.isfinite(pts)):
             pts = np.nan_to_num(pts, nan=0.0, posinf=0.0, neginf=0.0)
-        return self.v_tree.query(np.column_stack([pts, fid * self.v_off]))[1]
+        fid = np.asarray(fid, np.int64)
+        order = None
+        if np.any(np.diff(fid) < 0):  # the kernel takes each frame's points as one run
+            order = np.argsort(fid, kind="stable")
+            fid, pts = fid[order], pts[order]
+        frames = np.arange(self.n)
+        qlo = np.searchsorted(fid, frames)
+        qhi = np.searchsorted(fid, frames, side="right")
+        dirn, r = segment_offsets(
+            self.v_all, self.v_lo, self.v_hi, np.ascontiguousarray(pts, float), qlo, qhi
+        )
+        if order is not None:
+            dirn[order], r[order] = dirn.copy(), r.copy()
+        return dirn, r
 
-    def _to_polylines(self, pts: np.ndarray, fid: np.ndarray):
-        """:meth:`_to_polyline` for points of many frames (``fid``: each point's frame)."""
-        j = self._nearest_vertex(pts, fid)
-        return _segment_offsets(self.v_all, pts, j, self.v_lo[fid], self.v_hi[fid])
-
-    def _all_foot_points(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
-        """:meth:`foot_points` of every frame's interior polyline points at once."""
-        from scipy.spatial import cKDTree
-
-        n, q, fid = self.n, self.q_all, self.q_fid
-        g = len(self.u_grid)
+    def _all_foot_points(
+        self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, ps: np.ndarray | None = None
+    ) -> np.ndarray:
+        """:meth:`foot_points` of every frame's interior polyline points at once (the search
+        and the Newton steps in ``bundle_kernel.foot_parameters``)."""
         proj = np.einsum("gc,njc->ngj", self.n_grid @ ctrl, m[:, :2]) + b[:, None, :2]
-        flat = proj.reshape(-1, 2)
-        if not np.all(np.isfinite(flat)):
-            flat = np.nan_to_num(flat, nan=0.0, posinf=0.0, neginf=0.0)
-        off = 4.0 * max(float(np.max(np.abs(flat))), float(np.max(np.abs(q))), 1.0) + 1.0
-        tree = cKDTree(np.column_stack([flat, np.repeat(np.arange(n), g) * off]))
-        j = tree.query(np.column_stack([q, fid * off]))[1] - fid * g
-        best_u = np.zeros(len(q))
-        best_d = np.full(len(q), np.inf)
-        du = self.u_grid[1] - self.u_grid[0]
-        for js in (np.maximum(j - 1, 0), np.minimum(j, g - 2)):
-            s0, s1 = proj[fid, js], proj[fid, js + 1]
-            seg = s1 - s0
-            len2 = np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-300)
-            t = np.clip(np.einsum("ij,ij->i", q - s0, seg) / len2, 0.0, 1.0)
-            d = np.sum((s0 + t[:, None] * seg - q) ** 2, axis=1)
-            take = d < best_d
-            best_d = np.where(take, d, best_d)
-            best_u = np.where(take, self.u_grid[js] + t * du, best_u)
-        u = best_u
+        if not np.all(np.isfinite(proj)):
+            proj = np.nan_to_num(proj, nan=0.0, posinf=0.0, neginf=0.0)
         # the projected curve per knot span as a cubic in the span's local coordinate: a point's
         # value and derivatives cost a gather of 4 x 2 coefficients, not of K basis functions
-        ps = self._projected_spans(ctrl, m, b)
-        spans = self.basis.spans
-        for _ in range(2):  # Newton on |p(u) - q|^2
-            c, x = self._span_local(ps, fid, u)
-            e = ((c[:, 3] * x + c[:, 2]) * x + c[:, 1]) * x + c[:, 0] - q
-            d1 = ((3.0 * c[:, 3] * x + 2.0 * c[:, 2]) * x + c[:, 1]) * spans
-            dd = (6.0 * c[:, 3] * x + 2.0 * c[:, 2]) * spans**2
-            g1 = np.einsum("ij,ij->i", d1, e)
-            g2 = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", dd, e)
-            step = np.where(g2 > 0, -g1 / np.where(g2 > 0, g2, 1.0), 0.0)
-            u = np.clip(u + np.clip(step, -du, du), 0.0, 1.0)
-        return u
+        if ps is None:
+            ps = self._projected_spans(ctrl, m, b)
+        return foot_parameters(
+            np.ascontiguousarray(proj), self.u_grid, ps, self.q_all, self.q_lo, self.q_cnt
+        )
 
     def _projected_spans(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
         """(N, spans, 4, 2): every frame's projected curve, per knot span the power-series
@@ -622,13 +604,6 @@ class _Problem:
         ps = np.einsum("sdc,njc->nsdj", sc, m[:, :2])
         ps[:, :, 0] += b[:, None, :2]
         return ps
-
-    def _span_local(self, ps: np.ndarray, fid: np.ndarray, u: np.ndarray):
-        """Coefficients (Q, 4, 2) of each point's span (frame ``fid``) and the local coordinate
-        (Q, 1) of u in it."""
-        t = np.clip(u, 0.0, 1.0) * self.basis.spans
-        j = np.minimum(t.astype(int), self.basis.spans - 1)
-        return ps[fid, j], (t - j)[:, None]
 
     def _jc_rows(self, nus: np.ndarray, dm: np.ndarray) -> np.ndarray:
         """Curve-parameter Jacobian rows ``sum_k nus[r, k] dm[r, c]`` at the free (k, c)."""
@@ -674,28 +649,25 @@ class _Problem:
         b: np.ndarray,
         jac: bool = True,
         curve_jac: bool = True,
+        compact: bool = False,
     ):
         """Every frame's rows of :meth:`frame_rows` at once (the same residuals, in another
         order) and the regulariser's.  Returns (r, jc, jp, frame of each row (-1: the
         regulariser), per-frame RMS px); jc, jp None without ``jac``, jc None without
-        ``curve_jac`` (the pose search)."""
+        ``curve_jac`` (the pose search).  ``compact``: the polyline rows (the first
+        ``len(nus)``) of the curve Jacobian in factored form, jc = (nus, dmw, the other rows
+        dense): row i is ``nus[i, k] * dmw[i, c]`` at column ``cidx[k, c]``
+        (:meth:`normal_equations`)."""
         n, s, basis = self.n, self.sigma, self.basis
         fid = self.q_fid
         # LM evaluates each accepted state twice (the trial, then the Jacobian): the searches
         # (foot points, the reverse term's nearest polyline segments) are kept for the last state
         key = (ctrl.tobytes(), m.tobytes(), b.tobytes())
         cached = self._last if self._last is not None and self._last[0] == key else None
-        u = cached[1] if cached else self._all_foot_points(ctrl, m, b)
-        c, xl = self._span_local(self._projected_spans(ctrl, m, b), fid, u)
-        e = ((c[:, 3] * xl + c[:, 2]) * xl + c[:, 1]) * xl + c[:, 0] - self.q_all
-        tan = ((3.0 * c[:, 3] * xl + 2.0 * c[:, 2]) * xl + c[:, 1]) * basis.spans
-        tn = np.sqrt(np.einsum("ij,ij->i", tan, tan))
-        nrm = np.column_stack([-tan[:, 1], tan[:, 0]]) / np.maximum(tn, 1e-300)[:, None]
-        interior = (u > 0.0) & (u < 1.0) & (tn > 0)
-        dist2 = np.einsum("ij,ij->i", e, e)
-        dist = np.sqrt(dist2)
-        direc = np.where(interior[:, None], nrm, e / np.maximum(dist, 1e-300)[:, None])
-        r_fw = np.einsum("ij,ij->i", direc, e)
+        ps_all = self._projected_spans(ctrl, m, b)
+        u = cached[1] if cached else self._all_foot_points(ctrl, m, b, ps_all)
+        # the offset direction (the normal at the foot point) and the signed distance
+        direc, r_fw, dist2 = forward_rows(ps_all, u, self.q_all, self.q_lo, self.q_cnt)
         with np.errstate(invalid="ignore", divide="ignore"):
             rms = np.sqrt(np.bincount(fid, dist2, minlength=n) / self.q_cnt)
         # reverse term
@@ -725,7 +697,10 @@ class _Problem:
             yy = np.einsum("ijc,ic->ij", mr, xx)
             wj = np.where(big, HUBER_K / np.maximum(fa, 1e-300), 1.0) * wt
             scale = (wj / s)[:, None]
-            jcs.append(self._jc_rows(nus, dm) * scale if curve_jac else None)
+            if compact:
+                jcs.append((nus, dm * scale))
+            else:
+                jcs.append(self._jc_rows(nus, dm) * scale if curve_jac else None)
             jps.append(self._jp_rows(dirs, yy) * scale)
         # the polyline's end points are the images of A and B
         er, ejc, ejp = self._end_rows(ctrl, m, b, self.end_img, s, jac)
@@ -765,7 +740,9 @@ class _Problem:
             res[0] = res[0] * pw[rows_f]
             er = er * pw[:, None]
             if jac:
-                if curve_jac:
+                if compact:
+                    jcs[0] = (jcs[0][0], jcs[0][1] * pw[rows_f][:, None])
+                elif curve_jac:
                     jcs[0] = jcs[0] * pw[rows_f][:, None]
                 jps[0] = jps[0] * pw[rows_f][:, None]
                 ejc = ejc * pw[:, None, None]
@@ -826,12 +803,18 @@ class _Problem:
         jp = np.vstack([jp, np.zeros((len(reg), 5))])
         if not curve_jac:
             return rr, None, jp, rows, rms
-        jc = np.vstack(jcs) * fw[rows[: len(rows) - len(reg)]][:, None]
         jreg = np.zeros((len(reg), self.n_curve))
         for cc in range(3):
             col = self.cidx[:, cc]
             ok = col >= 0
             jreg[cc::3][:, col[ok]] = self.dreg[:, ok] * wreg
+        if compact:
+            nus, dmw = jcs[0]
+            n_poly = len(nus)
+            rest = jcs[1] * fw[rows[n_poly : len(rows) - len(reg)]][:, None]
+            factored = (nus, dmw * fw[rows[:n_poly]][:, None], np.vstack([rest, jreg]))
+            return rr, factored, jp, rows, rms
+        jc = np.vstack(jcs) * fw[rows[: len(rows) - len(reg)]][:, None]
         jc = np.vstack([jc, jreg])
         return rr, jc, jp, rows, rms
 
@@ -859,23 +842,30 @@ class _Problem:
         i >= 1 V_i = Jp_i^T Jp_i, W_i = Jc_i^T Jp_i, gp_i = Jp_i^T r_i, per-frame RMS).  The
         pose blocks are 5 x 5 and independent of each other (a frame's rows see only its own
         pose), so the LM solves through their Schur complement (:func:`_schur_solve`)."""
-        r, jc, jp, rows, rms = self.evaluate(ctrl, m, b, True)
-        u = jc.T @ jc
-        gc = jc.T @ r
-        n = self.n
-        order = np.argsort(rows, kind="stable")
-        rs = rows[order]
-        starts = np.searchsorted(rs, np.arange(n + 1))
+        r, (nus, dmw, jc), jp, rows, rms = self.evaluate(ctrl, m, b, True, compact=True)
+        n, nc = self.n, self.n_curve
+        n_poly = len(nus)
+        # the polyline rows (a few thousand, each on at most 4 control points and one pose):
+        # accumulated row by row (bundle_kernel), no dense Jacobian
+        u = np.zeros((nc, nc))
+        gc = np.zeros(nc)
         v = np.zeros((n, 5, 5))
-        w = np.zeros((n, self.n_curve, 5))
+        w = np.zeros((n, nc, 5))
         gp = np.zeros((n, 5))
-        jcs, jps, res = jc[order], jp[order], r[order]
-        for i in range(1, n):
-            lo, hi = starts[i], starts[i + 1]
-            pi = jps[lo:hi]
-            v[i] = pi.T @ pi
-            w[i] = jcs[lo:hi].T @ pi
-            gp[i] = pi.T @ res[lo:hi]
+        polyline_normal_blocks(
+            nus, dmw, jp[:n_poly], r[:n_poly], rows[:n_poly], self.cidx, u, gc, v, w, gp
+        )
+        # the other rows: per frame a fixed number (frame-major), then the regulariser's
+        r2, jp2 = r[n_poly:], jp[n_poly:]
+        u += jc.T @ jc
+        gc += jc.T @ r2
+        per = int(np.count_nonzero(rows[n_poly:] >= 0)) // n
+        jcf = jc[: n * per].reshape(n, per, nc)
+        jpf = jp2[: n * per].reshape(n, per, 5)
+        rf = r2[: n * per].reshape(n, per)
+        v[1:] += np.einsum("npi,npj->nij", jpf[1:], jpf[1:])
+        w[1:] += np.einsum("npc,npj->ncj", jcf[1:], jpf[1:])
+        gp[1:] += np.einsum("npi,np->ni", jpf[1:], rf[1:])
         return r, (u, gc, v, w, gp), rms
 
     def subset(self, frames: Sequence[int]) -> _Problem:
@@ -1023,12 +1013,16 @@ def _gauss_newton_tsvd(residual, p, max_iter: int, rcond: float, abs_tol: float)
     return p, cost
 
 
-def _rot_zyx(theta: float, tau: float, delta: float) -> np.ndarray:
+def _rot_zyx(theta: float, tau: np.ndarray, delta: np.ndarray) -> np.ndarray:
+    """(n, 3, 3) rotations ``Rz(theta) Ry(tau) Rx(delta)`` for n pairs (tau, delta)."""
     ct, st, cd, sd = np.cos(tau), np.sin(tau), np.cos(delta), np.sin(delta)
     ch, sh = np.cos(theta), np.sin(theta)
+    n = len(tau)
     rz = np.array([[ch, -sh, 0.0], [sh, ch, 0.0], [0.0, 0.0, 1.0]])
-    ry = np.array([[ct, 0.0, st], [0.0, 1.0, 0.0], [-st, 0.0, ct]])
-    rx = np.array([[1.0, 0.0, 0.0], [0.0, cd, -sd], [0.0, sd, cd]])
+    ry = np.zeros((n, 3, 3))
+    ry[:, 0, 0], ry[:, 0, 2], ry[:, 1, 1], ry[:, 2, 0], ry[:, 2, 2] = ct, st, 1.0, -st, ct
+    rx = np.zeros((n, 3, 3))
+    rx[:, 0, 0], rx[:, 1, 1], rx[:, 1, 2], rx[:, 2, 1], rx[:, 2, 2] = 1.0, cd, -sd, sd, cd
     return rz @ ry @ rx
 
 
@@ -1055,13 +1049,11 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     theta = float(np.arctan2(chord[1], chord[0]))
     pts = prob.basis.values(np.linspace(0.0, 1.0, 40)) @ ctrl - a3
     tree = cKDTree(pl.resample(poly, 200)[0])
-    mms = [
-        _rot_zyx(theta, tau, delta) @ cmat.T
-        for tau in sorted({tau_abs, -tau_abs})
-        for delta in np.radians(np.arange(0.0, 360.0, 10.0))
-    ]
+    deltas = np.radians(np.arange(0.0, 360.0, 10.0))
+    taus = np.array(sorted({tau_abs, -tau_abs}))
+    mms = _rot_zyx(theta, np.repeat(taus, len(deltas)), np.tile(deltas, len(taus))) @ cmat.T
     # every sweep pose's projected curve in one query (the same distances as one by one)
-    proj = np.stack([pts @ mm[:2].T + poly[0] for mm in mms])
+    proj = np.einsum("pc,mjc->mpj", pts, mms[:, :2]) + poly[0]
     dist = tree.query(proj.reshape(-1, 2))[0].reshape(len(mms), len(pts))
     cands = [(float(np.mean(d**2)), j, mm) for j, (d, mm) in enumerate(zip(dist, mms, strict=True))]
     cands.sort(key=lambda t: t[:2])

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from curverecon.curve import polyline as pl
+from curverecon.curve.section4_kernel import Grid, depth_path
 
 #: Crossings flatter than this (|sin| of the angle between the projected line of sight and the
 #: polyline) are rejected as grazing.
@@ -147,9 +148,39 @@ def _distances_for_frame(
     most spacing / 2 (spacing = 0.1 px here, far below the pixel noise the costs are scaled by).
     ``bound``: distances beyond it are returned as inf (the tree stops searching there: the
     truncated costs of the candidates need no more, and most candidates are far from most
-    frames' polylines).
+    frames' polylines).  A finite bound searches a grid of cells one bound wide
+    (``section4_kernel.Grid``: the same distances as the tree's, faster for many points).
     """
+    if np.isfinite(bound) and bound > 0:
+        return _dense_grid(poly, spacing, bound).query(pts_xy, bound)
     return _dense_tree(poly, spacing).query(pts_xy, distance_upper_bound=bound)[0]
+
+
+def _nearest_distances(pts_xy: np.ndarray, poly: np.ndarray, grid_w: float) -> np.ndarray:
+    """:func:`_distances_for_frame` without a bound: the grid of cells ``grid_w`` wide for the
+    points that close to the polyline (their nearest vertex is within the 3 x 3 cells around
+    them), the tree for the others."""
+    dist = _distances_for_frame(pts_xy, poly, bound=grid_w)
+    far = ~np.isfinite(dist)
+    if far.any():
+        dist[far] = _distances_for_frame(pts_xy[far], poly)
+    return dist
+
+
+#: Grids of the densified polylines (:class:`section4_kernel.Grid`) by content and bound.
+_GRIDS: dict[tuple, Grid] = {}
+
+
+def _dense_grid(poly: np.ndarray, spacing: float, bound: float) -> Grid:
+    poly = np.ascontiguousarray(poly, dtype=float)
+    key = (poly.shape, poly.tobytes(), spacing, bound)
+    grid = _GRIDS.get(key)
+    if grid is None:
+        grid = Grid(_dense_tree(poly, spacing).data, bound)
+        if len(_GRIDS) >= _TREES_MAX:
+            _GRIDS.clear()
+        _GRIDS[key] = grid
+    return grid
 
 
 #: KD-trees of densified polylines by content: the branch search calls :func:`reconstruct_curve`
@@ -184,6 +215,38 @@ _UNARY_MAX = 50_000
 
 def _poly_key(poly: np.ndarray) -> bytes:
     return np.ascontiguousarray(poly, dtype=float).tobytes() + repr(np.shape(poly)).encode()
+
+
+#: Crossing candidates of one frame (:func:`_frame_candidates`) by content.
+_CROSSINGS: dict[tuple, tuple | None] = {}
+
+
+def _frame_candidates(poly, mi, bi, xy, sigma: float, length: float):
+    """Frame i's crossings with frame 0's lines of sight through the samples ``xy`` (frame 0
+    camera -> frame i camera ``mi``, ``bi``), merged where pixel noise splits one: (sample,
+    depth, |sin| of the crossing angle) per candidate, by sample then depth; None if none."""
+    r = mi[:, 2]
+    view_sin = np.hypot(r[0], r[1])
+    origin = (mi[:, :2] @ xy.T).T + bi  # (K, 3): z = 0 point on each line of sight
+    extend = 2.0 * sigma + 0.01 * length
+    kk, u, sn = pl.parallel_line_crossings(poly, origin[:, :2], r[:2], extend=extend)
+    ok = sn >= MIN_CROSSING_SIN
+    kk, u, sn = kk[ok], u[ok], sn[ok]
+    order = np.lexsort((u, kk))
+    kk, u, sn = kk[order], u[order], sn[order]
+    if kk.size == 0:
+        return None
+    # Merge the crossings that pixel noise splits into a tight cluster (wiggles of a noisy
+    # polyline near one true crossing): image distance along the line below 4 sigma.
+    gap_px = np.diff(u) * view_sin
+    new_group = np.concatenate([[True], (np.diff(kk) != 0) | (gap_px > 4.0 * sigma)])
+    gid = np.cumsum(new_group) - 1
+    n_g = int(gid[-1]) + 1 if len(gid) else 0
+    cnt = np.bincount(gid, minlength=n_g)
+    g_k = kk[new_group]
+    g_z = np.bincount(gid, weights=u, minlength=n_g) / np.maximum(cnt, 1)
+    g_s = np.bincount(gid, weights=sn, minlength=n_g) / np.maximum(cnt, 1)
+    return g_k, g_z, g_s
 
 
 def _project_xy(pts: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -255,39 +318,35 @@ def reconstruct_curve(
 
     # Per-frame crossing candidates for every sample: depth, standard error.
     lengths = [float(pl.arc_length(p)[-1]) for p in polys]
-    cand_z: list[list[float]] = [[] for _ in range(k_total)]
-    cand_frame: list[list[int]] = [[] for _ in range(k_total)]
-    cand_std: list[list[float]] = [[] for _ in range(k_total)]
+    # per frame (in frame order) its candidates' sample, depth, standard error
+    parts: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+    xy_key = xy.tobytes()
     for i in informative:
-        origin = (m[i, :, :2] @ xy.T).T + b[i]  # (K, 3): z = 0 point on each line of sight
-        extend = 2.0 * sigma + 0.01 * lengths[i]
-        kk, u, sn = pl.parallel_line_crossings(polys[i], origin[:, :2], r[i, :2], extend=extend)
-        ok = sn >= MIN_CROSSING_SIN
-        kk, u, sn = kk[ok], u[ok], sn[ok]
-        order = np.lexsort((u, kk))
-        kk, u, sn = kk[order], u[order], sn[order]
-        if kk.size == 0:  # no usable crossing in this frame
+        # by content: a trial of the branch search changes one frame's pose, not the others'
+        key = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), xy_key, sigma)
+        found = _CROSSINGS.get(key)
+        if found is None:
+            found = _frame_candidates(polys[i], m[i], b[i], xy, sigma, lengths[i])
+            if len(_CROSSINGS) >= _UNARY_MAX:
+                _CROSSINGS.clear()
+            _CROSSINGS[key] = found
+        if found is None:  # no usable crossing in this frame
             continue
-        # Merge the crossings that pixel noise splits into a tight cluster (wiggles of a noisy
-        # polyline near one true crossing): image distance along the line below 4 sigma.
-        gap_px = np.diff(u) * view_sin[i]
-        new_group = np.concatenate([[True], (np.diff(kk) != 0) | (gap_px > 4.0 * sigma)])
-        gid = np.cumsum(new_group) - 1
-        n_g = int(gid[-1]) + 1 if len(gid) else 0
-        cnt = np.bincount(gid, minlength=n_g)
-        g_k = kk[new_group]
-        g_z = np.bincount(gid, weights=u, minlength=n_g) / np.maximum(cnt, 1)
-        g_s = np.bincount(gid, weights=sn, minlength=n_g) / np.maximum(cnt, 1)
-        for k, z, s in zip(g_k, g_z, g_s, strict=True):
-            cand_z[k].append(float(z))
-            cand_frame[k].append(i)
-            cand_std[k].append(np.sqrt(2.0) * sigma / (view_sin[i] * s))
+        g_k, g_z, g_s = found
+        parts.append((g_k, g_z, np.full(len(g_k), i), np.sqrt(2.0) * sigma / (view_sin[i] * g_s)))
 
     # Unary cost of each candidate: truncated squared reprojection distance over all frames.
     trunc = (3.0 * sigma + 1.0) ** 2
-    flat_k = np.array([k for k in range(k_total) for _ in cand_z[k]], dtype=int)
-    flat_z = np.array([z for zs in cand_z for z in zs], dtype=float)
-    flat_f = np.array([f for fs in cand_frame for f in fs], dtype=int)
+    # every candidate, by sample; within a sample in frame order, then the frame's own order
+    if parts:
+        cat_k, cat_z, cat_f, cat_s = (np.concatenate(v) for v in zip(*parts, strict=True))
+    else:
+        cat_k, cat_z, cat_f, cat_s = (np.zeros(0) for _ in range(4))
+    order = np.argsort(cat_k, kind="stable")
+    flat_k = cat_k[order].astype(int)
+    flat_z = cat_z[order].astype(float)
+    flat_f = cat_f[order].astype(int)
+    flat_s = cat_s[order].astype(float)
     unary = np.zeros(len(flat_z))
     if len(flat_z):
         pts0 = np.column_stack([xy[flat_k], flat_z])
@@ -298,19 +357,30 @@ def reconstruct_curve(
         for i in informative:
             dest = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), sigma)
             part = np.empty(len(flat_z))
+            missing = []
             for f, idx in rows.items():
                 key = (dest, src[f])
                 val = _UNARY.get(key)
                 if val is None:
-                    pts_i = _project_xy(pts0[idx], m[i], b[i])
-                    # beyond sqrt(trunc) the cost is trunc whatever the distance: the search
-                    # stops there
-                    dist = _distances_for_frame(pts_i, polys[i], bound=np.sqrt(trunc) * 1.0001)
-                    val = np.minimum(dist**2, trunc)
-                    if len(_UNARY) >= _UNARY_MAX:
-                        _UNARY.clear()
-                    _UNARY[key] = val
-                part[idx] = val
+                    missing.append((key, idx))
+                else:
+                    part[idx] = val
+            if missing:
+                # every missing block of this frame in one query (each point's distance is its
+                # own: the same values as block by block)
+                idx_all = np.concatenate([idx for _, idx in missing])
+                pts_i = _project_xy(pts0[idx_all], m[i], b[i])
+                # beyond sqrt(trunc) the cost is trunc whatever the distance: the search
+                # stops there
+                dist = _distances_for_frame(pts_i, polys[i], bound=np.sqrt(trunc) * 1.0001)
+                val_all = np.minimum(dist**2, trunc)
+                part[idx_all] = val_all
+                if len(_UNARY) + len(missing) > _UNARY_MAX:
+                    _UNARY.clear()
+                off = 0
+                for key, idx in missing:
+                    _UNARY[key] = val_all[off : off + len(idx)]
+                    off += len(idx)
             unary += part
     unary /= sigma**2
 
@@ -320,7 +390,7 @@ def reconstruct_curve(
     step = max(step, 1e-9)
     miss_cost = len(informative) * trunc / sigma**2  # as bad as a candidate every frame rejects
     jump_w = 0.5  # cost per (depth slope)^2, in units of squared sigmas
-    offsets = np.concatenate([[0], np.cumsum([len(c) for c in cand_z])])
+    offsets = np.concatenate([[0], np.cumsum(np.bincount(flat_k, minlength=k_total))])
     zs = [flat_z[offsets[k] : offsets[k + 1]] for k in range(k_total)]
     us = [unary[offsets[k] : offsets[k + 1]] for k in range(k_total)]
     # Endpoint A: depth 0 exactly (translations put A at z = 0).
@@ -341,46 +411,11 @@ def reconstruct_curve(
     zs[-1] = np.array([zb])
     us[-1] = np.array([0.0])
 
-    big = 1e300
-    cost_prev = us[0].copy()
-    z_prev = zs[0]
-    last_valid_gap = np.zeros(1)  # samples since the state's last real candidate (for missing)
-    back: list[np.ndarray] = []
-    # Each state carries its depth; the "missing" state carries the previous depth forward.
-    state_z = [zs[0]]
-    for k in range(1, k_total):
-        zk = zs[k]
-        # Transition to real candidates.
-        if len(zk):
-            gap = last_valid_gap[None, :] + 1.0
-            slope = (zk[:, None] - z_prev[None, :]) / (step * gap)
-            tot = cost_prev[None, :] + jump_w * slope**2
-            j = np.argmin(tot, axis=1)
-            c_real = tot[np.arange(len(zk)), j] + us[k]
-        else:
-            j = np.zeros(0, dtype=int)
-            c_real = np.zeros(0)
-        # Transition to the missing state (keeps the best previous state's depth).
-        jm = int(np.argmin(cost_prev)) if len(cost_prev) else 0
-        c_miss = cost_prev[jm] + miss_cost if len(cost_prev) else big
-        allow_missing = 0 < k < k_total - 1
-        if allow_missing:
-            new_z = np.concatenate([zk, [z_prev[jm]]])
-            new_cost = np.concatenate([c_real, [c_miss]])
-            new_gap = np.concatenate([np.zeros(len(zk)), [last_valid_gap[jm] + 1.0]])
-            back.append(np.concatenate([j, [jm]]))
-        else:
-            new_z, new_cost, new_gap = zk, c_real, np.zeros(len(zk))
-            back.append(j)
-        z_prev, cost_prev, last_valid_gap = new_z, new_cost, new_gap
-        state_z.append(new_z)
-    # Backtrack.
-    choice = np.zeros(k_total, dtype=int)
-    choice[-1] = int(np.argmin(cost_prev))
-    for k in range(k_total - 1, 0, -1):
-        choice[k - 1] = back[k - 1][choice[k]]
-    interpolated = np.array([choice[k] >= len(zs[k]) for k in range(k_total)], dtype=bool)
-    z_dp = np.array([state_z[k][choice[k]] for k in range(k_total)])
+    # the dynamic programme (section4_kernel.depth_path) on every sample's states at once
+    zz = np.concatenate(zs)
+    uu = np.concatenate(us)
+    offs = np.concatenate([[0], np.cumsum([len(v) for v in zs])]).astype(np.int64)
+    z_dp, interpolated = depth_path(zz, uu, offs, float(step), jump_w, float(miss_cost))
 
     # Refinement: inverse-variance mean of the crossings (one per frame) that agree with the DP.
     z_ref = z_dp.copy()
@@ -391,7 +426,6 @@ def reconstruct_curve(
     if len(flat_z):
         # every sample at once: the crossings within the gate of the DP depth, one per frame
         # (the nearest; the first of equals), summed per sample in frame order
-        flat_s = np.array([v for ss in cand_std for v in ss], dtype=float)
         dz = np.abs(flat_z - z_dp[flat_k])
         inner = (flat_k > 0) & (flat_k < k_total - 1)
         near = inner & ~interpolated[flat_k] & (dz <= np.maximum(3.0 * flat_s, 2.0 * sigma))
@@ -431,9 +465,10 @@ def reconstruct_curve(
 
     # Consistency of every frame with the recovered curve: median reprojection distance.
     frame_residual = np.zeros(n_frames)
+    grid_w = np.sqrt(trunc) * 1.0001  # the unary cost's grids (built already)
     for i in range(n_frames):
         proj_i = points @ m[i].T + b[i]
-        frame_residual[i] = float(np.median(_distances_for_frame(proj_i[:, :2], polys[i])))
+        frame_residual[i] = float(np.median(_nearest_distances(proj_i[:, :2], polys[i], grid_w)))
     limit = 3.0 * sigma + 1.0
     bad_frames = [i for i in range(n_frames) if frame_residual[i] > limit]
     if bad_frames:

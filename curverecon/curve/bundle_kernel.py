@@ -1,0 +1,288 @@
+"""Nearest-point searches of the curve bundle (``curve.bundle``): numba loops, one core.
+
+Each residual evaluation of the bundle searches, for every interior polyline point of every
+frame, the nearest sample of that frame's densely sampled projected curve (the foot point's
+start), and for every reverse-term curve sample the nearest vertex of its frame's polyline.
+Both were k-d tree queries (``scipy.spatial.cKDTree``: a tree built per evaluation over every
+frame's samples, the frames kept apart along a third axis); here they are exact linear scans
+of the point's own frame, pruned by the bounding boxes of runs of consecutive samples (a run
+whose box is farther than the best distance so far cannot hold the nearest sample).  The same
+nearest points as the trees (to ties of equal distance: the scan keeps the first).
+
+Compiled with ``cache=True`` (numba's on-disk cache: the first import of a new version compiles
+once, about a second); no C compiler is needed at install time.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+_JIT = {"cache": True, "nogil": True, "fastmath": False}
+
+#: Samples per bounding box of the pruned scans (the dense curve has 24 per knot span).
+RUN = 8
+
+
+@numba.njit(**_JIT)
+def _boxes(pts, lo, hi, run):
+    """Bounding boxes (x0, x1, y0, y1) of runs of ``run`` consecutive points pts[lo:hi]."""
+    nb = (hi - lo + run - 1) // run
+    box = np.empty((nb, 4))
+    for k in range(nb):
+        a = lo + k * run
+        b = min(a + run, hi)
+        x0 = pts[a, 0]
+        x1 = x0
+        y0 = pts[a, 1]
+        y1 = y0
+        for j in range(a + 1, b):
+            x = pts[j, 0]
+            y = pts[j, 1]
+            if x < x0:
+                x0 = x
+            if x > x1:
+                x1 = x
+            if y < y0:
+                y0 = y
+            if y > y1:
+                y1 = y
+        box[k, 0] = x0
+        box[k, 1] = x1
+        box[k, 2] = y0
+        box[k, 3] = y1
+    return box
+
+
+@numba.njit(**_JIT)
+def _scan(pts, lo, hi, box, run, qx, qy, start):
+    """Index in pts[lo:hi] (global) of the point nearest to (qx, qy): the run holding
+    ``start`` first (a good guess makes the pruning tight), then every run whose box can hold
+    a nearer point.  Ties: the lowest index."""
+    best = np.inf
+    bj = lo
+    nb = box.shape[0]
+    k0 = (start - lo) // run
+    if k0 < 0 or k0 >= nb:
+        k0 = 0
+    for t in range(nb + 1):
+        if t == 0:
+            k = k0
+        else:
+            k = t - 1
+            if k == k0:
+                continue
+            dx = 0.0
+            if qx < box[k, 0]:
+                dx = box[k, 0] - qx
+            elif qx > box[k, 1]:
+                dx = qx - box[k, 1]
+            dy = 0.0
+            if qy < box[k, 2]:
+                dy = box[k, 2] - qy
+            elif qy > box[k, 3]:
+                dy = qy - box[k, 3]
+            if dx * dx + dy * dy > best:
+                continue
+        a = lo + k * run
+        b = min(a + run, hi)
+        for j in range(a, b):
+            ex = pts[j, 0] - qx
+            ey = pts[j, 1] - qy
+            d = ex * ex + ey * ey
+            if d < best or (d == best and j < bj):
+                best = d
+                bj = j
+    return bj
+
+
+@numba.njit(**_JIT)
+def nearest_in_frames(pts, lo, hi, q, qlo, qhi):
+    """For every frame f, the nearest of pts[lo[f]:hi[f]] to each of q[qlo[f]:qhi[f]]:
+    (len(q),) global indices into pts.  Frames with an empty range of pts give lo[f]."""
+    out = np.empty(q.shape[0], np.int64)
+    for f in range(lo.shape[0]):
+        a, b = lo[f], hi[f]
+        if b <= a:
+            for p in range(qlo[f], qhi[f]):
+                out[p] = a
+            continue
+        box = _boxes(pts, a, b, RUN)
+        guess = a
+        for p in range(qlo[f], qhi[f]):
+            guess = _scan(pts, a, b, box, RUN, q[p, 0], q[p, 1], guess)
+            out[p] = guess
+    return out
+
+
+@numba.njit(**_JIT)
+def foot_parameters(proj, u_grid, ps, q, q_lo, q_cnt):
+    """Curve parameter u of the foot point of each polyline point on its frame's projected
+    curve (``bundle._Problem._all_foot_points``): the nearest dense sample (proj (N, G, 2) at
+    ``u_grid``), the nearer of its two dense segments, then two Newton steps on |p(u) - q|^2
+    (each at most one grid step) on the exact curve, whose spans' power-series coefficients
+    are ps (N, spans, 4, 2).  Frame f's points are q[q_lo[f] : q_lo[f] + q_cnt[f]]."""
+    n, g = proj.shape[0], proj.shape[1]
+    spans = ps.shape[1]
+    du = u_grid[1] - u_grid[0]
+    out = np.empty(q.shape[0])
+    for f in range(n):
+        pts = proj[f]
+        box = _boxes(pts, 0, g, RUN)
+        guess = 0
+        for p in range(q_lo[f], q_lo[f] + q_cnt[f]):
+            qx, qy = q[p, 0], q[p, 1]
+            j = _scan(pts, 0, g, box, RUN, qx, qy, guess)
+            guess = j
+            best_d = np.inf
+            u = 0.0
+            for side in range(2):
+                js = max(j - 1, 0) if side == 0 else min(j, g - 2)
+                s0x, s0y = pts[js, 0], pts[js, 1]
+                sx, sy = pts[js + 1, 0] - s0x, pts[js + 1, 1] - s0y
+                len2 = max(sx * sx + sy * sy, 1e-300)
+                t = ((qx - s0x) * sx + (qy - s0y) * sy) / len2
+                t = min(max(t, 0.0), 1.0)
+                ex = s0x + t * sx - qx
+                ey = s0y + t * sy - qy
+                d = ex * ex + ey * ey
+                if d < best_d:
+                    best_d = d
+                    u = u_grid[js] + t * du
+            for _ in range(2):  # Newton
+                tt = min(max(u, 0.0), 1.0) * spans
+                k = min(int(tt), spans - 1)
+                x = tt - k
+                c = ps[f, k]
+                ex = ((c[3, 0] * x + c[2, 0]) * x + c[1, 0]) * x + c[0, 0] - qx
+                ey = ((c[3, 1] * x + c[2, 1]) * x + c[1, 1]) * x + c[0, 1] - qy
+                d1x = ((3.0 * c[3, 0] * x + 2.0 * c[2, 0]) * x + c[1, 0]) * spans
+                d1y = ((3.0 * c[3, 1] * x + 2.0 * c[2, 1]) * x + c[1, 1]) * spans
+                ddx = (6.0 * c[3, 0] * x + 2.0 * c[2, 0]) * spans * spans
+                ddy = (6.0 * c[3, 1] * x + 2.0 * c[2, 1]) * spans * spans
+                g1 = d1x * ex + d1y * ey
+                g2 = d1x * d1x + d1y * d1y + ddx * ex + ddy * ey
+                step = -g1 / g2 if g2 > 0 else 0.0
+                u = min(max(u + min(max(step, -du), du), 0.0), 1.0)
+            out[p] = u
+    return out
+
+
+@numba.njit(**_JIT)
+def forward_rows(ps, u, q, q_lo, q_cnt):
+    """The forward term's rows (``bundle._Problem.evaluate``) at the foot parameters u: per
+    polyline point the offset direction (the projected curve's unit normal at the foot point;
+    the offset's own direction at the curve's ends), the signed distance along it and the
+    squared distance.  ps (N, spans, 4, 2) as in :func:`foot_parameters`."""
+    n, spans = ps.shape[0], ps.shape[1]
+    nq = q.shape[0]
+    direc = np.empty((nq, 2))
+    r = np.empty(nq)
+    dist2 = np.empty(nq)
+    for f in range(n):
+        for p in range(q_lo[f], q_lo[f] + q_cnt[f]):
+            uu = u[p]
+            tt = min(max(uu, 0.0), 1.0) * spans
+            k = min(int(tt), spans - 1)
+            x = tt - k
+            c = ps[f, k]
+            ex = ((c[3, 0] * x + c[2, 0]) * x + c[1, 0]) * x + c[0, 0] - q[p, 0]
+            ey = ((c[3, 1] * x + c[2, 1]) * x + c[1, 1]) * x + c[0, 1] - q[p, 1]
+            tx = ((3.0 * c[3, 0] * x + 2.0 * c[2, 0]) * x + c[1, 0]) * spans
+            ty = ((3.0 * c[3, 1] * x + 2.0 * c[2, 1]) * x + c[1, 1]) * spans
+            tn = np.sqrt(tx * tx + ty * ty)
+            d2 = ex * ex + ey * ey
+            if uu > 0.0 and uu < 1.0 and tn > 0:
+                s = max(tn, 1e-300)
+                dx, dy = -ty / s, tx / s
+            else:
+                s = max(np.sqrt(d2), 1e-300)
+                dx, dy = ex / s, ey / s
+            direc[p, 0] = dx
+            direc[p, 1] = dy
+            r[p] = dx * ex + dy * ey
+            dist2[p] = d2
+    return direc, r, dist2
+
+
+@numba.njit(**_JIT)
+def segment_offsets(verts, v_lo, v_hi, pts, q_lo, q_hi):
+    """Direction and signed distance of points from their frame's polyline
+    (``bundle._segment_offsets`` after the nearest vertex, :func:`nearest_in_frames`): the
+    nearer of the two segments at the nearest vertex (the segment's normal; beyond the
+    polyline's ends the offset direction).  Frame f's polyline is verts[v_lo[f] : v_hi[f] + 1],
+    its points pts[q_lo[f] : q_hi[f]]."""
+    j_all = nearest_in_frames(verts, v_lo, v_hi + 1, pts, q_lo, q_hi)
+    npt = pts.shape[0]
+    best_dir = np.zeros((npt, 2))
+    best_r = np.zeros(npt)
+    for f in range(v_lo.shape[0]):
+        lo, hi = v_lo[f], v_hi[f]
+        for p in range(q_lo[f], q_hi[f]):
+            j = j_all[p]
+            px, py = pts[p, 0], pts[p, 1]
+            best_d = np.inf
+            for side in range(2):
+                js = max(j - 1, lo) if side == 0 else min(j, hi - 1)
+                s0x, s0y = verts[js, 0], verts[js, 1]
+                sx, sy = verts[js + 1, 0] - s0x, verts[js + 1, 1] - s0y
+                len2 = max(sx * sx + sy * sy, 1e-300)
+                t = ((px - s0x) * sx + (py - s0y) * sy) / len2
+                inside = (t > 0 or js > lo) and (t < 1 or js < hi - 1)
+                t = min(max(t, 0.0), 1.0)
+                ex = px - (s0x + t * sx)
+                ey = py - (s0y + t * sy)
+                d = ex * ex + ey * ey
+                if inside:
+                    sl = np.sqrt(len2)
+                    dx, dy = -sy / sl, sx / sl
+                else:
+                    sd = max(np.sqrt(d), 1e-300)
+                    dx, dy = ex / sd, ey / sd
+                if d < best_d:
+                    best_d = d
+                    best_dir[p, 0] = dx
+                    best_dir[p, 1] = dy
+                    best_r[p] = dx * ex + dy * ey
+    return best_dir, best_r
+
+
+@numba.njit(**_JIT)
+def polyline_normal_blocks(nus, dmw, jp, res, rows, cidx, u, gc, v, w, gp):
+    """Add the polyline rows' terms to the bundle's normal equations in blocks
+    (``bundle._Problem.normal_equations``) without the dense Jacobian: row i's curve Jacobian
+    is ``nus[i, k] * dmw[i, c]`` at column ``cidx[k, c]`` (a cubic B-spline point depends on
+    at most 4 control points: the zero basis values are skipped), its pose Jacobian jp[i]
+    (frame rows[i]; frame 0's pose is the gauge, no block).  Accumulates U = Jc^T Jc and
+    gc = Jc^T r (u, gc) and per frame V = Jp^T Jp, W = Jc^T Jp, gp = Jp^T r in place."""
+    kk = nus.shape[1]
+    cols = np.empty(3 * kk, np.int64)
+    vals = np.empty(3 * kk)
+    for i in range(nus.shape[0]):
+        m = 0
+        for k in range(kk):
+            nk = nus[i, k]
+            if nk == 0.0:
+                continue
+            for c in range(3):
+                col = cidx[k, c]
+                if col >= 0:
+                    cols[m] = col
+                    vals[m] = nk * dmw[i, c]
+                    m += 1
+        ri = res[i]
+        for a in range(m):
+            ca, va = cols[a], vals[a]
+            gc[ca] += va * ri
+            for b2 in range(m):
+                u[ca, cols[b2]] += va * vals[b2]
+        f = rows[i]
+        if f < 1:
+            continue
+        for p in range(5):
+            jpp = jp[i, p]
+            gp[f, p] += jpp * ri
+            for q2 in range(5):
+                v[f, p, q2] += jpp * jp[i, q2]
+            for a in range(m):
+                w[f, cols[a], p] += vals[a] * jpp

@@ -1,0 +1,145 @@
+"""The curve bundle's numerical core: the analytic Jacobian and the normal equations in blocks
+(``curve.bundle._Problem``) against finite differences of the residual function, and the numba
+kernels (``curve.bundle_kernel``) against brute-force NumPy and k-d tree constructions.
+
+Scenes from ``simulate.make_scene(..., with_curve=True)`` (3-D curves moved and projected
+without project code), the state at the true poses and curve, 1 px noise on the polylines.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.spatial import cKDTree
+
+from bench.curve_end_to_end import curve_error
+from curverecon.curve import bundle as bd
+from curverecon.curve import bundle_kernel as bk
+from curverecon.simulate import make_scene
+
+
+def _truth_problem(seed: int, frames: int, family: str, robust_ends: bool):
+    """A bundle problem of a noisy scene (end points and tangents given) at the true state."""
+    scene = make_scene(
+        np.random.default_rng(seed), frames, 1.0, 1.0, with_curve=True, curve_family=family
+    )
+    obs = scene.observations
+    rot, tr = scene.truth.rotations, scene.truth.A3
+    polys = []
+    for i, p in enumerate(obs.curves):
+        p = np.asarray(p, float)
+        if np.hypot(*(p[-1] - tr[i, :2])) < np.hypot(*(p[0] - tr[i, :2])):
+            p = p[::-1].copy()
+        polys.append(p)
+    m = np.einsum("nij,kj->nik", rot, rot[0])
+    b = tr - np.einsum("nij,j->ni", m, tr[0])
+    curve = scene.curve_3d - [0.0, 0.0, scene.curve_3d[0, 2]]
+    ctrl = bd.fit_spline(curve, 12)
+    prob = bd._Problem(
+        polys,
+        1.0,
+        12,
+        np.stack([obs.a, obs.b], axis=1),
+        np.stack([obs.tangent_a, obs.tangent_b], axis=1),
+        1.0,
+        np.radians(1.0),
+    )
+    prob.robust_ends = robust_ends
+    # uneven frame weights and one polyline left out: every multiplier of the rows in play
+    prob.frame_w = np.linspace(0.5, 1.0, frames)
+    prob.poly_w[frames - 1] = 0.0
+    return prob, (ctrl, m, b), scene
+
+
+def _fd_jacobian(prob, state, h: float = 1e-5) -> np.ndarray:
+    """Central differences of the residuals over the parameter increments (``apply``)."""
+    cols = []
+    for j in range(prob.n_par):
+        dx = np.zeros(prob.n_par)
+        dx[j] = h
+        rp = prob.evaluate(*prob.apply(*state, dx), jac=False)[0]
+        rm = prob.evaluate(*prob.apply(*state, -dx), jac=False)[0]
+        cols.append((rp - rm) / (2.0 * h))
+    return np.column_stack(cols)
+
+
+@pytest.mark.parametrize("robust_ends", [False, True])
+def test_analytic_jacobian_matches_finite_differences(robust_ends):
+    prob, state, _ = _truth_problem(3, 6, "helix", robust_ends)
+    r, jac, _ = prob.residuals(*state)
+    jfd = _fd_jacobian(prob, state)
+    assert jac.shape == jfd.shape
+    # the residuals are piecewise smooth (Huber's threshold, the reverse term's nearest segment):
+    # a row may straddle a kink, so the whole matrix and most rows are compared
+    assert np.linalg.norm(jac - jfd) < 1e-5 * np.linalg.norm(jfd)
+    row_err = np.linalg.norm(jac - jfd, axis=1) / np.maximum(np.linalg.norm(jfd, axis=1), 1e-12)
+    assert np.mean(row_err < 1e-5) > 0.99
+    # the normal equations in blocks (numba accumulation of the polyline rows) and the Schur
+    # step against the dense normal equations of the finite-difference Jacobian
+    r2, (u, gc, v, w, gp), _ = prob.normal_equations(*state)
+    assert np.allclose(r2, r, rtol=0, atol=1e-12 * np.abs(r).max())
+    nc = prob.n_curve
+    jtj, jtr = jfd.T @ jfd, jfd.T @ r
+    scale = np.abs(jtj).max()
+    assert np.abs(u - jtj[:nc, :nc]).max() < 1e-5 * scale
+    assert np.abs(gc - jtr[:nc]).max() < 1e-5 * np.abs(jtr).max()
+    for i in range(1, prob.n):
+        sl = slice(nc + 5 * (i - 1), nc + 5 * i)
+        assert np.abs(v[i] - jtj[sl, sl]).max() < 1e-5 * scale
+        assert np.abs(w[i] - jtj[:nc, sl]).max() < 1e-5 * scale
+        assert np.abs(gp[i] - jtr[sl]).max() < 1e-5 * np.abs(jtr).max()
+    lam = 1e-3
+    d = np.maximum(np.diag(jtj), 1e-12 * np.diag(jtj).max())
+    dense = -np.linalg.solve(jtj + lam * np.diag(d), jtr)
+    step = bd._schur_solve((u, gc, v, w, gp), lam)
+    assert np.linalg.norm(step - dense) < 1e-4 * np.linalg.norm(dense)
+
+
+def test_nearest_in_frames_is_the_brute_force_nearest():
+    rng = np.random.default_rng(0)
+    # three frames' curves (ordered samples, as the kernel's boxes assume nothing but order)
+    t = np.linspace(0.0, 6.0, 300)
+    pts = np.vstack(
+        [np.column_stack([40 * np.cos(t + k), 25 * np.sin(2 * t) + 10 * k]) for k in range(3)]
+    )
+    lo = np.array([0, 300, 600])
+    hi = lo + 300
+    q = rng.uniform(-60, 60, size=(450, 2))
+    qlo = np.array([0, 100, 250])
+    qhi = np.array([100, 250, 450])
+    got = bk.nearest_in_frames(pts, lo, hi, q, qlo, qhi)
+    for f in range(3):
+        own = pts[lo[f] : hi[f]]
+        d_got = np.linalg.norm(pts[got[qlo[f] : qhi[f]]] - q[qlo[f] : qhi[f]], axis=1)
+        d_true = cKDTree(own).query(q[qlo[f] : qhi[f]])[0]
+        assert np.all(got[qlo[f] : qhi[f]] >= lo[f]) and np.all(got[qlo[f] : qhi[f]] < hi[f])
+        assert np.allclose(d_got, d_true, rtol=0, atol=1e-12)
+
+
+def test_foot_points_are_the_nearest_curve_points():
+    """Foot parameters against a brute-force minimum over 200,000 samples of each frame's
+    projected spline (the distance agrees to the sampling's resolution)."""
+    prob, (ctrl, m, b), _ = _truth_problem(4, 5, "random", False)
+    u = prob._all_foot_points(ctrl, m, b)
+    dense_u = np.linspace(0.0, 1.0, 200_001)
+    x = prob.basis.values(dense_u) @ ctrl
+    for i in range(prob.n):
+        proj = x @ m[i, :2].T + b[i, :2]
+        sel = prob.q_fid == i
+        q = prob.q_all[sel]
+        d_true = cKDTree(proj).query(q)[0]
+        foot = prob.basis.values(u[sel]) @ ctrl @ m[i, :2].T + b[i, :2]
+        d_got = np.linalg.norm(foot - q, axis=1)
+        step = np.linalg.norm(np.diff(proj, axis=0), axis=1).max()
+        assert np.all(d_got <= d_true + 1e-9)  # never farther than the dense minimum
+        assert np.all(d_got >= d_true - step)
+
+
+def test_bundle_on_a_seeded_scene_reaches_the_truth():
+    """A 1 px, 12-frame scene started at the true poses and curve: the fit stays within 0.5 %
+    of the curve's length of the true curve and every frame fits at the noise level."""
+    prob, (ctrl, m, b), scene = _truth_problem(7, 12, "clothoid", False)
+    rot, tr = scene.truth.rotations, scene.truth.A3
+    res = bd.bundle_adjust(scene.observations.curves, rot, tr, scene.curve_3d)
+    assert curve_error(res.curve_points(), scene.curve_3d) < 0.005
+    assert np.max(res.rms) < 2.0
