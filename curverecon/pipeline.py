@@ -49,7 +49,7 @@ from curverecon.robust.frame_samples import (
     fixed_shape_fit,
     frame_sample_hypothesis,
 )
-from curverecon.robust.outliers import find_outlier_frames, implausible_chi2
+from curverecon.robust.outliers import chi2_tail, find_outlier_frames
 from curverecon.robust.search import Candidate, robust_cost, robust_start
 from curverecon.solvers import minimal
 from curverecon.solvers.linear import frame_matrix, min_frames, solve_linear
@@ -213,14 +213,15 @@ def _few_frame_samples_needed(
 
 
 def _outliers_suspected(rec: Reconstruction, obs: Observations, opts: ReconstructOptions) -> bool:
-    """Frames flagged as outliers, or a fit too poor for the noise (as ``find_outlier_frames``
-    judges it), with a frame count the four-frame samples are run for."""
+    """Frames flagged as outliers, or a chi2 improbable for the noise
+    (``FrameSampleOptions.trigger_p_value``), with a frame count the four-frame samples are run
+    for."""
     o = opts.frame_samples
     if not (o.enabled and opts.method == "auto" and o.min_frames <= obs.n_frames <= o.max_frames):
         return False
     if not rec.inliers.all():
         return True
-    return rec.chi2 is not None and implausible_chi2(rec.chi2, int(rec.inliers.sum()))
+    return rec.chi2 is not None and chi2_tail(rec.chi2, int(rec.inliers.sum())) < o.trigger_p_value
 
 
 def _with_frame_samples(

@@ -14,7 +14,7 @@ frames it explains (``refine.start.refine_hypothesis``, the local optimisation).
 the shape held fixed and every frame's pose at its best branch, so that its robust cost
 (``robust.search.robust_cost``) compares with another shape's computed the same way
 (:func:`fixed_shape_fit`).  The pipeline runs it only when the search's answer flags outlier
-frames or fits implausibly (``FrameSampleOptions``): each sample costs one minimal solve
+frames or its chi2 is improbable (``FrameSampleOptions``): each sample costs one minimal solve
 (about 0.17 s).
 
 With few frames (5 to ``FewFrameSampleOptions.max_frames``) :func:`few_frame_hypotheses` adds

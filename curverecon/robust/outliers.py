@@ -33,6 +33,12 @@ MEDIAN_CHI2_1 = 0.4549364231195724
 """Median of chi2 with one degree of freedom."""
 
 
+def chi2_tail(chi2: float, n_frames: int) -> float:
+    """P(a chi2 of n_frames - 4 degrees of freedom exceeds ``chi2``): how surprising a fit of
+    ``n_frames`` frames (one degree of freedom each, four shape parameters) is for the noise."""
+    return float(chi2_dist.sf(chi2, max(n_frames - 4, 1)))
+
+
 def implausible_chi2(chi2: float, n_frames: int) -> bool:
     """A fit's chi2 too high for the noise: above its n_frames - 4 degrees of freedom by five
     of their standard deviations plus 10 (outlier frames, or a wrong basin)."""
