@@ -3,8 +3,9 @@
 It reads like the README's "How it works" (docs/architecture.md draws it):
 
 1. hypotheses: the global search over the shape (``robust.search``), seeded by the paper's
-   linearisation when it is determined (``solvers.linear``); with few frames and no exact fit,
-   also the shapes of a few four-frame samples of the minimal solver, refined on all frames
+   linearisation when it is determined (``solvers.linear``); with few frames, or a fit
+   improbably close for the noise, and no exact fit, also the shapes of a four-frame sample of
+   the minimal solver, refined on all frames
    (``robust.frame_samples.few_frame_hypotheses``); when the answer of steps 2-5 has
    outlier frames, also LO-RANSAC over four-frame samples of the minimal solver
    (``robust.frame_samples``), whose shape replaces the search's if it explains the frames
@@ -49,7 +50,7 @@ from curverecon.robust.frame_samples import (
     fixed_shape_fit,
     frame_sample_hypothesis,
 )
-from curverecon.robust.outliers import chi2_tail, find_outlier_frames
+from curverecon.robust.outliers import chi2_lower_tail, chi2_tail, find_outlier_frames
 from curverecon.robust.search import Candidate, robust_cost, robust_start
 from curverecon.solvers import minimal
 from curverecon.solvers.linear import frame_matrix, min_frames, solve_linear
@@ -132,7 +133,7 @@ def reconstruct_end_points(
     seeds = _linear_seed(obs, opts.search)
     cands = robust_start(obs, ps, ts, options=opts.search, extra_shapes=seeds)
     if _few_frame_samples_needed(cands, obs, opts):
-        # few frames, no exact fit: the shapes of a few four-frame samples join the search's
+        # few frames or near-exact data, no exact fit: a four-frame sample's shapes join in
         extra = few_frame_hypotheses(obs, ps, ts, opts.few_frame_samples, opts.minimal, opts.search)
         cands = sorted([*cands, *extra], key=lambda c: c.robust_cost)
     if not cands:
@@ -204,12 +205,18 @@ def answer_from_hypotheses(
 def _few_frame_samples_needed(
     cands: list[Candidate], obs: Observations, opts: ReconstructOptions
 ) -> bool:
-    """A frame count the few-frame samples run for (``FewFrameSampleOptions``) and no exact fit
-    among the search's candidates (``SearchOptions.exact_cost``: nothing could beat it)."""
+    """No exact fit among the search's candidates (``SearchOptions.exact_cost``: nothing could
+    beat it), and either a frame count the few-frame samples run for or a best fit improbably
+    close for the noise (``FewFrameSampleOptions``: near-exact data)."""
     o = opts.few_frame_samples
-    if not (o.enabled and opts.method == "auto" and o.min_frames <= obs.n_frames <= o.max_frames):
+    if not (o.enabled and opts.method == "auto" and o.min_frames <= obs.n_frames):
         return False
-    return not cands or cands[0].robust_cost > opts.search.exact_cost
+    if not cands:
+        return obs.n_frames <= o.max_frames
+    best = cands[0].robust_cost
+    if best <= opts.search.exact_cost:
+        return False
+    return obs.n_frames <= o.max_frames or chi2_lower_tail(best, obs.n_frames) < o.precise_p_value
 
 
 def _outliers_suspected(rec: Reconstruction, obs: Observations, opts: ReconstructOptions) -> bool:

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Iterator
 
 import numpy as np
 
@@ -154,21 +155,24 @@ def frame_sample_hypothesis(
     return Candidate(fit, robust_cost(fit.frame_chi2, o.truncate), math.nan), stats
 
 
-def spread_samples(n_frames: int, count: int) -> list[np.ndarray]:
-    """Up to ``count`` distinct four-frame samples spread over the frames, deterministically:
+def iter_spread_samples(n_frames: int) -> Iterator[np.ndarray]:
+    """Distinct four-frame samples spread over the frames, deterministically and lazily:
     sample j takes frames floor(i n / 4) + j (mod n), i = 0..3 (a quarter of the sequence
-    apart), repeats skipped; then, if more are asked for, the other samples in lexicographic
-    order."""
+    apart), repeats skipped; then the other samples in lexicographic order."""
     base = np.arange(minimal.FRAMES) * n_frames // minimal.FRAMES
     rotations = (tuple(np.sort((base + j) % n_frames)) for j in range(n_frames))
     others = itertools.combinations(range(n_frames), minimal.FRAMES)
-    out: list[tuple[int, ...]] = []
+    seen: set[tuple[int, ...]] = set()
     for sample in itertools.chain(rotations, others):
-        if len(out) >= count:
-            break
-        if sample not in out:
-            out.append(tuple(int(i) for i in sample))
-    return [np.array(s) for s in out]
+        key = tuple(int(i) for i in sample)
+        if key not in seen:
+            seen.add(key)
+            yield np.array(key)
+
+
+def spread_samples(n_frames: int, count: int) -> list[np.ndarray]:
+    """The first ``count`` samples of :func:`iter_spread_samples`."""
+    return list(itertools.islice(iter_spread_samples(n_frames), count))
 
 
 def few_frame_hypotheses(
@@ -189,7 +193,8 @@ def few_frame_hypotheses(
     meas = obs.measurements()
     starts: list[np.ndarray] = []
     solved = 0
-    for sample in spread_samples(obs.n_frames, math.comb(obs.n_frames, minimal.FRAMES)):
+    tries = itertools.islice(iter_spread_samples(obs.n_frames), o.samples + o.degenerate_skips)
+    for sample in tries:
         if solved >= o.samples:
             break
         try:

@@ -39,6 +39,12 @@ def chi2_tail(chi2: float, n_frames: int) -> float:
     return float(chi2_dist.sf(chi2, max(n_frames - 4, 1)))
 
 
+def chi2_lower_tail(chi2: float, n_frames: int) -> float:
+    """P(a chi2 of n_frames - 4 degrees of freedom is below ``chi2``): small when the fit is
+    far closer than the noise given allows (the data are more precise than it says)."""
+    return float(chi2_dist.cdf(chi2, max(n_frames - 4, 1)))
+
+
 def implausible_chi2(chi2: float, n_frames: int) -> bool:
     """A fit's chi2 too high for the noise: above its n_frames - 4 degrees of freedom by five
     of their standard deviations plus 10 (outlier frames, or a wrong basin)."""
