@@ -3,7 +3,8 @@
 Scenes: ``simulate.make_scene`` with 3-D curves of ``curve_families`` moved and projected by the
 simulator (no project code in the geometry), 12 frames, end points and tangents given.
 
-- The knot spans are halved only where the polyline residuals cluster along the curve and
+- With growth allowed (``CurveOptions.bundle_max_control_points`` 39; off by default), the
+  knot spans are halved only where the polyline residuals cluster along the curve and
   Akaike's criterion then improves: a cubic Bezier curve (exactly a spline of 4 control points)
   keeps the 12 of the start while a wiggly Fourier curve, which a 12-point spline misses by more
   (checked on the true 3-D curve), gets more.
@@ -19,6 +20,7 @@ import numpy as np
 from scipy.interpolate import make_lsq_spline
 from scipy.spatial.transform import Rotation
 
+from curverecon.options import CurveOptions, ReconstructOptions
 from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
 
@@ -67,8 +69,9 @@ def test_knots_grow_with_the_curve_s_wiggliness():
     dense = [_scene(f, 6000, 0.1, 3000).curve_3d for f in ("bezier", "fourier")]
     # independent fact: 12 control points miss the Fourier curve by far more than the cubic
     assert _spline_miss(dense[1], 12) > 5 * _spline_miss(dense[0], 12)
-    k_bezier = reconstruct(bezier.observations).curve_bundle["control_points"]
-    k_fourier = reconstruct(fourier.observations).curve_bundle["control_points"]
+    grow = ReconstructOptions(curve=CurveOptions(bundle_max_control_points=39))
+    k_bezier = reconstruct(bezier.observations, options=grow).curve_bundle["control_points"]
+    k_fourier = reconstruct(fourier.observations, options=grow).curve_bundle["control_points"]
     assert k_bezier == 12
     assert k_fourier > k_bezier
 

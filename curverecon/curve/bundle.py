@@ -1392,7 +1392,10 @@ def bundle_adjust(
         # tried only where the residuals cluster along the curve (``misfit_z``: a bend or wiggle
         # the spline misses; the trial costs a fit) and kept while the information criterion
         # improves
-        if prob.span_misfit(ctrl, m, b, MISFIT_BINS) <= misfit_z:
+        # not while some frame fits clearly worse than the others (``_uneven``): a polyline
+        # that contradicts the others (to be flagged) or a wrong pose is no bend of the curve,
+        # and a freer curve would hide it
+        if _uneven(rms[use_poly], sigma) or prob.span_misfit(ctrl, m, b, MISFIT_BINS) <= misfit_z:
             break
         k2 = 2 * k - 3
         u = np.linspace(0.0, 1.0, 20 * k2)
