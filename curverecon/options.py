@@ -236,11 +236,24 @@ class CurveOptions:
     """At most this many accepted refits (a second round changed nothing; costs a batch)."""
 
     bundle_max_control_points: int = 12
-    """The bundle's curve may grow from 12 control points (knot spans halved: 21, 39) while
-    Akaike's criterion of the polyline residuals improves.  Off (12) by default: at 0.5 px on
-    sharp-ended curves (seeds 1200-1202, 12 frames) neither AIC nor BIC asked for more than 12
-    (curve errors 0.34, 0.13, 0.62 % unchanged) and the trial cost 1.5-4 s per scene: the
-    residual there is the polylines' noise, not the spline's flexibility."""
+    """The bundle's curve may grow from 12 control points (knot spans halved: 21, 39) where
+    the polyline residuals ask for it: tried when they cluster along the curve
+    (``bundle_misfit_z``) and kept while Akaike's criterion of the polyline residuals improves.
+    Off (12) by default.  At 0.5 px, 12 frames, the residuals of no family asked (tuning seeds
+    6000-6011 with 39 allowed: every scene kept 12 but helix 6002, a wrong minimum): the curve
+    errors there above 0.5 % of the length are a tilt of the correctly shaped curve in frame
+    0's camera (after the best rotation about A every one was below 0.22 %, helix 6002 aside),
+    which the number of knots does not change (one sharp-ended scene, 16 noise draws: median
+    error 1.6, 1.9, 1.8 % with 8, 12, 21 control points).  At 0.1 px wiggly (Fourier) curves
+    ask for 21.  Not on by default: a polyline of another curve in one frame
+    (tests/test_curve_never_worse.py) then made the curve grow to 39 and fit it (1.2 px RMS)
+    before the flag test could leave it out (8.7 px at 12)."""
+
+    bundle_misfit_z: float = 2.0
+    """The knot spans are halved only when the residuals' clustering along the curve
+    (``bundle._Problem.span_misfit``, about N(0, 1) for pure noise and below it once the fit
+    has absorbed its parameters: -4 to +1 at 0.5 px on tuning seeds 6000-6011) exceeds this:
+    the trial fit costs 1.5-4 s, so it is run only where a bend or wiggle is missed."""
 
     bundle_extra_starts: int = 3
     """When the curve bundle still leaves some frame fitting clearly worse than the others
@@ -272,6 +285,14 @@ class CurveOptions:
     answer stays inside the end points' 99 % confidence region (never worse beyond noise).
     Refused, the end-point answer's std is scaled by sqrt(dchi2 / never_worse_dchi2): the two
     answers disagree, and the bundle's shape is then just inside the scaled 99 % region."""
+
+    refused_std_disagreement: bool = True
+    """Refused by that test, the std of the end-point answer kept also includes (in
+    quadrature, per parameter) its difference from the bundle's shape.  The refusals at 1 px
+    came where the end-point answer itself was off (tuning seeds 6000-6011, 12 frames:
+    helix 6007 alpha, beta, phi 1.9-3.0 degrees off, bundle 0.2-0.3; sharp-ends 6001 10-18
+    degrees off, bundle 2-3.6; dchi2 13.8 and 16.2, just over the limit), the Birge scaling
+    alone left |error| / std at 2.3-3.2 and 5.8-19."""
 
     variance_floor: float = 1e-30
     """Least variance factor of that test (noise-free end points: float rounding, about 1e-28;

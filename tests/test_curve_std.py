@@ -14,6 +14,7 @@ the disagreement (``CurveOptions.never_worse_dchi2``).
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from curverecon.model.observations import Observations
 from curverecon.options import CurveOptions, ReconstructOptions
@@ -72,7 +73,8 @@ def test_refused_bundle_widens_the_end_point_std():
     scene = make_scene(
         np.random.default_rng(5212), 12, 1.0, 1.0, with_curve=True, curve_family="clothoid"
     )
-    rec = reconstruct(scene.observations)
+    birge = ReconstructOptions(curve=CurveOptions(refused_std_disagreement=False))
+    rec = reconstruct(scene.observations, options=birge)
     off = reconstruct(
         scene.observations, options=ReconstructOptions(curve=CurveOptions(bundle=False))
     )
@@ -85,3 +87,36 @@ def test_refused_bundle_widens_the_end_point_std():
     z_off = np.abs(off.shape - scene.truth.shape) / off.std
     z = np.abs(rec.shape - scene.truth.shape) / rec.std
     assert z_off.max() > 3.0 and z.max() < 3.0, (z_off, z)
+    # the default also adds the two answers' difference: the same shape, a std no smaller
+    default = reconstruct(scene.observations)
+    np.testing.assert_allclose(default.shape, off.shape)
+    assert np.all(default.std >= rec.std * (1 - 1e-12))
+
+
+@pytest.mark.parametrize(("family", "seed"), [("helix", 6007), ("sharp-ends", 6001)])
+def test_refused_bundle_std_includes_the_answers_disagreement(family, seed):
+    """Scenes (1 px, 1 degree, 12 frames) whose end-point answer is itself off (by 2-3 and by
+    10-18 degrees) and whose bundle shape, nearer the truth, is refused just past the limit:
+    the Birge scaling alone leaves errors of more than 3 std; with the two answers' difference
+    in quadrature every parameter is within 3 std of the truth."""
+    scene = make_scene(
+        np.random.default_rng(seed), 12, 1.0, 1.0, with_curve=True, curve_family=family
+    )
+    truth = scene.truth.shape
+    birge = reconstruct(
+        scene.observations,
+        options=ReconstructOptions(curve=CurveOptions(refused_std_disagreement=False)),
+    )
+    rec = reconstruct(scene.observations)
+    assert rec.curve_bundle["accepted"] is False
+    accepted = reconstruct(
+        scene.observations,
+        options=ReconstructOptions(curve=CurveOptions(never_worse_dchi2=1e12)),
+    )
+    # the bundle's answer is the nearer one (independent: the simulator's truth)
+    assert (
+        np.abs(np.degrees(accepted.shape[1:] - truth[1:])).max()
+        < np.abs(np.degrees(rec.shape[1:] - truth[1:])).max()
+    )
+    assert (np.abs(birge.shape - truth) / birge.std).max() > 3.0
+    assert (np.abs(rec.shape - truth) / rec.std).max() < 3.0

@@ -52,7 +52,10 @@ control points) with the start poses; every frame's pose searched again against 
 wrong-branch poses that degree-off end tangents leave are beyond LM's reach - refined for every
 frame at once by :func:`_resect_all`, and a regauge when frame 0's own pose moves); the coarse
 fit again; then the full curve; then a polish with robust ends (``END_POLISH``: a traced end
-hooked back along the line of sight ends its polyline at the fold).
+hooked back along the line of sight ends its polyline at the fold); then, where the polyline
+residuals cluster along the curve (:meth:`_Problem.span_misfit`: a bend or wiggle the spline
+misses), every knot span halved while Akaike's criterion improves
+(``CurveOptions.bundle_max_control_points``, ``bundle_misfit_z``).
 :func:`refine_reconstruction` retries from frame 0's polyline at depth 0 when a frame still fits
 clearly worse than the others (``UNEVEN_RATIO``), then from other frames' polylines
 (:func:`bundle_from_frame`, ``CurveOptions.bundle_extra_starts``), and keeps the lowest cost.
@@ -137,6 +140,9 @@ REVERSE_WEIGHT = 0.02
 #: :func:`refine_reconstruction` use ``CurveOptions.flag_rms_sigma``, ``flag_rms_px``).
 RMS_LIMIT_SIGMA = 3.0
 RMS_LIMIT_PX = 1.0
+#: Parts of every knot span in which :meth:`_Problem.span_misfit` sums the residuals (a cubic
+#: span that misses a wiggle leaves residuals of alternating sign within it).
+MISFIT_BINS = 4
 #: A frame whose RMS distance exceeds UNEVEN_RATIO times the median frame's (plus sigma / 4,
 #: and at least sigma) fits clearly worse than the others: the coarse stage down-weights it
 #: before the pose search, and :func:`refine_reconstruction` tries the second start.
@@ -893,6 +899,33 @@ class _Problem:
         keep = rows >= 0
         return np.bincount(rows[keep], r[keep] ** 2, minlength=self.n)
 
+    def span_misfit(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, bins: int) -> float:
+        """How much the polyline residuals cluster along the curve: the signed normal residuals
+        (units of sigma, clipped at ``HUBER_K``) of the frames in the fit summed in ``bins``
+        equal parts of every knot span per frame; ``T = sum over (frame, part) of sum^2 / count``
+        is chi2 with one degree of freedom per part when the residuals are the polylines' noise
+        and grows when the spline misses a bend or wiggle there (the residuals of a span then
+        share a sign in every frame).  Returns ``(T - dof) / sqrt(2 dof)`` (about N(0, 1) for
+        noise; the frames left out of the fit and empty parts are not counted)."""
+        fid, u = self.q_fid, self._all_foot_points(ctrl, m, b)
+        c, xl = self._span_local(self._projected_spans(ctrl, m, b), fid, u)
+        e = ((c[:, 3] * xl + c[:, 2]) * xl + c[:, 1]) * xl + c[:, 0] - self.q_all
+        tan = (3.0 * c[:, 3] * xl + 2.0 * c[:, 2]) * xl + c[:, 1]
+        nrm = np.column_stack([-tan[:, 1], tan[:, 0]])
+        nrm /= np.maximum(np.linalg.norm(nrm, axis=1), 1e-300)[:, None]
+        r = np.clip(np.einsum("ij,ij->i", nrm, e) / self.sigma, -HUBER_K, HUBER_K)
+        keep = (u > 0.0) & (u < 1.0) & (np.asarray(self.poly_w, float)[fid] > 0)
+        nb = self.basis.spans * int(bins)
+        part = np.minimum((u[keep] * nb).astype(int), nb - 1) + nb * fid[keep]
+        sums = np.bincount(part, r[keep], minlength=nb * self.n)
+        cnt = np.bincount(part, minlength=nb * self.n)
+        full = cnt > 0
+        dof = int(full.sum())
+        if dof == 0:
+            return 0.0
+        t = float(np.sum(sums[full] ** 2 / cnt[full]))
+        return (t - dof) / np.sqrt(2.0 * dof)
+
     def pose_normal_equations(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
         """Per frame (every frame, the curve fixed): (cost (N,), V = Jp^T Jp (N, 5, 5),
         gp = Jp^T r (N, 5))."""
@@ -1216,6 +1249,7 @@ def bundle_adjust(
     k_max: int = 0,
     resect_first: bool = False,
     smooth_weight: float = SMOOTH_WEIGHT,
+    misfit_z: float = CurveOptions.bundle_misfit_z,
 ) -> BundleResult:
     """Refine the poses and the 3-D curve jointly against every frame's polyline.
 
@@ -1225,7 +1259,8 @@ def bundle_adjust(
     n_control: control points of the spline (default ``N_CONTROL``, fewer for short polylines).
     ends: optional (N, 2, 2) given A', B' per frame; tangents: optional (N, 2, 2) given image
         tangent directions at A and B (any sign); with their sigmas (pixels, degrees).
-    k_max: the control points grow (knot spans halved) up to this many while Akaike's
+    k_max: the control points grow (knot spans halved) up to this many while the residuals
+        cluster along the curve (:meth:`_Problem.span_misfit` above ``misfit_z``) and Akaike's
         criterion (:func:`_bic` with 2 per parameter) improves (0: no growth).
     resect_first: search every frame's pose (but frame 0's) against the start curve before
         the first fit (a start curve that the start poses were not made for).
@@ -1346,7 +1381,14 @@ def bundle_adjust(
     crit = _bic(prob, rms, prob.n_par, 2.0)
     while 2 * k - 3 <= int(k_max):
         # every knot span halved (the old curve exactly, so the fit starts at the old optimum);
-        # kept while the information criterion improves (sharp bends, wiggles)
+        # tried only where the residuals cluster along the curve (``misfit_z``: a bend or wiggle
+        # the spline misses; the trial costs a fit) and kept while the information criterion
+        # improves
+        # not while some frame fits clearly worse than the others (``_uneven``): a polyline
+        # that contradicts the others (to be flagged) or a wrong pose is no bend of the curve,
+        # and a freer curve would hide it
+        if _uneven(rms[use_poly], sigma) or prob.span_misfit(ctrl, m, b, MISFIT_BINS) <= misfit_z:
+            break
         k2 = 2 * k - 3
         u = np.linspace(0.0, 1.0, 20 * k2)
         ctrl2 = np.linalg.lstsq(_Basis(k2).values(u), prob.basis.values(u) @ ctrl, rcond=None)[0]
@@ -1797,6 +1839,7 @@ def refine_reconstruction(
         "tangent_sigma_deg": tangent_sigma_deg,
         "k_max": o.bundle_max_control_points,
         "smooth_weight": o.bundle_smooth_weight,
+        "misfit_z": o.bundle_misfit_z,
     }
 
     def run(mask=None):
@@ -1975,7 +2018,15 @@ def refine_reconstruction(
             # on refused scenes, up to 3.7).  Its std is scaled (a Birge ratio) by the least
             # factor that brings the bundle's shape inside its 99 % region.
             scale = float(np.sqrt(max(float(dchi2) / o.never_worse_dchi2, 1.0)))
-            out = replace(out, std=out.std * scale)
+            std_out = out.std * scale
+            if o.refused_std_disagreement:
+                # ... and, per parameter, the two answers' difference is added in quadrature:
+                # which model is off is not known, so the answer kept is uncertain by at least
+                # its distance from the other one
+                diff = np.asarray(shape_n, float) - np.asarray(rec.shape, float)
+                diff[3] = (diff[3] + np.pi) % (2.0 * np.pi) - np.pi
+                std_out = np.sqrt(std_out**2 + diff**2)
+            out = replace(out, std=std_out)
         return out, curve3d, info
     # curve samples equally spaced in 3-D arc length, in the curve frame
     u_out = _arc_parameters(br.control, int(n_out) if n_out is not None else 200)

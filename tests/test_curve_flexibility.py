@@ -1,0 +1,97 @@
+"""The curve bundle's flexibility comes from the data (issue 13, item 2).
+
+Scenes: ``simulate.make_scene`` with 3-D curves of ``curve_families`` moved and projected by the
+simulator (no project code in the geometry), 12 frames, end points and tangents given.
+
+- With growth allowed (``CurveOptions.bundle_max_control_points`` 39; off by default), the
+  knot spans are halved only where the polyline residuals cluster along the curve and
+  Akaike's criterion then improves: a cubic Bezier curve (exactly a spline of 4 control points)
+  keeps the 12 of the start while a wiggly Fourier curve, which a 12-point spline misses by more
+  (checked on the true 3-D curve), gets more.
+- What limits ``curve3d`` at 0.5 px is not the flexibility: a Fourier scene whose ``curve3d``
+  is more than 0.5 % of the length off has the right shape (within 0.1 % after the best
+  rotation about A) and is tilted as a whole in frame 0's camera, which only frame 0's own view
+  fixes; the reported ``curve3d_std`` covers that tilt.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.interpolate import make_lsq_spline
+from scipy.spatial.transform import Rotation
+
+from curverecon.options import CurveOptions, ReconstructOptions
+from curverecon.pipeline import reconstruct
+from curverecon.simulate import make_scene
+
+
+def _length(curve: np.ndarray) -> float:
+    return float(np.linalg.norm(np.diff(curve, axis=0), axis=1).sum())
+
+
+def _arc(curve: np.ndarray) -> np.ndarray:
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(curve, axis=0), axis=1))])
+    return s / s[-1]
+
+
+def _mean_distance(a: np.ndarray, b: np.ndarray) -> float:
+    """Mean distance of the points of ``a`` from the polyline ``b``."""
+    seg0, seg = b[:-1], np.diff(b, axis=0)
+    t = np.clip(((a[:, None] - seg0[None]) * seg[None]).sum(2) / (seg * seg).sum(1), 0.0, 1.0)
+    return float(
+        np.linalg.norm(a[:, None] - (seg0[None] + t[..., None] * seg[None]), axis=2).min(1).mean()
+    )
+
+
+def _spline_miss(curve: np.ndarray, k: int) -> float:
+    """Mean distance (/ length) of a dense true curve from its least-squares clamped cubic
+    spline of ``k`` control points (scipy, arc-length parameter): how wiggly the curve is."""
+    u = _arc(curve)
+    knots = np.concatenate([[0.0] * 3, np.linspace(0.0, 1.0, k - 2), [1.0] * 3])
+    spl = make_lsq_spline(u, curve, knots, k=3)
+    return _mean_distance(spl(np.linspace(0.0, 1.0, 400)), curve) / _length(curve)
+
+
+def _scene(family: str, seed: int, noise: float, n_points: int = 150):
+    return make_scene(
+        np.random.default_rng(seed),
+        12,
+        noise,
+        noise,
+        with_curve=True,
+        curve_family=family,
+        n_curve_points=n_points,
+    )
+
+
+def test_knots_grow_with_the_curve_s_wiggliness():
+    bezier, fourier = _scene("bezier", 6000, 0.1), _scene("fourier", 6000, 0.1)
+    dense = [_scene(f, 6000, 0.1, 3000).curve_3d for f in ("bezier", "fourier")]
+    # independent fact: 12 control points miss the Fourier curve by far more than the cubic
+    assert _spline_miss(dense[1], 12) > 5 * _spline_miss(dense[0], 12)
+    grow = ReconstructOptions(curve=CurveOptions(bundle_max_control_points=39))
+    k_bezier = reconstruct(bezier.observations, options=grow).curve_bundle["control_points"]
+    k_fourier = reconstruct(fourier.observations, options=grow).curve_bundle["control_points"]
+    assert k_bezier == 12
+    assert k_fourier > k_bezier
+
+
+def test_curve3d_error_at_half_a_pixel_is_the_tilt_in_frame_0_not_the_shape():
+    scene = _scene("fourier", 6003, 0.5)
+    rec = reconstruct(scene.observations)
+    truth = scene.curve_3d
+    length = _length(truth)
+    mirror = min((truth, truth * [1.0, 1.0, -1.0]), key=lambda q: _mean_distance(rec.curve3d, q))
+    err = _mean_distance(rec.curve3d, mirror) / length
+    assert err > 0.005  # the raw error in frame 0's camera: over the issue's 0.5 %
+    # the same points in arc length, the best rotation about A
+    u = np.linspace(0.0, 1.0, 200)
+    p = np.column_stack([np.interp(u, _arc(rec.curve3d), rec.curve3d[:, j]) for j in range(3)])
+    q = np.column_stack([np.interp(u, _arc(mirror), mirror[:, j]) for j in range(3)])
+    rot, _ = Rotation.align_vectors(q - q[0], p - p[0])
+    aligned = rot.apply(rec.curve3d - rec.curve3d[0]) + mirror[0]
+    assert _mean_distance(aligned, mirror) / length < 0.001
+    tilt_deg = np.degrees(np.linalg.norm(rot.as_rotvec()))
+    assert tilt_deg > 0.5
+    # the reported std covers the raw error
+    assert err * length < 3.0 * float(np.mean(rec.curve3d_std))
