@@ -38,6 +38,37 @@ def _mean_distance(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.linalg.norm(a[:, None, :] - foot, axis=2).min(1).mean())
 
 
+def _feet(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """For each point of ``a`` its nearest point on the polyline ``b``."""
+    seg0, seg = b[:-1], np.diff(b, axis=0)
+    len2 = np.maximum((seg * seg).sum(1), 1e-300)
+    t = np.clip(((a[:, None, :] - seg0[None]) * seg[None]).sum(2) / len2, 0.0, 1.0)
+    foot = seg0[None] + t[..., None] * seg[None]
+    k = np.linalg.norm(a[:, None, :] - foot, axis=2).argmin(1)
+    return foot[np.arange(a.shape[0]), k]
+
+
+def curve_error_up_to_rotation(
+    recovered: np.ndarray, truth: np.ndarray, iterations: int = 10
+) -> float:
+    """:func:`curve_error` after the rotation about the recovered curve's first point (A) that
+    best lays it on the true curve (iterated closest points, Kabsch): the curve's shape
+    without frame 0's tilt, which only frame 0's own view measures.  A diagnostic beside the
+    error in frame 0's coordinates, which is what the output gives."""
+    best = np.inf
+    for q in (truth, truth * [1.0, 1.0, -1.0]):
+        r = recovered.copy()
+        a = r[0]
+        for _ in range(iterations):
+            feet = _feet(r, q)
+            u, _, vt = np.linalg.svd((r - a).T @ (feet - a))
+            d = np.sign(np.linalg.det(vt.T @ u.T))
+            rot = vt.T @ np.diag([1.0, 1.0, d]) @ u.T
+            r = a + (r - a) @ rot.T
+        best = min(best, curve_error(r, q))
+    return best
+
+
 def curve_error(recovered: np.ndarray, truth: np.ndarray) -> float:
     """Symmetric mean distance / true length, best over the mirror image (depth sign)."""
     length = float(np.linalg.norm(np.diff(truth, axis=0), axis=1).sum())
