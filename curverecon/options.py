@@ -255,6 +255,18 @@ class CurveOptions:
     has absorbed its parameters: -4 to +1 at 0.5 px on tuning seeds 6000-6011) exceeds this:
     the trial fit costs 1.5-4 s, so it is run only where a bend or wiggle is missed."""
 
+    polylines_only_control_points: tuple[int, ...] = ()
+    """Polylines only (no end points or tangents given): the bundle's curve is refitted with
+    each of these numbers of control points besides its own (12) and the fit with the least
+    Bayesian information criterion whose end regions fit as well as the 12-point curve's kept
+    (``bundle.select_control_points``).  Off (empty) by default: alpha, beta, phi are the
+    curve's end tangents, and a stiffer curve shrinks their std (bench seed 1300, Bezier, 0.5
+    px, 12 frames: 2.8, 3.5, 8.9 degrees at 12 control points, 0.35, 0.80, 0.88 at 4) but
+    biases them where the curve bends near an end, which neither the criterion nor the end
+    regions' residuals see: with (4, 5, 6, 8) the rate of scenes with all three angles within
+    1 degree stayed 1 of 12 on the bench's seeds (1300-1301) and was 0 of 11 on held-out seeds
+    (7300-7301), with |error| / std up to 5 (clothoid 7300), 8 and 14 (fourier 1301)."""
+
     bundle_extra_starts: int = 3
     """When the curve bundle still leaves some frame fitting clearly worse than the others
     (``bundle.UNEVEN_RATIO``) after its start from the end-point answer and from frame 0's
