@@ -611,6 +611,14 @@ class _Problem:
         ps[:, :, 0] += b[:, None, :2]
         return ps
 
+    def _span_local(self, ps: np.ndarray, fid: np.ndarray, u: np.ndarray):
+        """Coefficients (Q, 4, 2) of each point's span (frame ``fid``) and the local coordinate
+        (Q, 1) of u in it (:meth:`span_misfit`; the residuals themselves come from
+        ``bundle_kernel.forward_rows``)."""
+        t = np.clip(u, 0.0, 1.0) * self.basis.spans
+        j = np.minimum(t.astype(int), self.basis.spans - 1)
+        return ps[fid, j], (t - j)[:, None]
+
     def _jc_rows(self, nus: np.ndarray, dm: np.ndarray) -> np.ndarray:
         """Curve-parameter Jacobian rows ``sum_k nus[r, k] dm[r, c]`` at the free (k, c)."""
         # every (k, c) product at once, then the free columns (P0_z, the depth gauge, left out)
