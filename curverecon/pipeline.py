@@ -216,7 +216,10 @@ def _few_frame_samples_needed(
     best = cands[0].robust_cost
     if best <= opts.search.exact_cost:
         return False
-    return obs.n_frames <= o.max_frames or chi2_lower_tail(best, obs.n_frames) < o.precise_p_value
+    if obs.n_frames <= o.max_frames:
+        return True
+    precise = chi2_lower_tail(best, obs.n_frames) < o.precise_p_value
+    return precise and best < o.precise_chi2_ratio * (obs.n_frames - 4)
 
 
 def _outliers_suspected(rec: Reconstruction, obs: Observations, opts: ReconstructOptions) -> bool:

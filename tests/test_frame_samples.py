@@ -20,7 +20,7 @@ from curverecon.options import FewFrameSampleOptions, FrameSampleOptions, Recons
 from curverecon.pipeline import reconstruct
 from curverecon.refine.ml import refine
 from curverecon.robust.frame_samples import FrameSampleEstimator, fixed_shape_fit, spread_samples
-from curverecon.robust.outliers import chi2_tail, implausible_chi2
+from curverecon.robust.outliers import chi2_lower_tail, chi2_tail, implausible_chi2
 from curverecon.robust.search import robust_cost
 from curverecon.simulate import make_scene
 
@@ -242,3 +242,22 @@ def test_a_noise_free_twenty_frame_scene_the_search_missed_gives_the_truth() -> 
     assert np.max(np.abs(shape_errors(rec_off.shape, shape))) > 1e-3
     rec_on = reconstruct(sc.observations, options=on)
     assert np.max(np.abs(shape_errors(rec_on.shape, shape))) < 1e-9
+
+
+def test_a_long_noisy_sequence_does_not_count_as_precise(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """10,000 noisy frames (1 px / 1 degree, seed 2): the chi2 comes out a few per cent below
+    its degrees of freedom (each frame's better pose branch is chosen), far into the lower
+    tail at this size, but not the near-exact fit the sample is for: it does not run."""
+    calls: list[int] = []
+    real = pipeline.few_frame_hypotheses
+
+    def counting(obs, *args, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append(obs.n_frames)
+        return real(obs, *args, **kwargs)
+
+    monkeypatch.setattr(pipeline, "few_frame_hypotheses", counting)
+    sc = make_scene(np.random.default_rng(2), 10_000, 1.0, 1.0)
+    rec = reconstruct(sc.observations, point_sigma=1.0, tangent_sigma_deg=1.0)
+    n = int(rec.inliers.sum())
+    assert chi2_lower_tail(rec.chi2, n) < FewFrameSampleOptions().precise_p_value
+    assert calls == []
