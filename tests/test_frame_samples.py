@@ -25,11 +25,11 @@ from curverecon.robust.search import robust_cost
 from curverecon.simulate import make_scene
 
 
-def _outlier_scene(index: int, fraction: float = 0.3):  # type: ignore[no-untyped-def]
-    """The 20-frame, 1 px / 1 degree scenes the defaults were tuned on (seed 777, not the
-    bench's), with ``fraction`` outlier frames."""
+def _outlier_scene(index: int, fraction: float = 0.3, seed: int = 777):  # type: ignore[no-untyped-def]
+    """The 20-frame, 1 px / 1 degree robustness scenes of ``seed`` (777: the one the defaults
+    were first tuned on, not the bench's), with ``fraction`` outlier frames."""
     return make(
-        777,
+        seed,
         "robustness",
         (9, index),
         20,
@@ -38,6 +38,19 @@ def _outlier_scene(index: int, fraction: float = 0.3):  # type: ignore[no-untype
         chord=(100.0, 300.0),
         outlier_fraction=fraction,
     )
+
+
+def _count_few_frame_samples(monkeypatch) -> list[int]:  # type: ignore[no-untyped-def]
+    """The frame counts ``pipeline.few_frame_hypotheses`` is called with, from now on."""
+    calls: list[int] = []
+    real = pipeline.few_frame_hypotheses
+
+    def counting(obs, *args, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append(obs.n_frames)
+        return real(obs, *args, **kwargs)
+
+    monkeypatch.setattr(pipeline, "few_frame_hypotheses", counting)
+    return calls
 
 
 def test_an_all_inlier_sample_gives_the_truth_and_it_explains_the_inliers() -> None:
@@ -111,16 +124,7 @@ def test_the_samples_score_as_their_answer_is_accepted() -> None:
     with the defaults (the fixed-shape chi2 of every frame, truncated at three standard
     deviations) it is within 3 degrees, and the truth refined on the inlier frames alone scores
     lower than that wrong answer."""
-    sc = make(
-        4242,
-        "robustness",
-        (9, 7),
-        20,
-        point_sigma=1.0,
-        tangent_sigma_deg=1.0,
-        chord=(100.0, 300.0),
-        outlier_fraction=0.3,
-    )
+    sc = _outlier_scene(7, 0.3, seed=4242)
     shape, poses = true_poses(sc)
     obs = sc.observations
     ts = math.radians(1.0)
@@ -180,14 +184,7 @@ def test_few_frame_samples_run_only_where_they_should(monkeypatch) -> None:  # t
     """Not at 20 frames (noisy, so the search never fits exactly), not with four frames, not
     when the search already fits exactly (noise-free stability scene 0); they do run on the
     6-frame scene the search missed."""
-    calls: list[int] = []
-    real = pipeline.few_frame_hypotheses
-
-    def counting(obs, *args, **kwargs):  # type: ignore[no-untyped-def]
-        calls.append(obs.n_frames)
-        return real(obs, *args, **kwargs)
-
-    monkeypatch.setattr(pipeline, "few_frame_hypotheses", counting)
+    calls = _count_few_frame_samples(monkeypatch)
     reconstruct(make_scene(np.random.default_rng(3), 20, 1.0, 1.0).observations)
     reconstruct(make_scene(np.random.default_rng(3), 4, 1.0, 1.0).observations)
     rec = reconstruct(_stability_scene(0).observations)
@@ -203,16 +200,7 @@ def test_an_improbable_chi2_runs_the_samples_with_no_frame_flagged() -> None:
     search's answer is more than 5 degrees off and flags no frame; its chi2 passes the outlier
     test's five-standard-deviation rule but has a tail probability below 1e-3.  Run on that,
     the samples bring the answer within 5 degrees of the simulated shape."""
-    sc = make(
-        5151,
-        "robustness",
-        (9, 7),
-        20,
-        point_sigma=1.0,
-        tangent_sigma_deg=1.0,
-        chord=(100.0, 300.0),
-        outlier_fraction=0.3,
-    )
+    sc = _outlier_scene(7, 0.3, seed=5151)
     shape, _ = true_poses(sc)
     on = ReconstructOptions(point_sigma=1.0, tangent_sigma_deg=1.0)
     off = replace(on, frame_samples=replace(on.frame_samples, trigger_p_value=0.0))
@@ -248,14 +236,7 @@ def test_a_long_noisy_sequence_does_not_count_as_precise(monkeypatch) -> None:  
     """10,000 noisy frames (1 px / 1 degree, seed 2): the chi2 comes out a few per cent below
     its degrees of freedom (each frame's better pose branch is chosen), far into the lower
     tail at this size, but not the near-exact fit the sample is for: it does not run."""
-    calls: list[int] = []
-    real = pipeline.few_frame_hypotheses
-
-    def counting(obs, *args, **kwargs):  # type: ignore[no-untyped-def]
-        calls.append(obs.n_frames)
-        return real(obs, *args, **kwargs)
-
-    monkeypatch.setattr(pipeline, "few_frame_hypotheses", counting)
+    calls = _count_few_frame_samples(monkeypatch)
     sc = make_scene(np.random.default_rng(2), 10_000, 1.0, 1.0)
     rec = reconstruct(sc.observations, point_sigma=1.0, tangent_sigma_deg=1.0)
     n = int(rec.inliers.sum())
