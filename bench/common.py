@@ -216,3 +216,15 @@ def run_tasks(
 def chunks(n: int, size: int) -> list[range]:
     """range(0, n) cut into consecutive ranges of at most ``size``."""
     return [range(i, min(n, i + size)) for i in range(0, n, size)]
+
+
+def polylines_only(obs):  # type: ignore[no-untyped-def]
+    """``obs`` with its end points and tangents removed (the polylines alone), through the
+    public file format."""
+    from curverecon.io import observations_from_dict, observations_to_dict
+
+    doc = observations_to_dict(obs)
+    for frame in doc["frames"]:
+        for key in ("A", "B", "tangent_A", "tangent_B"):
+            frame.pop(key)
+    return observations_from_dict(doc)

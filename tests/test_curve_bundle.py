@@ -12,22 +12,14 @@ import json
 import numpy as np
 import pytest
 
+from bench.common import polylines_only
 from bench.curve_end_to_end import curve_error
 from curverecon.cli import main
 from curverecon.curve.bundle import bundle_adjust, flat_start, refine_reconstruction
 from curverecon.curve.section4 import reconstruct_curve
 from curverecon.errors import CurveReconError
-from curverecon.io import observations_from_dict, observations_to_dict
 from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
-
-
-def _polyline_only(scene):
-    doc = observations_to_dict(scene.observations)
-    for frame in doc["frames"]:
-        for key in ("A", "B", "tangent_A", "tangent_B"):
-            frame.pop(key)
-    return observations_from_dict(doc)
 
 
 def _truth_poses(scene):
@@ -68,7 +60,7 @@ def test_lowers_the_curve_error_on_noisy_polylines(seed):
     8 and 18 end 7.7 % and 4.1 % off (``python -m bench.curve_end_to_end 12 0.5 poly 0 30 -v``,
     28 of 30 within 3 %)."""
     scene = make_scene(np.random.default_rng(seed), 12, 0.5, 0.5, with_curve=True)
-    obs = _polyline_only(scene)
+    obs = polylines_only(scene.observations)
     rec = reconstruct(obs)
     start = reconstruct_curve(obs.curves, rec.rotations(), rec.translations()).points
     before = curve_error(start, scene.curve_3d)

@@ -22,19 +22,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from bench.common import polylines_only
 from curverecon.curve import polyline as pl
 from curverecon.curve.bundle import BundleResult, fit_spline, resect_uneven_frames
 from curverecon.io import observations_from_dict, observations_to_dict
 from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
-
-
-def _polylines_only(scene):
-    doc = observations_to_dict(scene.observations)
-    for frame in doc["frames"]:
-        for key in ("A", "B", "tangent_A", "tangent_B"):
-            frame.pop(key)
-    return observations_from_dict(doc)
 
 
 def _angle_errors_deg(rec, scene) -> np.ndarray:
@@ -45,7 +38,7 @@ def _angle_errors_deg(rec, scene) -> np.ndarray:
 
 def test_noise_free_bezier_gives_the_exact_angles():
     scene = make_scene(np.random.default_rng(21), 12, with_curve=True, curve_family="bezier")
-    rec = reconstruct(_polylines_only(scene))
+    rec = reconstruct(polylines_only(scene.observations))
     assert rec.estimator == "curve-bundle"  # the shape is the fitted curve's
     assert any("fitted curve's end tangents" in w for w in rec.warnings)
     assert np.abs(_angle_errors_deg(rec, scene)).max() < 0.02
@@ -57,7 +50,7 @@ def test_errors_within_three_reported_std_at_half_a_pixel(family, seed):
     scene = make_scene(
         np.random.default_rng(seed), 12, 0.5, 0.5, with_curve=True, curve_family=family
     )
-    rec = reconstruct(_polylines_only(scene))
+    rec = reconstruct(polylines_only(scene.observations))
     assert rec.std is not None
     z = np.abs(_angle_errors_deg(rec, scene)) / np.degrees(rec.std[1:])
     assert np.all(z < 3.0), z
