@@ -77,6 +77,11 @@ class HomotopyOptions:
     another path already found, while the lost one can be a path that passes through infinity
     on the straight segment (seed 800,676: careful tracking diverged, and 1 detour in 8 reached
     it).  The union of two complete trackings does not depend on that luck."""
+    near_double_twins: bool = True
+    """Paths still lost after the retries are looked for as the twins of near-double
+    solutions that other paths found (``_recover_near_double``): seed 500,032 of the minimal
+    bench lost its true shape, 0.067 from such a twin, to a path jump, and no detour or whole
+    second homotopy found it."""
     seed: int = 20261125
     """Seed of the detours: the same input gives the same output."""
 
@@ -668,7 +673,8 @@ def _recover_twins(
 ) -> int:
     """Paths that kept landing on another path's endpoint r: r is usually one of two nearly
     coincident solutions (a near-double root), and the path belongs to the other.  Deflated
-    Newton from next to r, with r and every other known endpoint deflated, finds it; accepted
+    Newton, with r and every other known endpoint nearby deflated, finds it: first from the
+    twin's predicted place (``_twin_start``), then from a random point next to r.  Accepted
     only if it is a new solution.  Returns how many were recovered."""
     recovered = 0
     for p in np.flatnonzero(status == -1):
@@ -679,17 +685,81 @@ def _recover_twins(
         near = ok[np.argmin(np.linalg.norm(x[ok] - r, axis=1))]
         scale = 1.0 + np.linalg.norm(x[near])
         a = rng.normal(size=r.shape) + 1j * rng.normal(size=r.shape)
-        start = x[near] + 1e-3 * scale * (rng.normal(size=r.shape) + 1j * rng.normal(size=r.shape))
+        jitter = 1e-3 * scale * (rng.normal(size=r.shape) + 1j * rng.normal(size=r.shape))
         close = ok[np.linalg.norm(x[ok] - x[near], axis=1) <= 0.1 * scale]
-        y = _deflated_newton(system, q1, start, x[close], a)
+        for start in (_twin_start(system, q1, x[near]), x[near] + jitter):
+            if start is None:
+                continue
+            y = _deflated_newton(system, q1, start, x[close], a)
+            if y is None:
+                continue
+            dist = np.linalg.norm(x[ok] - y, axis=1) / (1.0 + np.linalg.norm(y))
+            if dist.min() > tol:
+                x[p] = y
+                status[p] = OK
+                recovered += 1
+                break
+    return recovered
+
+
+def _recover_near_double(
+    system: PolynomialSystem, q1: np.ndarray, x: np.ndarray, status: np.ndarray, tol: float
+) -> int:
+    """Paths still lost after every retry: the missing solutions are most often twins of
+    near-double roots found by other paths (a path jumped between the two close solutions
+    and the jump surfaced elsewhere as a duplicate).  Every found solution's twin is predicted
+    (``_twin_start``), nearest first, and Newton's method from there fills a lost path's place
+    with each new solution it reaches.  Seed 500,032 of the minimal bench: the duplicate was
+    6.3 from the lost solution, whose twin was 0.067 from it.  Returns how many were found."""
+    lost = list(np.flatnonzero(status != OK))
+    ok = np.flatnonzero(status == OK)
+    if not lost or ok.size == 0:
+        return 0
+    starts = [(k, _twin_start(system, q1, x[k])) for k in ok]
+    starts = [(np.linalg.norm(y - x[k]), k, y) for k, y in starts if y is not None]
+    found = 0
+    for _, k, y0 in sorted(starts, key=lambda item: item[0]):
+        known = np.flatnonzero(status == OK)
+        y = _deflated_newton(system, q1, y0, x[k : k + 1], np.conj(y0 - x[k]))
         if y is None:
             continue
-        dist = np.linalg.norm(x[ok] - y, axis=1) / (1.0 + np.linalg.norm(y))
+        dist = np.linalg.norm(x[known] - y, axis=1) / (1.0 + np.linalg.norm(y))
         if dist.min() > tol:
-            x[p] = y
-            status[p] = OK
-            recovered += 1
-    return recovered
+            slot = lost.pop(0)
+            x[slot], status[slot] = y, OK
+            found += 1
+            if not lost:
+                break
+    return found
+
+
+def _twin_start(system: PolynomialSystem, q: np.ndarray, r: np.ndarray) -> np.ndarray | None:
+    """Where the twin of a near-double root r lies, to second order.
+
+    Near r the system is nearly singular along one direction: the Jacobian's right and left
+    singular vectors v, u of its smallest singular value.  Along the line r + h v the residual's
+    component g(h) = u^H F(r + h v) = g'(0) h + g''(0) h^2 / 2 + ... vanishes at h = 0 (r) and
+    at h = -2 g'(0) / g''(0): the twin (g'' by a central difference of u^H F_x v).  Seed
+    500,032 of the minimal bench: the twin 0.067 from r (smallest singular value 1e-10 of the
+    largest), predicted to 4.5e-4, where Newton's method converges to it and a random start
+    1e-3 from r reached a complex solution instead."""
+    f, jac = system.evaluate(r, q)
+    if not (np.all(np.isfinite(f)) and np.all(np.isfinite(jac))):
+        return None
+    left, _, right_h = np.linalg.svd(jac)
+    u, v = left[:, -1], right_h[-1].conj()
+    eps = 1e-6 * (1.0 + np.linalg.norm(r))
+
+    def slope(h: float) -> complex:
+        return complex(np.vdot(u, system.evaluate(r + h * v, q)[1] @ v))
+
+    curvature = (slope(eps) - slope(-eps)) / (2.0 * eps)
+    if curvature == 0 or not np.isfinite(curvature):
+        return None
+    h = -2.0 * complex(np.vdot(u, jac @ v)) / curvature
+    if not np.isfinite(h) or abs(h) > 0.1 * (1.0 + np.linalg.norm(r)):
+        return None  # not a near-double root: its twin would not be near
+    return r + h * v
 
 
 def track(
@@ -766,6 +836,9 @@ def track(
             completed += 1
             if bad.size == 0:
                 break
+    if o.near_double_twins:
+        with np.errstate(all="ignore"):
+            twins += _recover_near_double(system, q1, x, status, duplicate_tolerance)
     failures: dict[str, int] = {}
     for code, name in ((-1, "duplicate"), *enumerate(STATUS_NAMES)):
         n = int(np.sum(status == code))
