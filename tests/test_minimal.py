@@ -124,9 +124,7 @@ def test_a_near_double_twin_lost_to_a_path_jump_is_found() -> None:
     direction does, and the truth then reproduces the frames."""
     sc = make_scene(np.random.default_rng(500_032), 4)
     truth = _truth(sc)
-    without = MinimalOptions(
-        homotopy=replace(homotopy.HomotopyOptions(), near_double_twins=False)
-    )
+    without = MinimalOptions(homotopy=replace(homotopy.HomotopyOptions(), near_double_twins=False))
     res = minimal.solve(sc.observations, without)
     err = np.abs(res.shapes - truth) / np.array([truth[0], 1, 1, 1])
     assert err.max(axis=1).min() > 1e-3 and res.n_failed_paths >= 1
