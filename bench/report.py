@@ -21,6 +21,16 @@ ACCURACY_PNG = "accuracy_vs_frames.png"
 
 
 # ------------------------------------------------------------------------------ summaries
+
+
+def pooled_rate(rows: list[dict], key: str) -> float | None:
+    """A rate over several stability rows pooled by their scene counts (None without scenes)."""
+    n = sum(r.get("n", 0) for r in rows if r.get(key) is not None)
+    if not n:
+        return None
+    return float(sum(r[key] * r["n"] for r in rows if r.get(key) is not None) / n)
+
+
 def summarise(
     cfg: Config,
     results: dict[str, list[dict[str, Any]]],
@@ -151,6 +161,11 @@ def headline(cfg: Config, sections: dict[str, Any]) -> dict[str, Any]:
         # be the truth.  The first-answer-only rate of earlier reports stays beside it.
         "noise_free_failure_rate": stab_all.get("failure_rate_four_frames_listed"),
         "noise_free_failure_rate_first_answer": stab_all.get("failure_rate"),
+        # the issue's key: over the 4-, 5- and 6-frame scenes together (truth among the
+        # answer and its alternatives to the threshold), weighted by their numbers
+        "noise_free_truth_not_listed_rate": pooled_rate(
+            sections["stability"]["default"], "failure_rate_truth_not_listed"
+        ),
         **{
             f"noise_free_truth_not_listed_rate_{s['n_frames']}_frames_stability": s.get(
                 "failure_rate_truth_not_listed"

@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from bench.common import make, true_poses
-from bench.report import fair_speedups
+from bench.report import fair_speedups, pooled_rate
 from bench.speed import SAME_COST_CHI2, _time_to_cost
 from curverecon.refine.ml import refine
 
@@ -107,3 +107,11 @@ def test_headline_tool_refuses_bad_arguments_in_one_line() -> None:
         assert "Traceback" not in proc.stderr and proc.stderr.strip().splitlines()[-1].startswith(
             "python -m bench.headline: error:"
         ), proc.stderr
+
+
+def test_pooled_rate_weights_rows_by_their_scene_counts() -> None:
+    """The 4-, 5- and 6-frame rows pool into the issue's one rate by scene count (a plain mean
+    of the rates would weight 120 four-frame scenes like 432 six-frame ones)."""
+    rows = [{"n": 120, "r": 0.0}, {"n": 40, "r": 0.25}, {"n": 432, "r": None}]
+    assert pooled_rate(rows, "r") == 10 / 160
+    assert pooled_rate([{"n": 3, "r": None}], "r") is None
