@@ -2051,7 +2051,12 @@ def refine_reconstruction(
         # the end-point fit's variance factor: the noise level its end points show
         chi2_ep = float(np.sum(end_point_chi2(rec.shape, rec.poses, obs, inl, w8)[inl]))
         s2 = max(chi2_ep / max(int(inl.sum()) - 4, 1), o.variance_floor)
-    sigma = max(float(np.median([pl.noise_level(pl.as_polyline(p)) for p in curves])), SIGMA_FLOOR)
+    # the polylines' noise level from the frames the curve is fitted to (long sequences: the
+    # ``curve_frames`` subset; all 1,000 frames' estimates took a fifth of the curve stage)
+    measured = curves if curve_frames is None else [curves[i] for i in curve_frames]
+    sigma = max(
+        float(np.median([pl.noise_level(pl.as_polyline(p)) for p in measured])), SIGMA_FLOOR
+    )
     limit = o.flag_rms_sigma * sigma + o.flag_rms_px
     warnings = list(rec.warnings)
 
