@@ -23,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cache
 
+import numba
 import numpy as np
 
 from curverecon.errors import CurveReconError
@@ -31,6 +32,11 @@ from curverecon.model.observations import Observations, wrap_line_angle
 from curverecon.options import MinimalOptions
 from curverecon.solvers import homotopy
 from curverecon.solvers.pose import poses_from_shape
+
+try:  # the system's straight-line kernels; absent only until `make derive` first writes them
+    from curverecon.generated import minimal_unsquared_kernel
+except ImportError:  # pragma: no cover
+    minimal_unsquared_kernel = None
 
 FRAMES = 4
 REDUCED_UNKNOWNS = 5
@@ -64,9 +70,43 @@ class MinimalResult:
         return int(self.shapes.shape[0])
 
 
+@numba.njit(cache=True, nogil=True)
+def _track_kernels(q0, q1, d, x_start, opts, order, x_end, status, steps, t_end):  # type: ignore[no-untyped-def]
+    """The homotopy tracker on the generated straight-line kernels of the system
+    (``generated/minimal_unsquared_kernel.py``): compiled and cached here, where the kernels
+    are known by name (``homotopy.track_generated``)."""
+    k = minimal_unsquared_kernel
+    homotopy.track_generated(
+        k.coefficients,
+        k.coefficients_t,
+        k.residual_jacobian,
+        k.residual_jacobian_t,
+        k.N_COEFFICIENTS,
+        q0,
+        q1,
+        d,
+        x_start,
+        opts,
+        order,
+        x_end,
+        status,
+        steps,
+        t_end,
+    )
+
+
 @cache
 def _system() -> homotopy.PolynomialSystem:
-    return homotopy.PolynomialSystem.from_module(minimal_unsquared)
+    """The tracked system: its tables, and the tracker on its generated kernels when the kernel
+    module was generated from the same system (same unknowns, parameters and equations)."""
+    k = minimal_unsquared_kernel
+    same = k is not None and (k.UNKNOWNS, k.PARAMETERS, k.EQUATIONS) == (
+        minimal_unsquared.UNKNOWNS,
+        minimal_unsquared.PARAMETERS,
+        minimal_unsquared.EQUATIONS,
+    )
+    tracker = _track_kernels if same else None
+    return homotopy.PolynomialSystem.from_module(minimal_unsquared, tracker=tracker)
 
 
 def check_four_frames(obs: Observations, options: MinimalOptions | None = None) -> None:
