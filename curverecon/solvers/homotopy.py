@@ -345,8 +345,9 @@ def _solve(a, b, out, m, r, order):
     sparsest first, ``PolynomialSystem.column_order``) and rows whose entry in the pivot column
     is zero are skipped, so an unknown that occurs in two equations only costs one row update
     (the Schur complement onto the other unknowns, without writing it out).  ``m``, ``r``:
-    scratch of the shapes of ``a`` and ``b``.  Pivots by |Re| + |Im| (within a factor sqrt(2)
-    of the modulus, without its square root)."""
+    scratch of the shapes of ``a`` and ``b`` (``out`` must not be ``b``).  Pivots by
+    |Re| + |Im| (within a factor sqrt(2) of the modulus, without its square root); one complex
+    division per pivot."""
     n = b.shape[0]
     for i in range(n):
         r[i] = b[i]
@@ -371,6 +372,7 @@ def _solve(a, b, out, m, r, order):
             r[col] = r[piv]
             r[piv] = tmp
         inv = 1.0 / m[col, col]
+        out[col] = inv  # the pivots' inverses, until the solution overwrites them
         for row in range(col + 1, n):
             if m[row, col] != 0.0:
                 fac = m[row, col] * inv
@@ -381,7 +383,7 @@ def _solve(a, b, out, m, r, order):
         s = r[row]
         for k in range(row + 1, n):
             s -= m[row, k] * r[k]
-        r[row] = s / m[row, row]
+        r[row] = s * out[row]
     for k in range(n):
         out[order[k]] = r[k]
     return True
