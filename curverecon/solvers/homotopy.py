@@ -143,10 +143,16 @@ class PolynomialSystem:
     ``(q0, q1, detour, x_start, options vector, column order, x_end, status, steps, t_end)``
     that calls
     :func:`track_generated`), or None: the tracker then reads the tables (slower, any system)."""
+    newton: Callable[..., None] | None = field(default=None, compare=False, repr=False)
+    """Newton's method on the generated kernels (a compiled function of ``(rows, q, column
+    order, iterations)`` that calls :func:`newton_generated`), or None (the tables)."""
 
     @classmethod
     def from_module(
-        cls, mod: ModuleType, tracker: Callable[..., None] | None = None
+        cls,
+        mod: ModuleType,
+        tracker: Callable[..., None] | None = None,
+        newton: Callable[..., None] | None = None,
     ) -> PolynomialSystem:
         n_u, n_p = len(mod.UNKNOWNS), len(mod.PARAMETERS)
         uexp = np.asarray(mod.UNKNOWN_EXPONENTS, dtype=np.int64).reshape(-1, n_u)
@@ -170,6 +176,7 @@ class PolynomialSystem:
             start_solutions=np.asarray(mod.START_SOLUTIONS, dtype=np.complex128),
             column_order=_column_order(uexp, terms, len(mod.EQUATIONS)),
             tracker=tracker,
+            newton=newton,
         )
 
     def _args(self) -> tuple:
@@ -184,6 +191,19 @@ class PolynomialSystem:
             self.terms,
             self.coefficients,
         )
+
+    def polish(self, rows: np.ndarray, q: np.ndarray, iterations: int) -> np.ndarray:
+        """Newton's method on F(x; q) = 0 from every row (complex arithmetic, compiled): at
+        most ``iterations`` steps a row, stopping once every component's step is below 1e-15
+        relative to 1 + |x_i|, or before a step that is not finite (singular Jacobian).  Real
+        rows at real q stay real.  Returns the polished rows (a new array)."""
+        xs = np.array(rows, dtype=np.complex128, order="C").reshape(-1, self.n_unknowns)
+        qc = np.ascontiguousarray(q, dtype=np.complex128)
+        if self.newton is not None:
+            self.newton(xs, qc, self.column_order, iterations)
+        else:
+            _newton_tables(*self._args(), xs, qc, self.column_order, iterations)
+        return xs
 
     def evaluate(self, x: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """F(x; q) (n_equations,) and its Jacobian in x, at one complex point."""
@@ -227,7 +247,11 @@ def _sparse_rows(exponents: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndar
 # compiled kernels
 # ----------------------------------------------------------------------------------------------
 
-_JIT = {"cache": True, "nogil": True, "fastmath": {"contract", "reassoc", "arcp", "nsz"}}
+# No "reassoc": with it LLVM vectorised the reductions (norms, the back substitution) with a
+# prologue that depends on the arrays' addresses, so one input gave endpoints differing at 1e-16
+# from process to process, and on a scene with a near-double root (seed 600,125) a different
+# set of solutions.
+_JIT = {"cache": True, "nogil": True, "fastmath": {"contract", "arcp", "nsz"}}
 
 
 @numba.njit(**_JIT)
@@ -720,6 +744,79 @@ def _track_core(
         t_end[p] = t
 
 
+@numba.njit(**_JIT)
+def _newton_core(coefficients, residual_jacobian, w, xs, q, order, iterations):
+    """Newton's method from every row of ``xs`` in place (``PolynomialSystem.polish``), on any
+    evaluation of the system (the signatures of ``_track_core``)."""
+    n = xs.shape[1]
+    f = np.empty(n, np.complex128)
+    jac = np.empty((n, n), np.complex128)
+    dx = np.empty(n, np.complex128)
+    lu = np.empty((n, n), np.complex128)
+    rhs = np.empty(n, np.complex128)
+    coefficients(q, w)
+    for p in range(xs.shape[0]):
+        for _ in range(iterations):
+            residual_jacobian(xs[p], w, f, jac)
+            if not _solve(jac, f, dx, lu, rhs, order):
+                break
+            finite = True
+            for i in range(n):
+                if not (np.isfinite(dx[i].real) and np.isfinite(dx[i].imag)):
+                    finite = False
+            if not finite:
+                break
+            small = True
+            for i in range(n):
+                xs[p, i] -= dx[i]
+                if abs(dx[i]) >= 1e-15 * (1.0 + abs(xs[p, i])):
+                    small = False
+            if small:
+                break
+
+
+@numba.njit(**_JIT)
+def _newton_tables(n_eq, us, uv, ue, ps, pv, pe, terms, coef, xs, q, order, iterations):
+    """``_newton_core`` on the tables (a system without generated kernels)."""
+    n_umon = us.shape[0] - 1
+    ks, keq = _monomial_equations(terms, n_umon)
+    workspace = (
+        np.empty((n_eq, n_umon), np.complex128),
+        n_eq,
+        ps,
+        pv,
+        pe,
+        terms,
+        coef,
+        np.empty(ps.shape[0] - 1, np.complex128),
+        np.empty(ps.shape[0] - 1, np.complex128),
+        us,
+        uv,
+        ue,
+        _power_table(ue, xs.shape[1]),
+        ks,
+        keq,
+    )
+    _newton_core(
+        _this._table_coefficients,
+        _this._table_residual_jacobian,
+        workspace,
+        xs,
+        q,
+        order,
+        iterations,
+    )
+
+
+@numba.njit(**_JIT)
+def newton_generated(coefficients, residual_jacobian, n_coefficients, xs, q, order, iterations):
+    """Newton's method from every row of ``xs`` in place, on a system's generated kernels
+    (``coefficients``, ``residual_jacobian`` and ``N_COEFFICIENTS`` of its kernel module; see
+    :func:`track_generated` for why the caller is a compiled function naming them)."""
+    w = np.empty(n_coefficients, np.complex128)
+    _newton_core(coefficients, residual_jacobian, w, xs, q, order, iterations)
+
+
 def _options_vector(o: HomotopyOptions) -> np.ndarray:
     return np.array(
         [
@@ -974,9 +1071,17 @@ def track(
     ok = np.flatnonzero(status == OK)
     # of endpoints that coincide, the first stays (it is a solution either way); the others
     # jumped and are tracked again
-    for k, i in enumerate(ok[1:], start=1):
-        if _coincide(x, ok[k : k + 1], ok[:k][status[ok[:k]] == OK], duplicate_tolerance)[0]:
-            status[i] = -1
+    # (one distance matrix: each path's _coincide with the earlier ones cost 70 us, 7 ms a
+    # solve, as much as 5 % of it)
+    ends = x[ok]
+    size = np.linalg.norm(ends, axis=1)
+    close = np.linalg.norm(ends[:, None, :] - ends[None, :, :], axis=2) <= duplicate_tolerance * (
+        1.0 + np.minimum(size[:, None], size[None, :])
+    )
+    kept = np.ones(ok.size, dtype=bool)
+    for k in range(1, ok.size):
+        kept[k] = not np.any(close[k, :k] & kept[:k])
+    status[ok[~kept]] = -1
     rng = np.random.default_rng(o.seed)
     retried = np.zeros(x.shape[0], dtype=bool)
     span = np.linalg.norm(q1 - q0) + 1e-300
