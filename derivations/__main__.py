@@ -29,6 +29,7 @@ from derivations.codegen.generate import (
     render_init,
     render_kernel_module,
     render_module,
+    render_system_kernel_module,
 )
 
 STALE_MESSAGE = "generated/ is stale: run `make derive` (or pytest --update-generated)"
@@ -107,6 +108,31 @@ def _system_module(module: str, filename: str) -> str | None:
     return _record_module(module, filename, "minimal_system", "system")
 
 
+def _system_kernel_module(module: str, filename: str) -> str | None:
+    """Render straight-line numba kernels of the PolynomialSystem ``module.minimal_system()``
+    (F, F_x and F_t by way of the coefficient matrix W(q); the homotopy tracker's fast path)."""
+    build = _optional(module, "minimal_system")
+    if build is None:
+        return None
+    record = build()
+    doc = (
+        f"Straight-line numba kernels of generated/{record.name}.py (generated).\n\n"
+        f"The system F(x; q) = W(q) u(x) of {module.replace('.', '/')}.py, written out after one "
+        "common-subexpression pass instead of read from tables: ``coefficients`` and "
+        "``coefficients_t`` give the nonzero entries of W (and dW/dt along dq), "
+        "``residual_jacobian`` and ``residual_jacobian_t`` give F, F_x (and F_t) from them.  "
+        "Complex arithmetic; every argument a contiguous complex128 array.  "
+        "curverecon.solvers.homotopy tracks paths with these when a system comes with them, "
+        "and reads the tables of the system module otherwise."
+    )
+    return render_system_kernel_module(
+        source=module.replace(".", "/") + ".py",
+        doc=doc,
+        system=record,
+        filename=f"generated/{filename}",
+    )
+
+
 #: (file name, one-line summary, builder) in the order they are generated.
 TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
     (
@@ -140,6 +166,12 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         "the four-frame minimal problem and its start system, solved by monodromy "
         "(derivations/minimal.py)",
         lambda: _system_module("derivations.minimal", "minimal_unsquared.py"),
+    ),
+    (
+        "minimal_unsquared_kernel.py",
+        "the same system as straight-line numba kernels: F, F_x, F_t by way of W(q) "
+        "(derivations/minimal.py)",
+        lambda: _system_kernel_module("derivations.minimal", "minimal_unsquared_kernel.py"),
     ),
 )
 

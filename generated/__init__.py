@@ -16,6 +16,8 @@
 - ``polynomial_12p``: the paper's (12'), grouped by observable monomial (derivations/squaring.py)
 - ``minimal_unsquared``: the four-frame minimal problem and its start system, solved by monodromy
   (derivations/minimal.py)
+- ``minimal_unsquared_kernel``: the same system as straight-line numba kernels: F, F_x, F_t by way
+  of W(q) (derivations/minimal.py)
 """
 
 __all__ = (
@@ -25,4 +27,5 @@ __all__ = (
     "lean_polynomial",
     "polynomial_12p",
     "minimal_unsquared",
+    "minimal_unsquared_kernel",
 )

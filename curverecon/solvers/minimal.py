@@ -23,6 +23,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cache
 
+import numba
 import numpy as np
 
 from curverecon.errors import CurveReconError
@@ -31,6 +32,11 @@ from curverecon.model.observations import Observations, wrap_line_angle
 from curverecon.options import MinimalOptions
 from curverecon.solvers import homotopy
 from curverecon.solvers.pose import poses_from_shape
+
+try:  # the system's straight-line kernels; absent only until `make derive` first writes them
+    from curverecon.generated import minimal_unsquared_kernel
+except ImportError:  # pragma: no cover
+    minimal_unsquared_kernel = None
 
 FRAMES = 4
 REDUCED_UNKNOWNS = 5
@@ -64,9 +70,55 @@ class MinimalResult:
         return int(self.shapes.shape[0])
 
 
+@numba.njit(cache=True, nogil=True)
+def _track_kernels(q0, q1, d, x_start, opts, order, x_end, status, steps, t_end):  # type: ignore[no-untyped-def]
+    """The homotopy tracker on the generated straight-line kernels of the system
+    (``generated/minimal_unsquared_kernel.py``): compiled and cached here, where the kernels
+    are known by name (``homotopy.track_generated``)."""
+    k = minimal_unsquared_kernel
+    homotopy.track_generated(
+        k.coefficients,
+        k.coefficients_t,
+        k.residual_jacobian,
+        k.residual_jacobian_t,
+        k.N_COEFFICIENTS,
+        q0,
+        q1,
+        d,
+        x_start,
+        opts,
+        order,
+        x_end,
+        status,
+        steps,
+        t_end,
+    )
+
+
+@numba.njit(cache=True, nogil=True)
+def _newton_kernels(xs, q, order, iterations):  # type: ignore[no-untyped-def]
+    """Newton's method on the generated kernels (``homotopy.newton_generated``)."""
+    k = minimal_unsquared_kernel
+    homotopy.newton_generated(
+        k.coefficients, k.residual_jacobian, k.N_COEFFICIENTS, xs, q, order, iterations
+    )
+
+
 @cache
 def _system() -> homotopy.PolynomialSystem:
-    return homotopy.PolynomialSystem.from_module(minimal_unsquared)
+    """The tracked system: its tables, and the tracker on its generated kernels when the kernel
+    module was generated from the same system (same unknowns, parameters and equations)."""
+    k = minimal_unsquared_kernel
+    same = k is not None and (k.UNKNOWNS, k.PARAMETERS, k.EQUATIONS) == (
+        minimal_unsquared.UNKNOWNS,
+        minimal_unsquared.PARAMETERS,
+        minimal_unsquared.EQUATIONS,
+    )
+    if not same:
+        return homotopy.PolynomialSystem.from_module(minimal_unsquared)
+    return homotopy.PolynomialSystem.from_module(
+        minimal_unsquared, tracker=_track_kernels, newton=_newton_kernels
+    )
 
 
 def check_four_frames(obs: Observations, options: MinimalOptions | None = None) -> None:
@@ -94,29 +146,6 @@ def check_four_frames(obs: Observations, options: MinimalOptions | None = None) 
                 )
 
 
-def _polish(
-    system: homotopy.PolynomialSystem, x: np.ndarray, q: np.ndarray, iterations: int
-) -> np.ndarray:
-    """Newton's method in float64 on the tracked (unsquared) system at the frames' parameters.
-
-    Real solutions stay real (real system, real start).  Not on the lean equations: where s_i
-    is near 0 (a nearly flat curve, c' near c) their root is near-double, and Newton's method
-    there moved a solution the unsquared system had to 1e-11 by 2e-4 (seed 300005, phi 178.7
-    degrees)."""
-    for _ in range(iterations):
-        f, jac = system.evaluate(x, q)
-        try:
-            step = np.linalg.solve(jac, f)
-        except np.linalg.LinAlgError:
-            break
-        if not np.all(np.isfinite(step)):
-            break
-        x = x - step
-        if np.max(np.abs(step) / (1 + np.abs(x))) < 1e-15:
-            break
-    return x
-
-
 def solve(obs: Observations, options: MinimalOptions | None = None) -> MinimalResult:
     """Every real shape (c, alpha, beta, phi) that fits the four frames of ``obs`` exactly."""
     o = options or MinimalOptions()
@@ -128,7 +157,12 @@ def solve(obs: Observations, options: MinimalOptions | None = None) -> MinimalRe
     x = tracked.solutions
     ok = np.all(np.isfinite(x), axis=1)
     real = ok & np.all(np.abs(x.imag) <= o.real_tolerance * (1 + np.abs(x)), axis=1)
-    xr = np.array([_polish(_system(), row, target, o.polish_iterations).real for row in x[real]])
+    # Newton's method in float64 on the tracked (unsquared) system at the frames' parameters;
+    # real solutions stay real (real system, real start).  Not on the lean equations: where s_i
+    # is near 0 (a nearly flat curve, c' near c) their root is near-double, and Newton's method
+    # there moved a solution the unsquared system had to 1e-11 by 2e-4 (seed 300005, phi 178.7
+    # degrees).
+    xr = _system().polish(x[real], target, o.polish_iterations).real
     tol = o.bound_tolerance
     c2, a2, b2, p2, m = xr[:, :REDUCED_UNKNOWNS].T if xr.size else np.zeros((REDUCED_UNKNOWNS, 0))
     inside = (

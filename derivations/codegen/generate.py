@@ -14,6 +14,7 @@ The output depends only on the inputs: no timestamps, no absolute paths, no set/
 from __future__ import annotations
 
 import difflib
+import keyword
 import shutil
 import subprocess
 import sys
@@ -33,6 +34,7 @@ from derivations.codegen.spec import FunctionSpec, PolynomialColumns, Polynomial
 TEMPLATE_NAME = "module.py.jinja"
 TEMPLATE_PATH = "derivations/codegen/templates/" + TEMPLATE_NAME
 KERNEL_TEMPLATE_NAME = "kernel.py.jinja"
+SYSTEM_KERNEL_TEMPLATE_NAME = "system_kernel.py.jinja"
 REPO_ROOT = Path(__file__).resolve().parents[2]
 
 
@@ -499,6 +501,195 @@ def print_system(record: PolynomialSystem, config: NumPyConfig) -> SystemCode:
     )
 
 
+@dataclass(frozen=True)
+class ArrayKernelCode:
+    """A printed straight-line kernel on arrays, ready for ``templates/system_kernel.py.jinja``.
+
+    ``loads`` read the scalar inputs out of the argument arrays (``C = x[0]``), ``temporaries``
+    are the common subexpressions, ``stores`` write every output entry (zeros included)."""
+
+    name: str
+    args: tuple[str, ...]
+    outputs: tuple[str, ...]
+    doc: str
+    loads: tuple[tuple[str, str], ...]
+    temporaries: tuple[tuple[str, str], ...]
+    stores: tuple[tuple[str, str], ...]
+
+
+def print_array_kernel(
+    name: str,
+    inputs: Sequence[tuple[str, Sequence[sp.Symbol]]],
+    outputs: Sequence[tuple[str, sp.Expr | sp.MatrixBase | Sequence[sp.Expr]]],
+    doc: str,
+    config: NumPyConfig,
+) -> ArrayKernelCode:
+    """A straight-line numba kernel: scalar symbols read from input arrays (``inputs``: (array
+    name, its symbols in index order)), one ``sympy.cse`` pass over every output component
+    (temporaries ``_tmp0, _tmp1, ...``), every output entry written into the output arrays
+    (``outputs``: (array name, expressions); a Matrix is written as a 2-D array).  The
+    arithmetic is whatever the arguments hold (complex128 for a homotopy)."""
+    printer = ScalarCodePrinter(config)
+    # Each input symbol becomes a local variable of its own name, unless that name is taken
+    # (an array argument, a module name, a keyword, another input, a temporary): then
+    # ``_<array>_<index>``.
+    reserved = {a for a, _ in inputs} | {a for a, _ in outputs} | {"math", "np", "numba"}
+    local: dict[sp.Symbol, sp.Symbol] = {}
+    loads: list[tuple[str, str]] = []
+    for array, symbols in inputs:
+        for k, sym in enumerate(symbols):
+            if sym in local:
+                raise ValueError(f"{name}: {sym.name!r} is read from two inputs")
+            text = sym.name
+            if (
+                not text.isidentifier()
+                or keyword.iskeyword(text)
+                or text in reserved
+                or text.startswith("_")
+            ):
+                text = f"_{array}_{k}"
+            reserved.add(text)
+            local[sym] = sp.Symbol(text)
+            loads.append((text, f"{array}[{k}]"))
+    flat: list[sp.Expr] = []
+    index: list[tuple[str, str]] = []
+    for out_name, value in outputs:
+        if isinstance(value, sp.MatrixBase):
+            rows, cols = value.shape
+            for r in range(rows):
+                for c in range(cols):
+                    flat.append(sp.sympify(value[r, c]).xreplace(local))
+                    index.append((out_name, f"{r}, {c}"))
+        else:
+            for k, e in enumerate(value):  # type: ignore[arg-type]
+                flat.append(sp.sympify(e).xreplace(local))
+                index.append((out_name, str(k)))
+    used = set().union(*(e.free_symbols for e in flat)) if flat else set()
+    unknown = sorted(s.name for s in used if s not in set(local.values()))
+    if unknown:
+        raise ValueError(f"{name}: outputs use symbols that are not inputs: {unknown}")
+    loads = [(text, where) for text, where in loads if sp.Symbol(text) in used]
+    replacements, reduced = sp.cse(
+        flat,
+        symbols=sp.numbered_symbols("_tmp"),
+        optimizations=config.cse_optimizations,
+        order="canonical",
+    )
+    temporaries = tuple((sym.name, printer.doprint(expr)) for sym, expr in replacements)
+    stores = []
+    for (array, idx), e in zip(index, reduced, strict=True):
+        text = printer.doprint(e)
+        stores.append((f"{array}[{idx}]", "0.0" if text == "0" else text))
+    args = tuple(a for a, _ in inputs) + tuple(a for a, _ in outputs)
+    return ArrayKernelCode(
+        name=name,
+        args=args,
+        outputs=tuple(a for a, _ in outputs),
+        doc=wrap_doc(doc, config.line_length - 8),
+        loads=tuple(loads),
+        temporaries=temporaries,
+        stores=tuple(stores),
+    )
+
+
+@dataclass(frozen=True)
+class SystemKernelCode:
+    """A PolynomialSystem's straight-line kernels, ready for ``system_kernel.py.jinja``."""
+
+    unknowns_repr: str
+    parameters_repr: str
+    equations_repr: str
+    n_coefficients: int
+    coefficient_rows: tuple[str, ...]
+    kernels: tuple[ArrayKernelCode, ...]
+
+
+def system_kernels(record: PolynomialSystem, config: NumPyConfig) -> SystemKernelCode:
+    """Straight-line kernels of a parametric system F(x; q) = W(q) u(x) (``u`` the unknown
+    monomials, ``W`` the coefficient matrix, a polynomial in the parameters):
+
+    * ``coefficients(q, w)``: the nonzero entries of W(q), in (equation, unknown monomial) order;
+    * ``coefficients_t(q, dq, w, wt)``: those and their derivative along dq, dW/dt = W_q . dq;
+    * ``residual_jacobian(x, w, f, jac)``: F and F_x at x from the entries w;
+    * ``residual_jacobian_t(x, w, wt, f, jac, ft)``: those and F_t = (dW/dt) u(x).
+
+    The split lets a tracker evaluate W once per t and reuse it for every Newton iteration
+    there.  Entries that do not depend on q are written into the residual kernels as numbers.
+    Terms come from :func:`system_terms`, so the entries are the same sums as the table-driven
+    module's."""
+    n_u = len(record.unknowns)
+    umons, pmons, terms = system_terms(record.equations, record.unknowns, record.parameters)
+    params = tuple(record.parameters)
+    rates = tuple(sp.Symbol(f"d_{p.name}") for p in params)
+    entries: dict[tuple[int, int], sp.Expr] = {}
+    for a, j, k, coeff in terms:
+        pmon = sp.Mul(*(p**e for p, e in zip(params, pmons[j], strict=True)))
+        entries[(a, k)] = entries.get((a, k), sp.Integer(0)) + coeff * pmon
+    keys = sorted(entries)
+    values = [sp.expand(entries[key]) for key in keys]
+    rate_values = [
+        sp.expand(sum((sp.diff(v, p) * r for p, r in zip(params, rates, strict=True)), start=0))
+        for v in values
+    ]
+    w_syms = tuple(sp.Symbol(f"w{i}") for i in range(len(keys)))
+    wt_syms = tuple(sp.Symbol(f"wt{i}") for i in range(len(keys)))
+    unknowns = tuple(record.unknowns)
+
+    def umon(k: int) -> sp.Expr:
+        return sp.Mul(*(x**e for x, e in zip(unknowns, umons[k], strict=True)))
+
+    n_eq = len(record.equations)
+    f = [sp.Integer(0)] * n_eq
+    ft = [sp.Integer(0)] * n_eq
+    for i, (a, k) in enumerate(keys):
+        if values[i].is_Number:  # a constant entry is written into the code, not read from w
+            f[a] += values[i] * umon(k)
+        else:
+            f[a] += w_syms[i] * umon(k)
+            ft[a] += wt_syms[i] * umon(k)
+    jac = sp.Matrix(n_eq, n_u, lambda a, v: sp.expand(sp.diff(f[a], unknowns[v])))
+    kernels = (
+        print_array_kernel(
+            "coefficients",
+            [("q", params)],
+            [("w", values)],
+            "The nonzero entries of the coefficient matrix W(q) (COEFFICIENT_ENTRIES order).",
+            config,
+        ),
+        print_array_kernel(
+            "coefficients_t",
+            [("q", params), ("dq", rates)],
+            [("w", values), ("wt", rate_values)],
+            "W(q) as ``coefficients`` and its derivative dW/dt = W_q . dq along dq = dq/dt.",
+            config,
+        ),
+        print_array_kernel(
+            "residual_jacobian",
+            [("x", unknowns), ("w", w_syms)],
+            [("f", f), ("jac", jac)],
+            "F(x; q) = W(q) u(x) and its Jacobian F_x, from W's entries w.",
+            config,
+        ),
+        print_array_kernel(
+            "residual_jacobian_t",
+            [("x", unknowns), ("w", w_syms), ("wt", wt_syms)],
+            [("f", f), ("jac", jac), ("ft", ft)],
+            "F and F_x as ``residual_jacobian``, and F_t = (dW/dt) u(x) from dW/dt's entries wt.",
+            config,
+        ),
+    )
+    width = config.line_length - len(config.indent) - 4
+    rows = [f"({a}, {tuple(umons[k])!r})" for a, k in keys]
+    return SystemKernelCode(
+        unknowns_repr=repr(tuple(s.name for s in record.unknowns)),
+        parameters_repr=repr(tuple(s.name for s in record.parameters)),
+        equations_repr=repr(tuple(record.equation_names)),
+        n_coefficients=len(keys),
+        coefficient_rows=tuple(_pack(rows, width)),
+        kernels=kernels,
+    )
+
+
 # ---------------------------------------------------------------------------------------------
 # Rendering and formatting
 # ---------------------------------------------------------------------------------------------
@@ -604,6 +795,21 @@ def render_kernel_module(
     config = config or NumPyConfig()
     kernel_code = [print_kernel(f, config) for f in kernels]
     return _render(KERNEL_TEMPLATE_NAME, source, doc, filename, config, kernels=kernel_code)
+
+
+def render_system_kernel_module(
+    *,
+    source: str,
+    doc: str,
+    system: PolynomialSystem,
+    filename: str = "generated/system_kernel.py",
+    config: NumPyConfig | None = None,
+) -> str:
+    """The formatted text of a module of straight-line numba kernels of a parametric polynomial
+    system (``templates/system_kernel.py.jinja``, :func:`system_kernels`)."""
+    config = config or NumPyConfig()
+    code = system_kernels(system, config)
+    return _render(SYSTEM_KERNEL_TEMPLATE_NAME, source, doc, filename, config, kernel=code)
 
 
 def render_init(modules: Sequence[tuple[str, str]], source: str) -> str:

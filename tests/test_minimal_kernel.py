@@ -1,0 +1,159 @@
+"""The generated straight-line kernels of a parametric polynomial system (issue 12's speed).
+
+``make derive`` writes ``generated/minimal_unsquared_kernel.py`` from the same SymPy system as
+the tables of ``generated/minimal_unsquared.py``: F(x; q) = W(q) u(x), F_x and F_t written out
+after one CSE pass.  They are checked against the table-driven evaluation
+(``PolynomialSystem.evaluate``), F_t against the derivative of that evaluation along the
+parameter path (a Cauchy integral over a circle in t: exact for a polynomial in t up to
+rounding), and the code generator on a small system against SymPy directly.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from dataclasses import replace
+
+import numpy as np
+import sympy as sp
+from curverecon.generated import minimal_unsquared_kernel as kernel
+
+from curverecon.simulate import make_scene
+from curverecon.solvers import homotopy, minimal
+from derivations.codegen.generate import render_system_kernel_module
+from derivations.codegen.spec import PolynomialSystem as SystemRecord
+
+
+def _crandn(rng: np.random.Generator, n: int) -> np.ndarray:
+    return rng.normal(size=n) + 1j * rng.normal(size=n)
+
+
+def _kernel_eval(mod, x: np.ndarray, q: np.ndarray, dq: np.ndarray):  # type: ignore[no-untyped-def]
+    n_eq, n_u = len(mod.EQUATIONS), len(mod.UNKNOWNS)
+    w = np.empty(mod.N_COEFFICIENTS, np.complex128)
+    wt = np.empty_like(w)
+    f = np.empty(n_eq, np.complex128)
+    ft = np.empty_like(f)
+    jac = np.empty((n_eq, n_u), np.complex128)
+    mod.coefficients_t(q, dq, w, wt)
+    mod.residual_jacobian_t(x, w, wt, f, jac, ft)
+    # the kernels without t give the same F and F_x
+    w0, f0, jac0 = np.empty_like(w), np.empty_like(f), np.empty_like(jac)
+    mod.coefficients(q, w0)
+    mod.residual_jacobian(x, w0, f0, jac0)
+    for got, want in ((w0, w), (f0, f), (jac0, jac)):
+        assert np.abs(got - want).max() <= 1e-13 * np.abs(want).max()
+    return f, jac, ft
+
+
+def test_generated_kernels_agree_with_the_tables() -> None:
+    """F, F_x equal the table-driven evaluation to 1e-12 relative at random complex points, and
+    F_t = dF(x; q + t dq)/dt at t = 0: the mean of F(x; q + r e^(i theta) dq) e^(-i theta) / r
+    over 32 points of a circle (exact for the polynomial of degree < 32 in t)."""
+    system = minimal._system()
+    assert kernel.UNKNOWNS == minimal.minimal_unsquared.UNKNOWNS
+    rng = np.random.default_rng(5)
+    n_points, radius = 32, 0.5
+    roots = np.exp(2j * np.pi * np.arange(n_points) / n_points)
+    for _ in range(6):
+        x = _crandn(rng, system.n_unknowns)
+        q = _crandn(rng, system.n_parameters)
+        dq = _crandn(rng, system.n_parameters)
+        f, jac, ft = _kernel_eval(kernel, x, q, dq)
+        f_ref, jac_ref = system.evaluate(x, q)
+        assert np.abs(f - f_ref).max() <= 1e-12 * np.abs(f_ref).max()
+        assert np.abs(jac - jac_ref).max() <= 1e-12 * np.abs(jac_ref).max()
+        on_circle = np.array([system.evaluate(x, q + radius * z * dq)[0] for z in roots])
+        ft_ref = (on_circle * roots.conj()[:, None]).mean(axis=0) / radius
+        scale = np.abs(on_circle).max() / radius
+        assert np.abs(ft - ft_ref).max() <= 1e-12 * scale
+        assert np.abs(ft_ref).max() > 1e-3 * scale  # a derivative that could be wrong
+
+
+def test_the_code_generator_on_a_small_system(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """Any SymPy system in, kernels out: a 2 x 2 system with a constant coefficient, checked
+    against SymPy's own F, F_x and F_t = F_q . dq."""
+    x, y, a, b = sp.symbols("x y a b")
+    eqs = (a * x**2 + b * x * y - 3, x * y**2 + a * b * y + b**2 - x)
+    record = SystemRecord(
+        name="toy",
+        unknowns=(x, y),
+        parameters=(a, b),
+        equations=eqs,
+        equation_names=("first", "second"),
+        start_parameters=(1j, 2.0),
+        start_solutions=((1.0, 2.0),),
+        doc="A toy system.",
+    )
+    path = tmp_path / "toy_kernel.py"
+    path.write_text(render_system_kernel_module(source="tests", doc="Toy.", system=record))
+    spec = importlib.util.spec_from_file_location("toy_kernel", path)
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    assert mod.UNKNOWNS == ("x", "y") and mod.PARAMETERS == ("a", "b")
+    da, db = sp.symbols("da db")
+    jac_s = sp.Matrix(eqs).jacobian([x, y])
+    ft_s = [sp.diff(e, a) * da + sp.diff(e, b) * db for e in eqs]
+    ref = sp.lambdify((x, y, a, b, da, db), (list(eqs), jac_s, ft_s))
+    rng = np.random.default_rng(3)
+    for _ in range(4):
+        xv, qv, dqv = _crandn(rng, 2), _crandn(rng, 2), _crandn(rng, 2)
+        f, jac, ft = _kernel_eval(mod, xv, qv, dqv)
+        f_ref, jac_ref, ft_ref = ref(*xv, *qv, *dqv)
+        np.testing.assert_allclose(f, np.array(f_ref, complex), rtol=1e-13, atol=1e-13)
+        np.testing.assert_allclose(jac, np.array(jac_ref, complex), rtol=1e-13, atol=1e-13)
+        np.testing.assert_allclose(ft, np.array(ft_ref, complex), rtol=1e-13, atol=1e-13)
+
+
+def test_the_kernel_tracker_follows_the_same_paths_as_the_tables() -> None:
+    """One four-frame scene from the 3-D generator: every path tracked on the generated kernels
+    ends where the table-driven tracker's does (same status, same endpoint up to rounding)."""
+    system = minimal._system()
+    assert system.tracker is not None
+    tables = replace(system, tracker=None)
+    obs = make_scene(np.random.default_rng(600_003), 4).observations
+    scale = float(np.mean(obs.cp))
+    target = np.column_stack([obs.cp, obs.dp, obs.ep]).ravel() / scale
+    q0, xs = system.start_parameters, system.start_solutions
+    xk, sk, _ = homotopy.track_once(system, q0, target, xs)
+    xt, st, _ = homotopy.track_once(tables, q0, target, xs)
+    assert np.array_equal(sk, st) and np.sum(sk == homotopy.OK) >= 100
+    ok = sk == homotopy.OK
+    rel = np.linalg.norm(xk[ok] - xt[ok], axis=1) / (1 + np.linalg.norm(xt[ok], axis=1))
+    assert rel.max() < 1e-8
+
+
+def test_the_linear_solves_eliminate_each_frames_own_unknown_first() -> None:
+    """s_i occurs in two equations only (its frame's unsquared (12*) and its definition), so
+    the column order puts s0..s3 first; the other unknowns occur in five or more."""
+    system = minimal._system()
+    names = [minimal.minimal_unsquared.UNKNOWNS[k] for k in system.column_order]
+    assert names[:4] == ["s0", "s1", "s2", "s3"]
+
+
+def test_newton_on_the_kernels_and_on_the_tables_reach_the_same_solutions() -> None:
+    """Real solutions of a four-frame scene, moved by 1e-6: Newton's method on the generated
+    kernels and on the tables brings each back to the same point, where F vanishes (1e-12
+    of the Jacobian's scale) and the rows stay real."""
+    system = minimal._system()
+    assert system.newton is not None
+    tables = replace(system, tracker=None, newton=None)
+    obs = make_scene(np.random.default_rng(600_007), 4).observations
+    scale = float(np.mean(obs.cp))
+    target = np.column_stack([obs.cp, obs.dp, obs.ep]).ravel() / scale
+    x = homotopy.track(system, target).solutions
+    real = np.all(np.isfinite(x), axis=1) & np.all(np.abs(x.imag) < 1e-8 * (1 + np.abs(x)), axis=1)
+    assert real.sum() >= 2
+    rng = np.random.default_rng(0)
+    start = x[real].real * (1 + 1e-6 * rng.normal(size=x[real].shape))
+    by_kernels = system.polish(start, target, 8)
+    by_tables = tables.polish(start, target, 8)
+    assert np.array_equal(
+        start, x[real].real * (1 + 1e-6 * np.random.default_rng(0).normal(size=x[real].shape))
+    )  # the input is not modified
+    rel = np.abs(by_kernels - by_tables) / (1 + np.abs(by_tables))
+    assert rel.max() < 1e-10 and np.abs(by_kernels.imag).max() == 0
+    for row in by_kernels:
+        f, jac = system.evaluate(row, target)
+        assert np.abs(f).max() < 1e-12 * np.abs(jac).max() * (1 + np.abs(row).max())
+    assert np.abs(start - by_kernels).max() > 1e-9  # Newton moved them
