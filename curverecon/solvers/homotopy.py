@@ -34,8 +34,8 @@ _this = sys.modules[__name__]
 bare global function used as a value to its address in this process (so the caller cannot be
 cached), a module attribute to a constant resolved while typing (cached)."""
 
-OK, STEP_TOO_SMALL, DIVERGED, TOO_MANY_STEPS = 0, 1, 2, 3
-STATUS_NAMES = ("ok", "step too small", "diverged", "too many steps")
+OK, STEP_TOO_SMALL, DIVERGED, TOO_MANY_STEPS, DEGENERATE = 0, 1, 2, 3, 4
+STATUS_NAMES = ("ok", "step too small", "diverged", "too many steps", "degenerate")
 
 
 @dataclass(frozen=True)
@@ -146,6 +146,11 @@ class PolynomialSystem:
     newton: Callable[..., None] | None = field(default=None, compare=False, repr=False)
     """Newton's method on the generated kernels (a compiled function of ``(rows, q, column
     order, iterations)`` that calls :func:`newton_generated`), or None (the tables)."""
+    nonzero: tuple[int, ...] = ()
+    """Unknowns that are nonzero at every counted solution (the saturation of the solution
+    count, docs/derivation.md): an endpoint with one of them at zero lies on a spurious
+    positive-dimensional component, not among the counted solutions, and is a failed path
+    (``DEGENERATE``; see :func:`degenerate`)."""
 
     @classmethod
     def from_module(
@@ -153,6 +158,7 @@ class PolynomialSystem:
         mod: ModuleType,
         tracker: Callable[..., None] | None = None,
         newton: Callable[..., None] | None = None,
+        nonzero: tuple[str, ...] = (),
     ) -> PolynomialSystem:
         n_u, n_p = len(mod.UNKNOWNS), len(mod.PARAMETERS)
         uexp = np.asarray(mod.UNKNOWN_EXPONENTS, dtype=np.int64).reshape(-1, n_u)
@@ -177,6 +183,7 @@ class PolynomialSystem:
             column_order=_column_order(uexp, terms, len(mod.EQUATIONS)),
             tracker=tracker,
             newton=newton,
+            nonzero=tuple(mod.UNKNOWNS.index(name) for name in nonzero),
         )
 
     def _args(self) -> tuple:
@@ -902,6 +909,35 @@ def _endgame(
                 status[p] = OK
 
 
+DEGENERATE_TOLERANCE = 1e-10
+"""An unknown of ``PolynomialSystem.nonzero`` below this, relative to 1 + |x|, is zero.  Seed
+600,125 of the minimal bench, in one process of two: a whole second homotopy ended at tan^2
+alpha, tan^2 beta about 1e-12 with cos^2 phi about 6e4 (the spurious component tan alpha =
+tan beta = 0, where the lean polynomial vanishes identically) and that point took the place
+of a real solution (tan^2 alpha = 289).  At 1e-10 a real shape is refused only with alpha or
+beta below 1e-5 radians, a tangent along AB, which ``minimal.check_four_frames`` refuses."""
+
+
+def degenerate(system: PolynomialSystem, x: np.ndarray) -> np.ndarray:
+    """For each row of ``x`` (or the one vector): is one of the system's ``nonzero`` unknowns
+    zero there (relative to 1 + |x|)?  Non-finite rows count as degenerate."""
+    rows = np.atleast_2d(x)
+    out = ~np.all(np.isfinite(rows), axis=1)
+    if system.nonzero:
+        with np.errstate(invalid="ignore"):
+            size = 1.0 + np.linalg.norm(np.where(np.isfinite(rows), rows, 0), axis=1)
+            small = np.abs(rows[:, list(system.nonzero)]) <= DEGENERATE_TOLERANCE * size[:, None]
+        out |= np.any(small, axis=1)
+    return out if np.ndim(x) == 2 else out[:1]
+
+
+def _mark_degenerate(system: PolynomialSystem, x: np.ndarray, status: np.ndarray) -> None:
+    """Paths that ended OK on a degenerate point (``degenerate``) failed: ``DEGENERATE``."""
+    ok = np.flatnonzero(status == OK)
+    if ok.size and system.nonzero:
+        status[ok[degenerate(system, x[ok])]] = DEGENERATE
+
+
 def _coincide(x: np.ndarray, rows: np.ndarray, others: np.ndarray, tol: float) -> np.ndarray:
     """For each index in ``rows``: does x[row] coincide with x[k] for some k in ``others``?"""
     out = np.zeros(rows.size, dtype=bool)
@@ -977,7 +1013,7 @@ def _recover_twins(
             if y is None:
                 continue
             dist = np.linalg.norm(x[ok] - y, axis=1) / (1.0 + np.linalg.norm(y))
-            if dist.min() > tol:
+            if dist.min() > tol and not degenerate(system, y)[0]:
                 x[p] = y
                 status[p] = OK
                 recovered += 1
@@ -1007,7 +1043,7 @@ def _recover_near_double(
         if y is None:
             continue
         dist = np.linalg.norm(x[known] - y, axis=1) / (1.0 + np.linalg.norm(y))
-        if dist.min() > tol:
+        if dist.min() > tol and not degenerate(system, y)[0]:
             slot = lost.pop(0)
             x[slot], status[slot] = y, OK
             found += 1
@@ -1067,6 +1103,7 @@ def track(
     q0 = system.start_parameters
     q1 = np.asarray(target_parameters, dtype=np.complex128)
     x, status, steps = track_once(system, q0, q1, system.start_solutions, None, o)
+    _mark_degenerate(system, x, status)
     everyone = np.arange(x.shape[0])
     ok = np.flatnonzero(status == OK)
     # of endpoints that coincide, the first stays (it is a solution either way); the others
@@ -1103,7 +1140,8 @@ def track(
         detour *= 0.25 * span / np.linalg.norm(detour)
         xi, si, ni = track_once(system, q0, q1, system.start_solutions[bad], detour, careful)
         x[bad], status[bad], steps[bad] = xi, si, ni
-        new_ok = bad[si == OK]
+        _mark_degenerate(system, x, status)
+        new_ok = bad[status[bad] == OK]
         others = everyone[status == OK]
         status[new_ok[_coincide(x, new_ok, others, duplicate_tolerance)]] = -1
     with np.errstate(all="ignore"):  # deflated Newton may overflow on a path it then rejects
@@ -1116,6 +1154,7 @@ def track(
         detour = rng.normal(size=q0.shape) + 1j * rng.normal(size=q0.shape)
         detour *= 0.25 * span / np.linalg.norm(detour)
         xa, sa, _ = track_once(system, q0, q1, system.start_solutions, detour, o)
+        sa[(sa == OK) & degenerate(system, xa)] = DEGENERATE
         for y in xa[sa == OK]:
             known = np.flatnonzero(status == OK)
             dist = np.linalg.norm(x[known] - y, axis=1)

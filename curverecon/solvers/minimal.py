@@ -114,10 +114,13 @@ def _system() -> homotopy.PolynomialSystem:
         minimal_unsquared.PARAMETERS,
         minimal_unsquared.EQUATIONS,
     )
+    # the 104 solutions are counted with C tan(alpha) tan(beta) != 0 (docs/derivation.md: the
+    # unsaturated set adds the surfaces C = 0 and tan(alpha) = tan(beta) = 0)
+    nonzero = ("C", "A", "B")
     if not same:
-        return homotopy.PolynomialSystem.from_module(minimal_unsquared)
+        return homotopy.PolynomialSystem.from_module(minimal_unsquared, nonzero=nonzero)
     return homotopy.PolynomialSystem.from_module(
-        minimal_unsquared, tracker=_track_kernels, newton=_newton_kernels
+        minimal_unsquared, tracker=_track_kernels, newton=_newton_kernels, nonzero=nonzero
     )
 
 
