@@ -327,6 +327,27 @@ class CurveOptions:
     spans halved from 12: 21, 39, 75; noise-free sharp-ended curves reach 1e-7 of their length
     at 75; time grows with it)."""
 
+    exact_start_control_points: int = 21
+    """With exact end points the curve fitted with the poses fixed starts from this many control
+    points (then 39, 75 while the information criterion improves; at most
+    ``max_control_points``).  From 12 (the bundle's default) the stiff first fit folded or
+    stuck where the curve bends more than 12 control points follow, and the knots grown from
+    there kept it.  Noise-free, 10 scenes per family at 4, 8 and 20 frames, scenes whose
+    curve3d mean distance exceeds 1e-6 of the length (``python -m bench.noise_free_curves
+    FRAMES SEED0 10``): tuning seeds 7000-7009: 12 (with ``exact_unfold``) 5 of the 150 scenes
+    run, up to 2.1e-3; 21: none of 180; held-out seeds 8000-8009 at 21: 3 of 180 (one a wrong
+    shape at 4 frames, as before; fourier 8008, 20 frames, 4.9e-5; fourier 8009, 8 frames,
+    1.1e-6), before this change 13 of 180 (tuning seeds: 20 of 180)."""
+
+    exact_unfold: int = 2
+    """... and at each number of control points up to this many refits from the fitted curve's
+    points in a polyline's order when the spline has folded (run forward, back and forward
+    again over one stretch: invisible in every image, a local minimum the Gauss-Newton steps do
+    not leave), each kept if it lowers the cost; from the second number of control points on
+    the feet of every polyline point are searched in the polyline's order (a crossing of the
+    projected curve with itself otherwise held the fit: random, seed 7007, 8 frames, 6.3e-6 of
+    the length before, 2.7e-7 after).  0: neither (the noisy paths never use them)."""
+
     exact_variance_factor: float = 1e-16
     """An end-point fit whose variance factor (chi2 / dof) is below this is exact (noise-free
     end points fit to 1e-8 of their sigma): the bundle is skipped, the exact answer kept and

@@ -74,8 +74,11 @@ left out; the bundle's shape is kept only inside the end points' 99 % confidence
 profile chi2, in units of their own variance factor), else, and always for exact (noise-free)
 end points, the end-point answer stays and the curve alone is fitted with every pose fixed and
 its ends and end tangent lines pinned (:func:`fit_curve_fixed_poses`: truncated-SVD
-Gauss-Newton, knot spans halved while the information criterion improves).  Each output curve
-point gets a std from the fit's covariance (:func:`curve_point_std`).
+Gauss-Newton, knot spans halved while the information criterion improves; for exact end
+points from ``CurveOptions.exact_start_control_points``, a folded fit refitted from its own points
+in a polyline's order, :func:`_unfolded_points`, and the feet searched in the polylines' order,
+:meth:`_Problem._ordered_feet`).  Each output curve point gets a std from the fit's covariance
+(:func:`curve_point_std`).
 """
 
 from __future__ import annotations
@@ -140,6 +143,9 @@ REVERSE_WEIGHT = 0.02
 #: :func:`refine_reconstruction` use ``CurveOptions.flag_rms_sigma``, ``flag_rms_px``).
 RMS_LIMIT_SIGMA = 3.0
 RMS_LIMIT_PX = 1.0
+#: Newton steps of a foot searched again on its polyline neighbours' stretch of the curve
+#: (:meth:`_Problem._ordered_feet`).
+ORDER_NEWTON = 8
 #: Parts of every knot span in which :meth:`_Problem.span_misfit` sums the residuals (a cubic
 #: span that misses a wiggle leaves residuals of alternating sign within it).
 MISFIT_BINS = 4
@@ -358,6 +364,9 @@ class _Problem:
         self.poly_w = np.ones(self.n)
         self.smooth_weight = SMOOTH_WEIGHT
         self.robust_ends = False  # see END_POLISH
+        # feet that leave their polyline neighbours' stretch of the curve searched again there
+        # (:meth:`_ordered_feet`; the exact path of :func:`fit_curve_fixed_poses`)
+        self.ordered_feet = False
         n_rev = REVERSE_SAMPLES_PER_SPAN * (k - 3) + 1
         self.rev_basis = self.basis.values(np.linspace(0.0, 1.0, n_rev)[1:-1])
         # the reverse term carries REVERSE_WEIGHT of the forward term's total weight per frame
@@ -588,10 +597,16 @@ class _Problem:
         return dirn, r
 
     def _all_foot_points(
-        self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, ps: np.ndarray | None = None
+        self,
+        ctrl: np.ndarray,
+        m: np.ndarray,
+        b: np.ndarray,
+        ps: np.ndarray | None = None,
+        ordered: bool | None = None,
     ) -> np.ndarray:
         """:meth:`foot_points` of every frame's interior polyline points at once (the search
-        and the Newton steps in ``bundle_kernel.foot_parameters``)."""
+        and the Newton steps in ``bundle_kernel.foot_parameters``); ``ordered`` (default
+        ``self.ordered_feet``): then :meth:`_ordered_feet`."""
         proj = np.einsum("gc,njc->ngj", self.n_grid @ ctrl, m[:, :2]) + b[:, None, :2]
         if not np.all(np.isfinite(proj)):
             proj = np.nan_to_num(proj, nan=0.0, posinf=0.0, neginf=0.0)
@@ -599,9 +614,47 @@ class _Problem:
         # value and derivatives cost a gather of 4 x 2 coefficients, not of K basis functions
         if ps is None:
             ps = self._projected_spans(ctrl, m, b)
-        return foot_parameters(
+        u = foot_parameters(
             np.ascontiguousarray(proj), self.u_grid, ps, self.q_all, self.q_lo, self.q_cnt
         )
+        if ordered is None:
+            ordered = self.ordered_feet
+        return self._ordered_feet(u, ctrl, m, b) if ordered else u
+
+    def _ordered_feet(self, u: np.ndarray, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
+        """Foot parameters u with every foot out of its polyline's order searched again on the
+        stretch of the curve its neighbours' feet fix.
+
+        A polyline point near a crossing of the projected curve with another stretch of it
+        (or near that stretch) can be nearest to the other stretch: its residual then pulls the
+        wrong part of the curve, a local minimum (noise-free random curve, seed 7007, 8 frames:
+        the fit stuck at 5e-6 of the length).  Along a polyline (A' to B') the feet run from 0
+        to 1: the feet of the longest non-decreasing run of the polyline's points (not
+        necessarily consecutive) stay, every other foot is searched again by Newton steps from
+        the parameter interpolated between its nearest kept neighbours (the nearest point of
+        the projected curve on their stretch).  Frames whose feet are in order are unchanged."""
+        du = self.u_grid[1] - self.u_grid[0]
+        for f in range(self.n):
+            lo, cnt = int(self.q_lo[f]), int(self.q_cnt[f])
+            uf = u[lo : lo + cnt]
+            if cnt < 3 or not np.any(np.diff(uf) < 0.0):
+                continue
+            keep = _longest_nondecreasing(uf)
+            bad = np.flatnonzero(~keep)
+            idx = np.flatnonzero(keep)
+            q = self.q_all[lo + bad]
+            cp2 = ctrl @ m[f, :2].T
+            v = np.interp(bad, idx, uf[idx])
+            for _ in range(ORDER_NEWTON):  # Newton on |p(v) - q|^2, steps of at most du
+                e = self.basis.values(v) @ cp2 + b[f, :2] - q
+                d1 = self.basis.d1(v) @ cp2
+                dd = self.basis.d2(v) @ cp2
+                g1 = np.einsum("ij,ij->i", d1, e)
+                g2 = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", dd, e)
+                step = np.where(g2 > 0, -g1 / np.where(g2 > 0, g2, 1.0), 0.0)
+                v = np.clip(v + np.clip(step, -du, du), 0.0, 1.0)
+            u[lo + bad] = v
+        return u
 
     def _projected_spans(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
         """(N, spans, 4, 2): every frame's projected curve, per knot span the power-series
@@ -1631,6 +1684,60 @@ def _bic(prob: _Problem, rms: np.ndarray, n_par: int, per_param: float | None = 
     return float(n_obs * np.log(max(rss, 1e-300) / n_obs) + n_par * pen)
 
 
+def _longest_nondecreasing(x: np.ndarray) -> np.ndarray:
+    """Mask of one longest non-decreasing subsequence of ``x`` (patience sorting)."""
+    import bisect
+
+    tails: list[float] = []  # least last value of a run of each length
+    tail_idx: list[int] = []
+    prev = np.full(len(x), -1)
+    for i, v in enumerate(x):
+        j = bisect.bisect_right(tails, v)
+        if j == len(tails):
+            tails.append(v)
+            tail_idx.append(i)
+        else:
+            tails[j], tail_idx[j] = v, i
+        prev[i] = tail_idx[j - 1] if j else -1
+    keep = np.zeros(len(x), bool)
+    i = tail_idx[-1] if tail_idx else -1
+    while i >= 0:
+        keep[i] = True
+        i = prev[i]
+    return keep
+
+
+def _unfolded_points(
+    prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, mask: np.ndarray
+) -> np.ndarray | None:
+    """The fitted curve's points in the order of one frame's polyline, or None if the curve
+    has not folded.
+
+    A fold shows in every frame: the foot parameters u of a polyline's points (A' to B') step
+    back.  The curve's points at those feet, in the polyline's order, run along the curve once
+    (the folded stretches coincide in every image, so in 3-D); the frame used is the one whose
+    points step most evenly (least largest step over the median step: a frame whose projected
+    curve crosses itself sends some points to the other branch).  Returns (M + 2, 3) with A and
+    B at the ends (ctrl's first and last control points), frame 0 camera coordinates.
+    """
+    u = prob._all_foot_points(ctrl, m, b, ordered=False)  # the nearest points: folds show
+    best, best_score, folded = None, np.inf, 0
+    for i in np.flatnonzero(mask):
+        ui = u[prob.q_lo[i] : prob.q_lo[i] + prob.q_cnt[i]]
+        if len(ui) < 2:
+            continue
+        folded += bool(np.any(np.diff(ui) < 0.0))
+        pts = np.vstack([ctrl[:1], prob.basis.values(ui) @ ctrl, ctrl[-1:]])
+        step = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+        score = step.max() / max(float(np.median(step)), 1e-300)
+        if score < best_score:
+            best, best_score = pts, score
+    # a fold steps back in (nearly) every frame; one frame's crossing only in that frame
+    if best is None or folded <= np.count_nonzero(mask) // 2:
+        return None
+    return best
+
+
 def fit_curve_fixed_poses(
     polylines: Sequence[np.ndarray],
     m: np.ndarray,
@@ -1648,6 +1755,7 @@ def fit_curve_fixed_poses(
     abs_tol: float = 0.0,
     resolution: float = 0.0,
     rcond: float = 1e-4,
+    unfold: int = 0,
 ) -> tuple[np.ndarray, float, np.ndarray]:
     """The 3-D curve alone, every frame's pose fixed, its ends and end tangent lines pinned.
 
@@ -1658,7 +1766,10 @@ def fit_curve_fixed_poses(
     ``k_start`` by halving every knot span (K -> 2 K - 3, at most ``k_max``) while the
     information criterion
     (:func:`_bic`) improves and some frame's RMS distance exceeds ``resolution`` times its
-    polyline's length.  Returns (control points (K, 3), weighted cost, per-frame RMS px).
+    polyline's length.  ``unfold``: at each number of control points, up to this many refits
+    from the fitted curve's points in a polyline's order (:func:`_unfolded_points`) when the
+    fit has folded, each kept if it lowers the cost.  Returns (control points (K, 3),
+    weighted cost, per-frame RMS px).
     """
     a, bpt, ta, tb = (np.asarray(v, float) for v in ends3d)
     polys = [pl.as_polyline(p, name=f"frame {i} curve") for i, p in enumerate(polylines)]
@@ -1672,6 +1783,9 @@ def fit_curve_fixed_poses(
         prob.poly_w = mask.astype(float)
         prob.smooth_weight = smooth_weight
         prob.rev_weight = [w * reverse_factor for w in prob.rev_weight]
+        # from the second number of control points on, the fit starts at the last optimum:
+        # every foot searched on its polyline neighbours' stretch (_Problem._ordered_feet)
+        prob.ordered_feet = bool(unfold) and best is not None
         base, d = _pinned_map(k, a, bpt, ta, tb)
         flat = [j for j in range(3 * k) if j != 2]
         d_red = d[flat]
@@ -1691,6 +1805,24 @@ def fit_curve_fixed_poses(
             return r, (j @ d_red if jac else None), rms
 
         p, cost = _gauss_newton_tsvd(residual, p0, max_iter, rcond, abs_tol)
+        for _ in range(unfold):
+            # a fold (the spline running forward, back and forward again over one stretch of
+            # the curve: invisible in every image) is a local minimum the steps do not leave;
+            # refitted to the curve's own points in the order of a polyline, the fold is gone
+            pts = _unfolded_points(prob, ctrl_of(p), m, b, mask)
+            if pts is None:
+                break
+            p2, cost2 = _gauss_newton_tsvd(
+                residual, _pinned_start(pts, k, base, d), max_iter, rcond, abs_tol
+            )
+            if not cost2 < cost:
+                break
+            p, cost = p2, cost2
+        if unfold and not prob.ordered_feet:
+            # then polished with every foot on its polyline neighbours' stretch of the curve
+            # (a crossing in some image otherwise holds the fit near it, _Problem._ordered_feet)
+            prob.ordered_feet, prob._last = True, None
+            p, cost = _gauss_newton_tsvd(residual, p, max_iter, rcond, abs_tol)
         ctrl = ctrl_of(p)
         rms = prob.residuals(ctrl, m, b, jac=False)[2]
         crit = _bic(prob, rms, d.shape[1])
@@ -2098,6 +2230,7 @@ def refine_reconstruction(
                 reverse_factor=o.fixed_pose_reverse_factor if exact else 1.0,
                 abs_tol=o.fixed_pose_abs_tol,
                 resolution=o.fixed_pose_resolution,
+                unfold=o.exact_unfold if exact else 0,
             )
 
         ctrl, _, rms = fit(mask, start, k_start)
@@ -2140,7 +2273,7 @@ def refine_reconstruction(
         # exact end points (noise-free): the bundle could only move the answer out of their
         # confidence region, which has shrunk to float rounding
         start = np.asarray(curve_start, float)
-        return fixed_answer(start, N_CONTROL, np.ones(n, bool), {}, exact=True)
+        return fixed_answer(start, o.exact_start_control_points, np.ones(n, bool), {}, exact=True)
     if curve_frames is not None and not flat:
         return fixed_answer(np.asarray(curve_start, float), N_CONTROL, np.ones(n, bool), {})
     br = run()
