@@ -3,12 +3,12 @@
 Usage::
 
     python -m bench [--quick] [--out DIR] [--workers N] [--budget SECONDS] [--full-counts]
-    python -m bench --only bundle|fuzz|minimal|scale|trace [--quick]
+    python -m bench --only bundle|fuzz|minimal|outliers|scale|trace [--quick]
 
 Writes ``REPORT.md``, ``report.json`` and PNG plots into ``--out`` (default ``bench/``).  The
 speed section runs first in this process (no worker busy); then the scene experiments run on
 ``--workers`` processes, every scene seeded by its own SeedSequence spawn key, in priority order
-(``bench.plan``) until a deadline keeps the run within the budget (800 s by default); the
+(``bench.plan``) until a deadline keeps the run within the budget (620 s by default); the
 report prints required against run counts.  Progress goes to stderr.  Then the added sections
 (``EXTRA_SECTIONS``; 2026-11-25 18:36-18:52 UTC: bundle 1.4 minutes, fuzz 2.4, minimal 5.2,
 scale 2.5, trace 5.1; fuzz and bundle side by side, ``BESIDE``) run and merge their keys into
@@ -283,6 +283,7 @@ EXTRA_SECTIONS = {
     "bundle": "bench.bundle",
     "fuzz": "bench.fuzz",
     "minimal": "bench.minimal",
+    "outliers": "bench.outliers",
     "scale": "bench.scale",
     "trace": "bench.trace",
 }

@@ -36,6 +36,7 @@ GROUPS = {
     "stability": 4,
     "stability_linear": 5,
     "speed": 6,
+    "outliers_random": 7,
 }
 """spawn_key prefix of each experiment's scenes."""
 

@@ -40,10 +40,14 @@ def run_scenes(
     indices: range,
     chord: tuple[float, float],
     deadline: float = math.inf,
+    outlier_model: str = "gross",
+    group: str = "robustness",
 ) -> list[dict[str, Any]]:
     """Per-scene records: errors, success, flagged and true outlier frames (a pool task).
 
-    Scenes are skipped once the wall clock (``time.time()``) is past ``deadline``.
+    Scenes are skipped once the wall clock (``time.time()``) is past ``deadline``.  Scene i
+    comes from spawn key (``group``, ``fraction_id``, i) with the simulator's ``outlier_model``
+    ("gross", this module's rows; "random", ``bench.outliers``).
     """
     out = []
     for i in indices:
@@ -51,13 +55,14 @@ def run_scenes(
             break
         scene = make(
             seed,
-            "robustness",
+            group,
             (fraction_id, i),
             n_frames,
             point_sigma=noise,
             tangent_sigma_deg=noise,
             chord=chord,
             outlier_fraction=fraction,
+            outlier_model=outlier_model,
         )
         shape, poses = true_poses(scene)
         true_out = ~np.asarray(scene.truth.inliers, bool)

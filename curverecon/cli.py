@@ -14,6 +14,7 @@ import numpy as np
 
 from curverecon.curve_families import FAMILIES as CURVE_FAMILIES
 from curverecon.errors import CurveReconError
+from curverecon.simulate import OUTLIER_MODELS
 
 MAX_SIMULATED_FRAMES = 10_000_000
 """``simulate --frames`` above this would need more memory than a machine has (about 1 kB a
@@ -75,6 +76,13 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--point-noise", type=float, default=0.0, help="pixels (std)")
     sim.add_argument("--tangent-noise", type=float, default=0.0, help="degrees (std)")
     sim.add_argument("--outlier-fraction", type=float, default=0.0)
+    sim.add_argument(
+        "--outlier-model",
+        choices=list(OUTLIER_MODELS),
+        default="gross",
+        help="gross: 15-40 degree errors on one or both tangents of an outlier frame (default); "
+        "random: both tangent directions of an outlier frame uniformly random",
+    )
     sim.add_argument("--chord", type=float, nargs=2, default=(100.0, 300.0), metavar=("MIN", "MAX"))
     sim.add_argument("--seed", type=int, default=0)
     sim.add_argument("--with-curve", action="store_true", help="also write projected polylines")
@@ -183,6 +191,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         tangent_sigma_deg=args.tangent_noise,
         chord=(lo, hi),
         outlier_fraction=args.outlier_fraction,
+        outlier_model=args.outlier_model,
         with_curve=args.with_curve,
         curve_family=args.curve_family,
     )

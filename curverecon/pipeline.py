@@ -154,16 +154,21 @@ def answer_from_hypotheses(
     cands: list[Candidate],
     opts: ReconstructOptions,
     progress: StageProgress | None = None,
+    start_inliers: np.ndarray | None = None,
 ) -> Reconstruction:
     """Steps 2-5 of the pipeline from the hypotheses (best first; ``cands[0].result`` refined
     on all frames, e.g. by ``refine.start.refine_hypothesis``): outlier frames, pose branches,
-    the equally good fits and the final estimate.  Linear in the number of frames."""
+    the equally good fits and the final estimate.  Linear in the number of frames.
+    ``start_inliers``: frames known to fit ``cands[0]`` (a consensus set), where the outlier
+    test starts (``robust.outliers.find_outlier_frames``)."""
     progress = progress or StageProgress(STAGES, False)
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
     w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
     # 2.-3. maximum likelihood, outlier frames, pose branches
     progress.step("maximum likelihood")
-    inliers, fit = find_outlier_frames(obs, cands[0].result, ps, ts, opts.outliers, opts.search)
+    inliers, fit = find_outlier_frames(
+        obs, cands[0].result, ps, ts, opts.outliers, opts.search, start_inliers
+    )
     final = refine(obs.subset(inliers), fit.shape, fit.poses, ps, ts, covariance=True)
     if inliers.sum() <= opts.branches.flip_max_frames:
         final = flip_ambiguous_frames(
@@ -251,7 +256,8 @@ def _with_frame_samples(
     if not cand.robust_cost < robust_cost(current.frame_chi2, o.truncate):
         return rec
     # steps 2-5 again from the samples' shape (no progress steps: the bar has passed them)
-    new = answer_from_hypotheses(obs, [cand, *cands], opts)
+    start = cand.result.frame_chi2 < o.truncate if o.consensus_start else None
+    new = answer_from_hypotheses(obs, [cand, *cands], opts, start_inliers=start)
     note = (
         f"outlier frames: the answer comes from LO-RANSAC over {stats.iterations} four-frame "
         "samples (the global search's best fit was pulled by them)"

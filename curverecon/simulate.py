@@ -26,6 +26,11 @@ from curverecon.model.observations import Observations
 
 MIN_FORESHORTENING = 0.3
 MIN_TANGENT_TO_NORMAL_DEG = 3.0
+OUTLIER_MODELS = ("gross", "random")
+"""``make_scene``'s outlier models: "gross", a 15-40 degree error on one or both tangent angles
+of an outlier frame (the default, the original stream); "random", both tangent directions of an
+outlier frame replaced by independent uniformly random directions in the image plane (issue 12's
+robustness model)."""
 
 
 @dataclass
@@ -140,6 +145,7 @@ def make_scene(
     with_curve: bool = False,
     n_curve_points: int = 150,
     curve_family: str = "bezier",
+    outlier_model: str = "gross",
 ) -> Scene:
     """A random smooth curve seen in ``n_frames`` orthographic frames under random free motion.
 
@@ -150,13 +156,19 @@ def make_scene(
             also applied to the polyline points.
         tangent_sigma_deg: standard deviation of the Gaussian noise on the tangent angles (deg).
         chord: range of the 3-D chord length c = |AB| (input units, uniform).
-        outlier_fraction: fraction of frames whose tangent angles get a gross error of 15-40
-            degrees (tracking errors); ``truth.inliers`` marks them False.
+        outlier_fraction: fraction of frames (rounded to a whole number) whose tangents are
+            wrong, as ``outlier_model`` says; ``truth.inliers`` marks them False.
         with_curve: also produce each frame's projected polyline (A' to B') and the 3-D curve in
             frame 0's camera coordinates (A at z = 0).
         curve_family: one of ``curve_families.FAMILIES``; "bezier" (the default) draws the
             same scenes as before the families existed (same random stream).
+        outlier_model: one of ``OUTLIER_MODELS``: "gross" (the default and the original
+            stream), a gross error of 15-40 degrees on the tangent angle at A, at B or at both
+            (tracking errors); "random", both tangent directions replaced by independent
+            directions uniform on the circle (a tracker that lost the curve).
     """
+    if outlier_model not in OUTLIER_MODELS:
+        raise ValueError(f"outlier_model must be one of {OUTLIER_MODELS}, not {outlier_model!r}")
     if curve_family == "bezier":
         ctrl = random_curve(rng, chord)
         curve = bezier_curve(ctrl)
@@ -191,6 +203,9 @@ def make_scene(
         idx = rng.choice(n_frames, size=n_out, replace=False)
         inliers[idx] = False
         for i in idx:
+            if outlier_model == "random":
+                ang_a[i], ang_b[i] = rng.uniform(-np.pi, np.pi, size=2)
+                continue
             which = rng.integers(0, 3)  # 0: A, 1: B, 2: both
             err = rng.choice([-1.0, 1.0], size=2) * np.radians(rng.uniform(15.0, 40.0, size=2))
             if which in (0, 2):

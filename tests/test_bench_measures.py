@@ -115,3 +115,27 @@ def test_pooled_rate_weights_rows_by_their_scene_counts() -> None:
     rows = [{"n": 120, "r": 0.0}, {"n": 40, "r": 0.25}, {"n": 432, "r": None}]
     assert pooled_rate(rows, "r") == 10 / 160
     assert pooled_rate([{"n": 3, "r": None}], "r") is None
+
+
+def test_outliers_section_reports_issue_12_keys_on_random_tangents() -> None:
+    """``python -m bench --only outliers``: the issue's two keys, measured on scenes whose
+    outlier frames' tangents are random (2 and 6 of 20 frames), one scene each here."""
+    from bench import outliers
+
+    out = outliers.run(scenes=1, workers=1)
+    for name, n_out in (("10pct", 2), ("30pct", 6)):
+        assert out[f"success_rate_{name}_outliers"] in (0.0, 1.0)
+        assert out[f"outliers_random_{name}"]["true_outlier_frames"] == n_out
+    sc = make(
+        out["outliers_seed"],
+        "outliers_random",
+        (1, 0),
+        20,
+        outlier_fraction=0.3,
+        outlier_model="random",
+    )
+    t = sc.truth
+    ang = np.arctan2(sc.observations.tangent_a[:, 1], sc.observations.tangent_a[:, 0])
+    true = np.arctan2(t.tangent_A3[:, 1], t.tangent_A3[:, 0])
+    d = np.abs(np.mod(ang - true + np.pi / 2, np.pi) - np.pi / 2)
+    assert np.all(d[t.inliers] < 1e-9) and np.all(d[~t.inliers] > 1e-6)

@@ -59,18 +59,27 @@ def find_outlier_frames(
     ts: float,
     o: OutlierOptions | None = None,
     search: SearchOptions | None = None,
+    start_inliers: np.ndarray | None = None,
 ) -> tuple[np.ndarray, RefineResult]:
     """(N,) inlier mask and the maximum-likelihood fit on the inliers (no covariance).
 
     Args:
-        obs: all frames; fit: the best hypothesis refined on all frames.
+        obs: all frames; fit: the best hypothesis refined on all frames (or, with
+            ``start_inliers``, a fit of all frames' poses to a shape estimated without the
+            frames outside it).
         ps, ts: point noise (input units) and tangent noise (radians).
+        start_inliers: (N,) frames known to fit (LO-RANSAC's consensus set): the fit starts on
+            them (:func:`consensus_start`) instead of the robust reweighting of all frames.
     At most (N - 5) // 2 frames are flagged.
     """
     o = o or OutlierOptions()
     search = search or SearchOptions()
     n = obs.n_frames
     w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
+    max_out = max(0, (n - 5) // 2)
+    if start_inliers is not None and 0 < int((~start_inliers).sum()) <= max_out:
+        inliers, fit = consensus_start(obs, fit, start_inliers, ps, ts, w8, o, search)
+        return _drop_loop(obs, inliers, fit, ps, ts, w8, max_out, False, o, search)
     # Robust fit (frame-level Cauchy reweighting) so that outlier frames stand out; with an
     # implausible chi2, trimmed refits; then the outlier test on the unweighted, studentised
     # per-frame chi2: drop the worst frame above the threshold, refit, repeat.
@@ -88,9 +97,61 @@ def find_outlier_frames(
         fit = refine(obs, fit.shape, poses_sw, ps, ts, covariance=False, frame_weights=weights)
         st = studentised(obs, fit, w8, o)
     inliers = np.ones(n, dtype=bool)
-    max_out = max(0, (n - 5) // 2)
     if max_out > 0 and implausible:
         inliers, fit = trimmed_inliers(obs, fit, ps, ts, w8, max_out, o, search)
+    return _drop_loop(obs, inliers, fit, ps, ts, w8, max_out, long, o, search)
+
+
+def consensus_start(
+    obs: Observations,
+    fit: RefineResult,
+    start: np.ndarray,
+    ps: float,
+    ts: float,
+    w8: np.ndarray,
+    o: OutlierOptions,
+    search: SearchOptions,
+) -> tuple[np.ndarray, RefineResult]:
+    """The inliers and fit the outlier test starts from when a consensus set is known.
+
+    The shape is refined on the frames of ``start``; every frame left out is then fitted to that
+    shape (its pose at its best branch of (10)) and taken back when its chi2 is below the
+    outlier test's threshold (a good frame a rough sample shape left just above its truncation);
+    the fit is redone on the frames kept.  The frames left out are never refitted together with
+    the others, so those that do not fit cannot pull the shape.
+    """
+    inliers = np.array(start, bool)
+    sub = refine(obs.subset(inliers), fit.shape, fit.poses[inliers], ps, ts, covariance=False)
+    poses = np.array(fit.poses)
+    poses[inliers] = sub.poses
+    poses = switch_branches(obs, sub.shape, poses, w8, options=search)
+    r = standardised_residuals(sub.shape, poses, obs.measurements(), w8)
+    chi2 = np.sum(r * r, axis=1)
+    thr = threshold(studentised(obs.subset(inliers), sub, w8, o), o)
+    back = ~inliers & (chi2 <= thr)
+    if not back.any():
+        return inliers, sub
+    inliers |= back
+    return inliers, refine(obs.subset(inliers), sub.shape, poses[inliers], ps, ts, covariance=False)
+
+
+def _drop_loop(
+    obs: Observations,
+    inliers: np.ndarray,
+    fit: RefineResult,
+    ps: float,
+    ts: float,
+    w8: np.ndarray,
+    max_out: int,
+    long: bool,
+    o: OutlierOptions,
+    search: SearchOptions,
+) -> tuple[np.ndarray, RefineResult]:
+    """The outlier test's loop from ``inliers`` and the fit on them: the worst inlier frame
+    above the threshold is re-solved from a grid of pose starts or dropped, and the shape
+    refitted, until none is above it or ``max_out`` frames are out (long sequences: every
+    frame above it per round, ``_drop_all_over``)."""
+    n = obs.n_frames
     rescued = 0
     while True:
         idx = np.flatnonzero(inliers)
