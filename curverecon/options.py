@@ -361,7 +361,8 @@ class CurveOptions:
     seeds 8000-8009 (fourier 8008 the scene this was built on), 20 frames 1 -> 0 (1 restart),
     8 frames 1 -> 1 (fourier 8009, 1.1e-6, under the limit; 2 restarts), 4 frames 1 -> 1 (bezier
     8007, a wrong shape from the end points; 3 restarts); held-out seeds 9000-9009, 20 frames
-    2 -> 0 (bezier 9000 4.7e-5, sharp-ends 9004 5.6e-6; 2 restarts), 8 frames 0 -> 0 (none)."""
+    2 -> 0 (bezier 9000 4.7e-5, sharp-ends 9004 5.6e-6; 2 restarts), 8 frames 0 -> 0 (none);
+    tuning seeds 7000-7009 at 4, 8, 20 frames: no restart, none over 1e-6 (unchanged)."""
 
     exact_restart_rms: float = 1e-6
     """... the limit: the noise-free target (curve3d within 1e-6 of the curve's length) as a
