@@ -348,6 +348,28 @@ class CurveOptions:
     projected curve with itself otherwise held the fit: random, seed 7007, 8 frames, 6.3e-6 of
     the length before, 2.7e-7 after).  0: neither (the noisy paths never use them)."""
 
+    exact_restart_control_points: int = 12
+    """With exact end points, a curve fit that stays stuck (some frame's RMS distance from its
+    polyline above ``exact_restart_rms`` of the polyline's length) is run again from this many
+    control points (the bundle's default) and the fit with the lower polyline misfit kept
+    (the sum over frames of the squared RMS distances).  Noise-free data fit to float rounding:
+    a fit well above it sits in a local minimum of its start, and another number of starting
+    control points leaves it (fourier, seed 8008, 20 frames: from 21 the fit stuck at 9.8e-4
+    px RMS at 75 control points, 4.9e-5 of the length in 3-D; from 12, 2.6e-7).  0: never;
+    scenes under the limit are unchanged (no second fit).  Noise-free survey (``python -m
+    bench.noise_free_curves FRAMES SEED0 10``), scenes over 1e-6 of the length, before -> after:
+    seeds 8000-8009 (fourier 8008 the scene this was built on), 20 frames 1 -> 0 (1 restart),
+    8 frames 1 -> 1 (fourier 8009, 1.1e-6, under the limit; 2 restarts), 4 frames 1 -> 1 (bezier
+    8007, a wrong shape from the end points; 3 restarts); held-out seeds 9000-9009, 20 frames
+    2 -> 0 (bezier 9000 4.7e-5, sharp-ends 9004 5.6e-6; 2 restarts), 8 frames 0 -> 0 (none);
+    tuning seeds 7000-7009 at 4, 8, 20 frames: no restart, none over 1e-6 (unchanged)."""
+
+    exact_restart_rms: float = 1e-6
+    """... the limit: the noise-free target (curve3d within 1e-6 of the curve's length) as a
+    fraction of each polyline's length in the image.  Fits that reach the target sat 5e-8 to
+    7e-7 below it (fourier 8000, 8001, 8009, helix 8000, random 8001), the stuck fourier 8008
+    at 6e-6 to 1.2e-5 (its frames' lengths 84-159 px)."""
+
     exact_variance_factor: float = 1e-16
     """An end-point fit whose variance factor (chi2 / dof) is below this is exact (noise-free
     end points fit to 1e-8 of their sigma): the bundle is skipped, the exact answer kept and

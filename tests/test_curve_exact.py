@@ -60,3 +60,40 @@ def test_noise_free_polylines_keep_the_exact_shape_and_give_the_curve(family, se
     d = min(float(_distance_to(rec.curve3d, q).mean()) for q in (truth, truth * [1.0, 1.0, -1.0]))
     assert d < 1e-6 * length, d / length
     assert rec.curve_bundle is not None and rec.curve_bundle["flagged_frames"] == []
+
+
+def _curve_error(family: str, seed: int, frames: int, options=None) -> float:
+    """curve3d mean distance from the true curve over its length (noise-free scene)."""
+    kw = {"with_curve": True, "curve_family": family}
+    scene = make_scene(np.random.default_rng(seed), frames, **kw)
+    truth = make_scene(np.random.default_rng(seed), frames, n_curve_points=20000, **kw).curve_3d
+    rec = reconstruct(scene.observations, options=options)
+    length = float(np.linalg.norm(np.diff(truth, axis=0), axis=1).sum())
+    d = min(float(_distance_to(rec.curve3d, q).mean()) for q in (truth, truth * [1.0, 1.0, -1.0]))
+    return d / length
+
+
+def test_a_stuck_noise_free_curve_fit_is_run_again_from_twelve_control_points(monkeypatch):
+    # fourier 8008, 20 frames: from 21 control points the fit sticks (9.8e-4 px RMS at 75
+    # control points, curve3d 4.9e-5 of the length); run again from 12 it reaches the target
+    from curverecon.curve import bundle
+    from curverecon.options import CurveOptions, ReconstructOptions
+
+    starts: list[int] = []
+    fit = bundle.fit_curve_fixed_poses
+
+    def counted(*args, **kwargs):
+        starts.append(kwargs["k_start"])
+        return fit(*args, **kwargs)
+
+    monkeypatch.setattr(bundle, "fit_curve_fixed_poses", counted)
+    assert _curve_error("fourier", 8008, 20) < 1e-6
+    assert starts == [21, 12]
+    starts.clear()
+    off = ReconstructOptions(curve=CurveOptions(exact_restart_control_points=0))
+    assert _curve_error("fourier", 8008, 20, off) > 1e-5
+    assert starts == [21]
+    # a fit that reaches the target is not run again (bezier, seed 0, 8 frames)
+    starts.clear()
+    assert _curve_error("bezier", 0, 8) < 1e-6
+    assert starts == [21]

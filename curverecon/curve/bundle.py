@@ -77,8 +77,10 @@ its ends and end tangent lines pinned (:func:`fit_curve_fixed_poses`: truncated-
 Gauss-Newton, knot spans halved while the information criterion improves; for exact end
 points from ``CurveOptions.exact_start_control_points``, a folded fit refitted from its own points
 in a polyline's order, :func:`_unfolded_points`, and the feet searched in the polylines' order,
-:meth:`_Problem._ordered_feet`).  Each output curve point gets a std from the fit's covariance
-(:func:`curve_point_std`).
+:meth:`_Problem._ordered_feet`; a fit left above the noise-free target, some frame's RMS over
+``CurveOptions.exact_restart_rms`` of its polyline's length, run again from
+``exact_restart_control_points`` and the lower misfit kept).  Each output curve point gets a
+std from the fit's covariance (:func:`curve_point_std`).
 """
 
 from __future__ import annotations
@@ -2233,7 +2235,24 @@ def refine_reconstruction(
                 unfold=o.exact_unfold if exact else 0,
             )
 
-        ctrl, _, rms = fit(mask, start, k_start)
+        def fit_exact(mask: np.ndarray, start: np.ndarray, k0: int):
+            """:func:`fit`, and for exact end points, when the fit stays stuck above the
+            noise-free target (``CurveOptions.exact_restart_rms`` of a polyline's length), again
+            from ``exact_restart_control_points``: the lower polyline misfit kept."""
+            out = fit(mask, start, k0)
+            k1 = o.exact_restart_control_points
+            if not exact or not k1 or k1 == k0:
+                return out
+            stuck = (out[2] > o.exact_restart_rms * lengths) & mask
+            if not stuck.any():
+                return out
+            out2 = fit(mask, start, k1)
+            if np.sum(out2[2][mask] ** 2) < np.sum(out[2][mask] ** 2):
+                return out2
+            return out
+
+        lengths = np.array([pl.arc_length(p)[-1] for p in polys])  # px, the fitted frames
+        ctrl, _, rms = fit_exact(mask, start, k_start)
         flagged = list(extra.get("flagged_frames", []))
         if not flagged and use_given:
             bad = rms > limit
@@ -2242,7 +2261,7 @@ def refine_reconstruction(
                 flag_warning(flagged, np.bincount(sel, rms, minlength=n))
                 mask = ~bad
                 dense = _Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 400)) @ ctrl
-                ctrl, _, rms = fit(mask, dense, k_start)
+                ctrl, _, rms = fit_exact(mask, dense, k_start)
         k = ctrl.shape[0]
         rms_all = rms
         if curve_frames is not None:  # every frame's distance from the curve (one evaluation)
