@@ -487,6 +487,32 @@ def _table_residual_jacobian_t(x, w, wt, f, jac, ft):
 
 
 @numba.njit(**_JIT)
+def _table_workspace(n_eq, us, uv, ue, ps, pv, pe, terms, coef, n_var):
+    """The table evaluators' shared arguments and scratch (``_table_*``): W, the tables, the
+    parameter monomials' values and t-derivatives, the unknowns' power table and the equations
+    each unknown monomial occurs in."""
+    n_umon = us.shape[0] - 1
+    ks, keq = _monomial_equations(terms, n_umon)
+    return (
+        np.empty((n_eq, n_umon), np.complex128),
+        n_eq,
+        ps,
+        pv,
+        pe,
+        terms,
+        coef,
+        np.empty(ps.shape[0] - 1, np.complex128),
+        np.empty(ps.shape[0] - 1, np.complex128),
+        us,
+        uv,
+        ue,
+        _power_table(ue, n_var),
+        ks,
+        keq,
+    )
+
+
+@numba.njit(**_JIT)
 def _track_paths(
     n_eq,
     us,
@@ -510,24 +536,7 @@ def _track_paths(
 ):
     """Track every row of ``x_start`` from t = 0 to 1 on the tables (see the module docstring)."""
     n_umon = us.shape[0] - 1
-    ks, keq = _monomial_equations(terms, n_umon)
-    workspace = (
-        np.empty((n_eq, n_umon), np.complex128),
-        n_eq,
-        ps,
-        pv,
-        pe,
-        terms,
-        coef,
-        np.empty(ps.shape[0] - 1, np.complex128),
-        np.empty(ps.shape[0] - 1, np.complex128),
-        us,
-        uv,
-        ue,
-        _power_table(ue, x_start.shape[1]),
-        ks,
-        keq,
-    )
+    workspace = _table_workspace(n_eq, us, uv, ue, ps, pv, pe, terms, coef, x_start.shape[1])
     _track_core(
         _this._table_coefficients,
         _this._table_coefficients_t,
@@ -785,25 +794,7 @@ def _newton_core(coefficients, residual_jacobian, w, xs, q, order, iterations):
 @numba.njit(**_JIT)
 def _newton_tables(n_eq, us, uv, ue, ps, pv, pe, terms, coef, xs, q, order, iterations):
     """``_newton_core`` on the tables (a system without generated kernels)."""
-    n_umon = us.shape[0] - 1
-    ks, keq = _monomial_equations(terms, n_umon)
-    workspace = (
-        np.empty((n_eq, n_umon), np.complex128),
-        n_eq,
-        ps,
-        pv,
-        pe,
-        terms,
-        coef,
-        np.empty(ps.shape[0] - 1, np.complex128),
-        np.empty(ps.shape[0] - 1, np.complex128),
-        us,
-        uv,
-        ue,
-        _power_table(ue, xs.shape[1]),
-        ks,
-        keq,
-    )
+    workspace = _table_workspace(n_eq, us, uv, ue, ps, pv, pe, terms, coef, xs.shape[1])
     _newton_core(
         _this._table_coefficients,
         _this._table_residual_jacobian,
