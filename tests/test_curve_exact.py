@@ -12,19 +12,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from bench.noise_free_curves import distance_to
 from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
-
-
-def _distance_to(points: np.ndarray, curve: np.ndarray) -> np.ndarray:
-    """Distance of each point from the polyline ``curve`` (point to segment)."""
-    seg0, seg = curve[:-1], np.diff(curve, axis=0)
-    len2 = (seg * seg).sum(1)
-    out = np.empty(len(points))
-    for i, p in enumerate(points):
-        t = np.clip(((p - seg0) * seg).sum(1) / len2, 0.0, 1.0)
-        out[i] = np.linalg.norm(seg0 + t[:, None] * seg - p, axis=1).min()
-    return out
 
 
 # every family; the seeds include the scenes that failed before the exact path grew from 21
@@ -57,7 +47,7 @@ def test_noise_free_polylines_keep_the_exact_shape_and_give_the_curve(family, se
         assert abs(np.degrees(got - want)) < 1e-7
     length = float(np.linalg.norm(np.diff(truth, axis=0), axis=1).sum())
     # the answer's mirror image is the truth's or its mirror (depth sign): best of the two
-    d = min(float(_distance_to(rec.curve3d, q).mean()) for q in (truth, truth * [1.0, 1.0, -1.0]))
+    d = min(float(distance_to(rec.curve3d, q).mean()) for q in (truth, truth * [1.0, 1.0, -1.0]))
     assert d < 1e-6 * length, d / length
     assert rec.curve_bundle is not None and rec.curve_bundle["flagged_frames"] == []
 
@@ -69,7 +59,7 @@ def _curve_error(family: str, seed: int, frames: int, options=None) -> float:
     truth = make_scene(np.random.default_rng(seed), frames, n_curve_points=20000, **kw).curve_3d
     rec = reconstruct(scene.observations, options=options)
     length = float(np.linalg.norm(np.diff(truth, axis=0), axis=1).sum())
-    d = min(float(_distance_to(rec.curve3d, q).mean()) for q in (truth, truth * [1.0, 1.0, -1.0]))
+    d = min(float(distance_to(rec.curve3d, q).mean()) for q in (truth, truth * [1.0, 1.0, -1.0]))
     return d / length
 
 
