@@ -405,9 +405,16 @@ class _Problem:
             take = d < best_d
             best_d = np.where(take, d, best_d)
             best_u = np.where(take, self.u_grid[js] + t * du, best_u)
-        u = best_u
-        for _ in range(2):  # Newton on |p(u) - q|^2
-            e = self.basis.values(u) @ cp2 + bi[:2] - q
+        return self._newton_feet(best_u, cp2, bi[:2], q, du, 2)
+
+    def _newton_feet(
+        self, u: np.ndarray, cp2: np.ndarray, offset: np.ndarray, q: np.ndarray, du: float, n: int
+    ) -> np.ndarray:
+        """``n`` Newton steps on |p(u) - q|^2 for the foot parameters u of the image points q
+        (p(u) = basis(u) cp2 + offset: the curve projected into a frame), each step at most
+        ``du`` (one dense-grid spacing), u kept in [0, 1]."""
+        for _ in range(n):
+            e = self.basis.values(u) @ cp2 + offset - q
             d1 = self.basis.d1(u) @ cp2
             dd = self.basis.d2(u) @ cp2
             g1 = np.einsum("ij,ij->i", d1, e)
@@ -647,15 +654,7 @@ class _Problem:
             q = self.q_all[lo + bad]
             cp2 = ctrl @ m[f, :2].T
             v = np.interp(bad, idx, uf[idx])
-            for _ in range(ORDER_NEWTON):  # Newton on |p(v) - q|^2, steps of at most du
-                e = self.basis.values(v) @ cp2 + b[f, :2] - q
-                d1 = self.basis.d1(v) @ cp2
-                dd = self.basis.d2(v) @ cp2
-                g1 = np.einsum("ij,ij->i", d1, e)
-                g2 = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", dd, e)
-                step = np.where(g2 > 0, -g1 / np.where(g2 > 0, g2, 1.0), 0.0)
-                v = np.clip(v + np.clip(step, -du, du), 0.0, 1.0)
-            u[lo + bad] = v
+            u[lo + bad] = self._newton_feet(v, cp2, b[f, :2], q, du, ORDER_NEWTON)
         return u
 
     def _projected_spans(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
