@@ -50,6 +50,10 @@ class Reconstruction:
             than 5 frames).
         curve3d_std: (M,) standard deviation of each ``curve3d`` point (input units; root of
             the trace of its 3x3 covariance), from the curve bundle's covariance, or None.
+            It includes the point's slide along the curve, which moves no point of the curve.
+        curve3d_normal_std: (M,) the same across the curve (root of the trace of the
+            covariance projected on the plane normal to the curve's tangent at the point): what
+            a point's distance from the true curve is to be compared with.
         curve3d: (M, 3) the whole curve in frame 0's camera coordinates (A at z = 0), when the
             frames carry polylines; None otherwise.
         curve_bundle: the curve bundle's summary (the output's ``curve_bundle`` key), or None.
@@ -71,6 +75,7 @@ class Reconstruction:
     estimator: str | None = None
     curve3d: np.ndarray | None = None
     curve3d_std: np.ndarray | None = None
+    curve3d_normal_std: np.ndarray | None = None
     curve_bundle: dict | None = None
     ambiguous_dchi2: float = 4.0
 
@@ -162,6 +167,8 @@ class Reconstruction:
             out["curve3d"] = np.asarray(self.curve3d, float).tolist()
         if self.curve3d is not None and self.curve3d_std is not None:
             out["curve3d_std"] = np.asarray(self.curve3d_std, float).tolist()
+        if self.curve3d is not None and self.curve3d_normal_std is not None:
+            out["curve3d_normal_std"] = np.asarray(self.curve3d_normal_std, float).tolist()
         if self.curve_bundle is not None:
             out["curve_bundle"] = self.curve_bundle
         return out
