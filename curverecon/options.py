@@ -267,6 +267,16 @@ class CurveOptions:
     1 degree stayed 1 of 12 on the bench's seeds (1300-1301) and was 0 of 11 on held-out seeds
     (7300-7301), with |error| / std up to 5 (clothoid 7300), 8 and 14 (fourier 1301)."""
 
+    frame0_branch_dchi2: float = 9.0
+    """Frame 0's pose fixes the coordinates of ``curve3d``; when its other pose branch of (10)
+    fits frame 0's end points and tangents within this chi2 of its own (3 std of the frame's one
+    degree of freedom), the curve bundle also starts from that branch (the start curve turned
+    with frame 0) and keeps the lower cost; 0 never.  Bezier seed 1300, 1 px, 12 frames: the
+    end points preferred frame 0's wrong branch by 6.2, section 4's reprojection kept it, and
+    ``curve3d`` came out 2.6 % of its length off (a tilt of the whole curve, 8 std across the
+    curve); the bundle from the other branch reached a lower cost (end-point chi2 46.7 against
+    59.1, polylines 11.62 against 11.96) and 0.19 %."""
+
     bundle_extra_starts: int = 3
     """When the curve bundle still leaves some frame fitting clearly worse than the others
     (``bundle.UNEVEN_RATIO``) after its start from the end-point answer and from frame 0's

@@ -98,6 +98,8 @@ from curverecon.curve.bundle_kernel import (
     polyline_normal_blocks,
     segment_offsets,
 )
+from curverecon.model.pose import rotations as pose_rotations
+from curverecon.model.pose import translations as pose_translations
 from curverecon.options import CurveOptions
 
 #: Control points of the curve's cubic B-spline (default; fewer for short polylines).
@@ -2157,6 +2159,22 @@ def refine_reconstruction(
         "misfit_z": o.bundle_misfit_z,
     }
 
+    def frame0_other_branch():
+        """(rotations, translations, start curve) with frame 0 on its other pose branch, the
+        start curve turned with it (X_cam = R_0 X_curve + t_0), or None when that branch's
+        end-point chi2 is more than ``o.frame0_branch_dchi2`` above frame 0's own."""
+        if rec.branch_alternatives is None or rec.frame_chi2 is None or curve_start is None:
+            return None
+        dchi2 = float(rec.branch_alternative_chi2[0]) - float(rec.frame_chi2[0])
+        if not np.isfinite(dchi2) or dchi2 > o.frame0_branch_dchi2:
+            return None
+        poses = np.array(rec.poses, float)
+        poses[0] = rec.branch_alternatives[0]
+        rot, tra = pose_rotations(poses), pose_translations(poses)
+        r0, t0 = rec.rotations()[0], rec.translations()[0]
+        start = (np.asarray(curve_start, float) - t0) @ r0 @ rot[0].T + tra[0]
+        return rot, tra, start
+
     def run(mask=None):
         if flat:
             # no curve to start from: frame 0's polyline at depth 0, every pose searched
@@ -2167,6 +2185,12 @@ def refine_reconstruction(
             br = bundle_adjust(
                 curves, rec.rotations(), rec.translations(), curve_start, polyline_mask=mask, **kw
             )
+            flipped = frame0_other_branch()
+            if flipped is not None:
+                # frame 0's other branch (CurveOptions.frame0_branch_dchi2): the lower cost wins
+                other = bundle_adjust(curves, *flipped, polyline_mask=mask, **kw)
+                if other.cost < br.cost:
+                    br = other
         if _restart(br.rms if mask is None else br.rms[mask], br.sigma) and not flat:
             # some frame does not fit: a second start from frame 0's polyline at depth 0 (every
             # pose searched again against it); the lower cost wins
