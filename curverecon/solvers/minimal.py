@@ -74,7 +74,9 @@ class MinimalResult:
 def _track_kernels(q0, q1, d, x_start, opts, order, x_end, status, steps, t_end):  # type: ignore[no-untyped-def]
     """The homotopy tracker on the generated straight-line kernels of the system
     (``generated/minimal_unsquared_kernel.py``): compiled and cached here, where the kernels
-    are known by name (``homotopy.track_generated``)."""
+    are known by name (``homotopy.track_generated``).  numba's cache of this function is keyed
+    on this file only: after a change to the tracker in ``homotopy.py``, change this file too
+    (or delete its cache) or the old tracker runs (2026-11-27, the Hermite predictor)."""
     k = minimal_unsquared_kernel
     homotopy.track_generated(
         k.coefficients,
