@@ -210,3 +210,49 @@ def test_a_predictor_that_is_not_known_raises() -> None:
             None,
             homotopy.HomotopyOptions(predictor="pade"),
         )
+
+
+def test_close_pairs_equal_the_full_distance_matrix() -> None:
+    """The duplicate test's prefiltered distances (``homotopy._close_pairs``) give the same
+    matrix as every distance, with rows that agree in their first coordinate but not elsewhere
+    and near-duplicates on both sides of the tolerance."""
+    rng = np.random.default_rng(8)
+    ends = _crandn(rng, 60 * 9).reshape(60, 9) * 10.0 ** rng.integers(-2, 3, size=(60, 1))
+    ends[1] = ends[0] * (1 + 1e-10)  # a duplicate
+    ends[2] = ends[0] + 1e-5  # near, not within 1e-8
+    ends[3, 0] = ends[4, 0]  # same first coordinate only
+    ends[5] = ends[6] + 0.5e-8  # within 1e-8 (1 + |x|)
+    size = np.linalg.norm(ends, axis=1)
+    full = np.linalg.norm(ends[:, None, :] - ends[None, :, :], axis=2) <= 1e-8 * (
+        1.0 + np.minimum(size[:, None], size[None, :])
+    )
+    got = homotopy._close_pairs(ends, 1e-8)
+    assert np.array_equal(got, full)
+    assert got[0, 1] and got[5, 6] and not got[0, 2] and not got[3, 4]
+    assert homotopy._close_pairs(ends[:0], 1e-8).shape == (0, 0)
+
+
+def test_poses_of_many_shapes_equal_the_poses_of_each() -> None:
+    """``poses_from_shapes`` (every shape at once, as the minimal solver calls it) gives each
+    shape's ``poses_from_shape`` exactly: the truth and random shapes, 4 to 8 frames."""
+    from curverecon.solvers.pose import poses_from_shape, poses_from_shapes
+
+    for seed in range(4):
+        sc = make_scene(np.random.default_rng(seed), 4 + seed)
+        rng = np.random.default_rng(seed)
+        t = sc.truth
+        shapes = np.array(
+            [[t.c, t.alpha, t.beta, abs(t.phi)]]
+            + [[t.c * rng.uniform(0.8, 3), *rng.uniform(0, 1.5, 2), rng.uniform(0, 3.1)]]
+            + [[t.c * rng.uniform(0.8, 3), *rng.uniform(0, 1.5, 2), rng.uniform(0, 3.1)]]
+        )
+        poses, misfit = poses_from_shapes(sc.observations, shapes)
+        assert poses.shape == (3, 4 + seed, 5) and misfit.shape == (3, 4 + seed)
+        for k, shape in enumerate(shapes):
+            one_pose, one_misfit = poses_from_shape(sc.observations, shape)
+            assert np.array_equal(one_pose, poses[k]) and np.array_equal(one_misfit, misfit[k])
+        assert misfit[0].max() < 1e-7  # the truth fits
+    empty = poses_from_shapes(
+        make_scene(np.random.default_rng(0), 4).observations, np.zeros((0, 4))
+    )
+    assert empty[0].shape == (0, 4, 5) and empty[1].shape == (0, 4)

@@ -1074,6 +1074,19 @@ def _mark_degenerate(system: PolynomialSystem, x: np.ndarray, status: np.ndarray
         status[ok[degenerate(system, x[ok])]] = DEGENERATE
 
 
+def _close_pairs(ends: np.ndarray, tol: float) -> np.ndarray:
+    """(n, n) matrix: are rows i and j of ``ends`` within ``tol`` (1 + the smaller norm)?
+
+    Full distances only for the pairs whose first coordinates are that close (a distance is at
+    least that difference): the full (104, 104, 9) difference cost 2.1 ms a solve, this 0.1."""
+    size = np.linalg.norm(ends, axis=1)
+    limit = tol * (1.0 + np.minimum(size[:, None], size[None, :]))
+    i, j = np.nonzero(np.abs(ends[:, None, 0] - ends[None, :, 0]) <= limit)
+    close = np.zeros(limit.shape, dtype=bool)
+    close[i, j] = np.linalg.norm(ends[i] - ends[j], axis=1) <= limit[i, j]
+    return close
+
+
 def _coincide(x: np.ndarray, rows: np.ndarray, others: np.ndarray, tol: float) -> np.ndarray:
     """For each index in ``rows``: does x[row] coincide with x[k] for some k in ``others``?"""
     out = np.zeros(rows.size, dtype=bool)
@@ -1246,11 +1259,7 @@ def track(
     # jumped and are tracked again
     # (one distance matrix: each path's _coincide with the earlier ones cost 70 us, 7 ms a
     # solve, as much as 5 % of it)
-    ends = x[ok]
-    size = np.linalg.norm(ends, axis=1)
-    close = np.linalg.norm(ends[:, None, :] - ends[None, :, :], axis=2) <= duplicate_tolerance * (
-        1.0 + np.minimum(size[:, None], size[None, :])
-    )
+    close = _close_pairs(x[ok], duplicate_tolerance)
     kept = np.ones(ok.size, dtype=bool)
     for k in range(1, ok.size):
         kept[k] = not np.any(close[k, :k] & kept[:k])
