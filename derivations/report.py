@@ -239,8 +239,9 @@ def _start_system_section() -> list[str]:
         f"{facts['unsquared_content_O']}); E~^2 - c'^2 s^2 O~^2 equals the reduced lean "
         f"polynomial modulo m^2 - A B P: {facts['unsquared_product_is_lean']}.\n",
         "- `curverecon.solvers.minimal.solve` tracks these to the frames' parameters "
-        "(`curverecon.solvers.homotopy`: RK4 predictor, Newton corrector, failed or jumped paths "
-        "retried along fresh complex detours and counted, never dropped).\n",
+        "(`curverecon.solvers.homotopy`: Hermite predictor on the last three points and "
+        "tangents (RK4 for retries), Newton corrector, failed or jumped paths retried along "
+        "fresh complex detours and counted, never dropped).\n",
     ]
 
 

@@ -14,6 +14,7 @@ import importlib.util
 from dataclasses import replace
 
 import numpy as np
+import pytest
 import sympy as sp
 from curverecon.generated import minimal_unsquared_kernel as kernel
 
@@ -157,3 +158,101 @@ def test_newton_on_the_kernels_and_on_the_tables_reach_the_same_solutions() -> N
         f, jac = system.evaluate(row, target)
         assert np.abs(f).max() < 1e-12 * np.abs(jac).max() * (1 + np.abs(row).max())
     assert np.abs(start - by_kernels).max() > 1e-9  # Newton moved them
+
+
+def test_the_hermite_weights_reproduce_a_quintic() -> None:
+    """The Hermite predictor's weights on three points (values and derivatives) give a
+    polynomial of degree 5 exactly, inside and outside the points (the extrapolation)."""
+    rng = np.random.default_rng(3)
+    coef = rng.normal(size=6) + 1j * rng.normal(size=6)
+    poly, deriv = np.polynomial.Polynomial(coef), np.polynomial.Polynomial(coef).deriv()
+    th = np.array([0.1, 0.17, 0.3])
+    wts, z, col = np.empty(6), np.empty(6), np.empty(6)
+    for tt in (0.12, 0.3, 0.45, 0.6):
+        homotopy._hermite_weights(th, 3, tt, wts, z, col)
+        got = sum(wts[2 * j] * poly(th[j]) + wts[2 * j + 1] * deriv(th[j]) for j in range(3))
+        assert abs(got - poly(tt)) < 1e-11 * np.abs(coef).sum()
+    homotopy._hermite_weights(th, 2, 0.5, wts, z, col)  # two points: a cubic
+    cubic = np.polynomial.Polynomial(coef[:4])
+    got = sum(wts[2 * j] * cubic(th[j]) + wts[2 * j + 1] * cubic.deriv()(th[j]) for j in range(2))
+    assert abs(got - cubic(0.5)) < 1e-11 * np.abs(coef).sum()
+
+
+@pytest.mark.parametrize("seed", [600_003, 700_011])
+def test_the_hermite_predictor_follows_the_same_paths_as_rk4(seed) -> None:
+    """The default Hermite predictor (``HomotopyOptions.predictor``) against the RK4 one on the
+    same paths of a four-frame scene from the 3-D generator: every path ends OK, each at RK4's
+    endpoint (1e-8 relative), with fewer linear solves (RK4: at least 5 a step; Hermite: about
+    2, counted here as steps of each, which are at most 1.6 times RK4's)."""
+    system = minimal._system()
+    obs = make_scene(np.random.default_rng(seed), 4).observations
+    scale = float(np.mean(obs.cp))
+    target = np.column_stack([obs.cp, obs.dp, obs.ep]).ravel() / scale
+    q0, xs = system.start_parameters, system.start_solutions
+    rk4 = replace(homotopy.HomotopyOptions(), predictor="rk4")
+    assert homotopy.HomotopyOptions().predictor == "hermite"
+    xh, sh, nh = homotopy.track_once(system, q0, target, xs)
+    xr, sr, nr = homotopy.track_once(system, q0, target, xs, None, rk4)
+    assert np.all(sh == homotopy.OK) and np.all(sr == homotopy.OK)
+    rel = np.linalg.norm(xh - xr, axis=1) / (1 + np.linalg.norm(xr, axis=1))
+    assert rel.max() < 1e-8
+    assert nh.sum() <= 1.6 * nr.sum()
+
+
+def test_a_predictor_that_is_not_known_raises() -> None:
+    system = minimal._system()
+    with pytest.raises(ValueError, match="predictor"):
+        homotopy.track_once(
+            system,
+            system.start_parameters,
+            system.start_parameters,
+            system.start_solutions[:1],
+            None,
+            homotopy.HomotopyOptions(predictor="pade"),
+        )
+
+
+def test_close_pairs_equal_the_full_distance_matrix() -> None:
+    """The duplicate test's prefiltered distances (``homotopy._close_pairs``) give the same
+    matrix as every distance, with rows that agree in their first coordinate but not elsewhere
+    and near-duplicates on both sides of the tolerance."""
+    rng = np.random.default_rng(8)
+    ends = _crandn(rng, 60 * 9).reshape(60, 9) * 10.0 ** rng.integers(-2, 3, size=(60, 1))
+    ends[1] = ends[0] * (1 + 1e-10)  # a duplicate
+    ends[2] = ends[0] + 1e-5  # near, not within 1e-8
+    ends[3, 0] = ends[4, 0]  # same first coordinate only
+    ends[5] = ends[6] + 0.5e-8  # within 1e-8 (1 + |x|)
+    size = np.linalg.norm(ends, axis=1)
+    full = np.linalg.norm(ends[:, None, :] - ends[None, :, :], axis=2) <= 1e-8 * (
+        1.0 + np.minimum(size[:, None], size[None, :])
+    )
+    got = homotopy._close_pairs(ends, 1e-8)
+    assert np.array_equal(got, full)
+    assert got[0, 1] and got[5, 6] and not got[0, 2] and not got[3, 4]
+    assert homotopy._close_pairs(ends[:0], 1e-8).shape == (0, 0)
+
+
+def test_poses_of_many_shapes_equal_the_poses_of_each() -> None:
+    """``poses_from_shapes`` (every shape at once, as the minimal solver calls it) gives each
+    shape's ``poses_from_shape`` exactly: the truth and random shapes, 4 to 8 frames."""
+    from curverecon.solvers.pose import poses_from_shape, poses_from_shapes
+
+    for seed in range(4):
+        sc = make_scene(np.random.default_rng(seed), 4 + seed)
+        rng = np.random.default_rng(seed)
+        t = sc.truth
+        shapes = np.array(
+            [[t.c, t.alpha, t.beta, abs(t.phi)]]
+            + [[t.c * rng.uniform(0.8, 3), *rng.uniform(0, 1.5, 2), rng.uniform(0, 3.1)]]
+            + [[t.c * rng.uniform(0.8, 3), *rng.uniform(0, 1.5, 2), rng.uniform(0, 3.1)]]
+        )
+        poses, misfit = poses_from_shapes(sc.observations, shapes)
+        assert poses.shape == (3, 4 + seed, 5) and misfit.shape == (3, 4 + seed)
+        for k, shape in enumerate(shapes):
+            one_pose, one_misfit = poses_from_shape(sc.observations, shape)
+            assert np.array_equal(one_pose, poses[k]) and np.array_equal(one_misfit, misfit[k])
+        assert misfit[0].max() < 1e-7  # the truth fits
+    empty = poses_from_shapes(
+        make_scene(np.random.default_rng(0), 4).observations, np.zeros((0, 4))
+    )
+    assert empty[0].shape == (0, 4, 5) and empty[1].shape == (0, 4)

@@ -11,7 +11,7 @@ count, 104 for generic frames, its independent check and the symmetry).  It is s
 generic complex parameters; :func:`solve` tracks those 104 solutions to the given frames
 (:mod:`curverecon.solvers.homotopy`), keeps the real ones that are shapes (C >= c'^2 in every
 frame, A, B >= 0, 0 <= P <= 1), polishes each by Newton's method on that system in float64,
-and solves every frame's pose for it (:func:`curverecon.solvers.pose.poses_from_shape`).
+and solves every frame's pose for it (:func:`curverecon.solvers.pose.poses_from_shapes`).
 
 Conventions: c in input units; alpha, beta in [0, pi/2] and phi in [0, pi], radians (one
 representative per orbit: the signs of tan(alpha), tan(beta) only orient the tangent lines, and
@@ -31,7 +31,7 @@ from curverecon.generated import minimal_unsquared
 from curverecon.model.observations import Observations, wrap_line_angle
 from curverecon.options import MinimalOptions
 from curverecon.solvers import homotopy
-from curverecon.solvers.pose import poses_from_shape
+from curverecon.solvers.pose import poses_from_shapes
 
 try:  # the system's straight-line kernels; absent only until `make derive` first writes them
     from curverecon.generated import minimal_unsquared_kernel
@@ -74,7 +74,9 @@ class MinimalResult:
 def _track_kernels(q0, q1, d, x_start, opts, order, x_end, status, steps, t_end):  # type: ignore[no-untyped-def]
     """The homotopy tracker on the generated straight-line kernels of the system
     (``generated/minimal_unsquared_kernel.py``): compiled and cached here, where the kernels
-    are known by name (``homotopy.track_generated``)."""
+    are known by name (``homotopy.track_generated``).  numba's cache of this function is keyed
+    on this file only: after a change to the tracker in ``homotopy.py``, change this file too
+    (or delete its cache) or the old tracker runs (2026-11-27, the Hermite predictor)."""
     k = minimal_unsquared_kernel
     homotopy.track_generated(
         k.coefficients,
@@ -175,14 +177,14 @@ def solve(obs: Observations, options: MinimalOptions | None = None) -> MinimalRe
         & (p2 >= -tol)
         & (p2 <= 1 + tol)
     )
-    shapes, poses, residuals = [], [], []
+    rows = []
     for c2k, a2k, b2k, p2k, mk in zip(
         c2[inside], a2[inside], b2[inside], p2[inside], m[inside], strict=True
     ):
         ta, tb = np.sqrt(max(a2k, 0.0)), np.sqrt(max(b2k, 0.0))
         cos_phi = float(np.clip(mk / (ta * tb), -1.0, 1.0)) if ta * tb > 0 else 0.0
         # phi from (sin, cos): well conditioned near 0 and 180 degrees, where arccos is not
-        shape = np.array(
+        rows.append(
             [
                 np.sqrt(max(c2k, 0.0)) * scale,
                 np.arctan(ta),
@@ -190,15 +192,18 @@ def solve(obs: Observations, options: MinimalOptions | None = None) -> MinimalRe
                 np.arctan2(np.sqrt(max(1.0 - p2k, 0.0)), cos_phi),
             ]
         )
-        pose, misfit = poses_from_shape(obs, shape)
-        shapes.append(shape)
-        poses.append(pose)
-        residuals.append(float(np.sqrt(np.mean(misfit**2))))
+    shapes = np.array(rows).reshape(-1, 4)
+    # every shape's poses at once (3.7 ms a solve one shape at a time)
+    poses, misfit = poses_from_shapes(obs, shapes)
+    # one shape at a time, as before: on exact four-frame data every residual is rounding, so
+    # its last bit orders the shapes, and the pipeline's four-frame samples follow that order
+    # (np.mean along axis 1 changed one answer of tests/test_frame_samples.py)
+    residuals = np.array([float(np.sqrt(np.mean(row**2))) for row in misfit])
     order = np.argsort(residuals, kind="stable")
     return MinimalResult(
-        shapes=np.array(shapes).reshape(-1, 4)[order],
-        poses=np.array(poses).reshape(-1, FRAMES, 5)[order],
-        residuals=np.array(residuals)[order],
+        shapes=shapes[order],
+        poses=poses.reshape(-1, FRAMES, 5)[order],
+        residuals=residuals[order],
         n_paths=int(x.shape[0]),
         n_complex=int(np.sum(ok & ~real)),
         n_not_shapes=int(np.sum(~inside)),
