@@ -118,7 +118,7 @@ def build_tasks(cfg: Config, deadline: float) -> list[Task]:
                 "default",
                 chord,
                 deadline,
-                s == hn,  # the basin diagnostics: the report shows them at this noise only
+                s >= hn,  # the basin diagnostics (two refinements a scene), from this noise up
             ),
             0,
             cfg.accuracy_default_scenes,

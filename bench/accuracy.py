@@ -158,6 +158,9 @@ def run_scenes(
                 rec["default_estimator"] = r.estimator
                 ref = refine(obs, shape, poses, noise, sig_t, covariance=False)
                 rec["truth_start_chi2"] = ref.chi2
+                rec["truth_start_diag"] = _errors_list(
+                    shape_errors(normalise(ref.shape, ref.poses)[0], shape)
+                )
         out.append(rec)
     return out
 
@@ -211,6 +214,21 @@ def summarise_method(records: list[dict[str, Any]], method: str) -> dict[str, An
         better = [r for r in full if r["default_chi2"] < r["truth_start_chi2"] - 1.0]
         out["better_fit_than_truth_start_rate"] = len(better) / len(ran) if diagnosed else None
         out["frames_dropped_rate"] = sum(r.get("default_outliers", 0) > 0 for r in ok) / len(ran)
+        # the scenes the default fails and the refinement from the truth (same scene, same
+        # record) does not, and how many of them end in a basin whose chi2 is lower than the
+        # truth's: no chi2 minimiser without the truth would prefer the truth's basin there
+        pairs = [r for r in full if r.get("truth_start_diag") is not None]
+        only = [
+            r
+            for r in pairs
+            if worst_angle_deg(np.array(r["default"])) >= SUCCESS_DEG
+            and worst_angle_deg(np.array(r["truth_start_diag"])) < SUCCESS_DEG
+        ]
+        out["default_only_failures"] = len(only) if pairs else None
+        out["default_only_failures_lower_chi2"] = (
+            sum(r["default_chi2"] < r["truth_start_chi2"] for r in only) if pairs else None
+        )
+        out["basin_diagnosed_scenes"] = len(pairs)
     return out
 
 

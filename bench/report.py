@@ -189,6 +189,15 @@ def headline(cfg: Config, sections: dict[str, Any]) -> dict[str, Any]:
         "headline_better_fit_than_truth_start_rate": d.get("better_fit_than_truth_start_rate")
         if d
         else None,
+        # per cell (noise|frames): [default-only failures, of them in a basin of lower chi2]
+        "default_only_failures_lower_chi2_by_cell": {
+            f"{row['noise']:g}|{row['n_frames']}": [
+                row["default"]["default_only_failures"],
+                row["default"]["default_only_failures_lower_chi2"],
+            ]
+            for row in sections["accuracy"]
+            if row["default"] and row["default"].get("default_only_failures") is not None
+        },
     }
 
     def verdict(ok: bool | None) -> str:
@@ -582,6 +591,35 @@ def _markdown(cfg: Config, sections: dict[str, Any], command: str, started: str)
                 + f" | {_pct(s.get('success_rate'))} |"
             )
     add("")
+    basin_rows = [
+        (row, row["default"])
+        for row in sections["accuracy"]
+        if row["n_frames"] >= 6
+        and row["default"]
+        and row["default"].get("default_only_failures") is not None
+    ]
+    if basin_rows:
+        add(
+            "Where the default fails and refinement from the truth does not (from 1 px, cells "
+            "with 6 frames or more; the refinement from the truth run again on the same scene as "
+            "the default): the chi2 of the answer's basin (the answer polished by maximum "
+            "likelihood) against that of the refinement from the truth.  'lower': the answer's "
+            "basin fits the data better than the truth's, so no estimator that minimises chi2 "
+            "without the truth would choose the truth's basin (the refinement from the truth "
+            "keeps every frame on the truth's pose branch)."
+        )
+        add("")
+        add(
+            "| noise | frames | scenes diagnosed | default fails, truth start succeeds "
+            "| ... lower chi2 |"
+        )
+        add("|---|---|---|---|---|")
+        for row, d in basin_rows:
+            add(
+                f"| {row['noise']:g} | {row['n_frames']} | {d['basin_diagnosed_scenes']} | "
+                f"{d['default_only_failures']} | {d['default_only_failures_lower_chi2']} |"
+            )
+        add("")
     add(
         "Reading the ratios at 4-6 frames: there the bound of some scenes is very large (nearly "
         "degenerate motion), the mean CRLB variance is dominated by them, and the errors of an "

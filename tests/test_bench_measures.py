@@ -139,3 +139,34 @@ def test_outliers_section_reports_issue_12_keys_on_random_tangents() -> None:
     true = np.arctan2(t.tangent_A3[:, 1], t.tangent_A3[:, 0])
     d = np.abs(np.mod(ang - true + np.pi / 2, np.pi) - np.pi / 2)
     assert np.all(d[t.inliers] < 1e-9) and np.all(d[~t.inliers] > 1e-6)
+
+
+def test_default_only_failures_are_classified_by_the_chi2_of_their_basins() -> None:
+    """``accuracy.summarise_method``: a scene counts when the default fails (worst angle >= 5
+    degrees) and the refinement from the truth on the same record does not; 'lower' when the
+    answer's basin has the lower chi2."""
+    from bench.accuracy import summarise_method
+
+    deg = math.radians
+
+    def rec(default_deg: float, truth_deg: float, chi2_d: float, chi2_t: float) -> dict:
+        return {
+            "crlb_var": [1e-4, 1e-4, 1e-4, 1e-4],
+            "default": [0.0, deg(default_deg), 0.0, 0.0],
+            "default_s": 0.1,
+            "default_outliers": 0,
+            "default_chi2": chi2_d,
+            "truth_start_chi2": chi2_t,
+            "truth_start_diag": [0.0, deg(truth_deg), 0.0, 0.0],
+        }
+
+    records = [
+        rec(8.0, 1.0, 3.0, 9.0),  # default-only failure, its basin lower
+        rec(8.0, 1.0, 9.0, 3.0),  # default-only failure, a missed basin
+        rec(8.0, 7.0, 3.0, 9.0),  # both fail: not counted
+        rec(1.0, 7.0, 3.0, 9.0),  # the default succeeds: not counted
+    ]
+    out = summarise_method(records, "default")
+    assert out["default_only_failures"] == 2
+    assert out["default_only_failures_lower_chi2"] == 1
+    assert out["basin_diagnosed_scenes"] == 4
