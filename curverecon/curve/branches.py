@@ -145,6 +145,20 @@ def _coarse(reconstruct_curve, o: CurveOptions):
     return reconstruct_curve
 
 
+def _distinct_optima(cands: list[int], shapes: np.ndarray, poses: np.ndarray, tol: float):
+    """The candidates (indices of ``shapes`` (M, 4), ``poses`` (M, N, P)) that are not the
+    same optimum as an earlier one (every shape and pose parameter within ``tol``; all of
+    them for ``tol`` <= 0)."""
+    if tol <= 0:
+        return cands
+    x = np.concatenate([shapes, poses.reshape(len(poses), -1)], axis=1)
+    kept: list[int] = []
+    for k in cands:
+        if not any(np.max(np.abs(x[k] - x[j])) <= tol for j in kept):
+            kept.append(k)
+    return kept
+
+
 def refit_branches_with_curves(
     rec: Reconstruction,
     obs: Observations,
@@ -225,6 +239,7 @@ def refit_branches_with_curves(
         shapes = np.repeat(np.asarray(shape, float)[None], frames.size, axis=0)
         g, p, _, chi2, _, _ = refine_batch(obs, shapes, starts, ps, ts, max_iter=60)
         cands = [k for k in range(frames.size) if chi2[k] < rec.chi2 + o.refit_dchi2]
+        cands = _distinct_optima(cands, g, p, o.refit_same_tol)
         scored = [(total(p[k]), k) for k in cands]
         if not scored:
             break
