@@ -616,7 +616,7 @@ class _Problem:
         """:meth:`foot_points` of every frame's interior polyline points at once (the search
         and the Newton steps in ``bundle_kernel.foot_parameters``); ``ordered`` (default
         ``self.ordered_feet``): then :meth:`_ordered_feet`."""
-        proj = (self.n_grid @ ctrl) @ np.transpose(m[:, :2], (0, 2, 1)) + b[:, None, :2]
+        proj = np.einsum("gc,njc->ngj", self.n_grid @ ctrl, m[:, :2]) + b[:, None, :2]
         if not np.all(np.isfinite(proj)):
             proj = np.nan_to_num(proj, nan=0.0, posinf=0.0, neginf=0.0)
         # the projected curve per knot span as a cubic in the span's local coordinate: a point's
@@ -1006,10 +1006,10 @@ class _Problem:
         ok = self.cidx >= 0
         c2[ok] += dx[self.cidx[ok]]
         m2, b2 = m.copy(), b.copy()
-        if self.n > 1:  # every frame's increment at once (as frame by frame, to rounding)
-            dp = dx[self.n_curve :].reshape(self.n - 1, 5)
-            m2[1:] = _expm_so3_batch(dp[:, :3]) @ m[1:]
-            b2[1:, :2] += dp[:, 3:5]
+        for i in range(1, self.n):
+            off = self.n_curve + 5 * (i - 1)
+            m2[i] = _expm_so3(dx[off : off + 3]) @ m[i]
+            b2[i, :2] += dx[off + 3 : off + 5]
         return c2, m2, b2
 
 

@@ -558,9 +558,7 @@ def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:
     """Local weighted quadratic regression of one coordinate against sample index.
 
     Window: +-max(2, 1.5 % of the samples); tricube weights times inverse variances; the two end
-    samples (A, B) are kept.  Every sample's 3 x 3 least-squares problem at once (its normal
-    equations solved through their SVD with ``np.linalg.lstsq``'s cut-off: the same values to
-    rounding as one ``lstsq`` per sample, which took 10 % of the branch search's time).
+    samples (A, B) are kept.
     """
     k_total = len(z)
     half = max(2, int(round(0.015 * k_total)))
@@ -569,18 +567,13 @@ def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:
     w_all = np.where(np.isfinite(std) & (std > 0), 1.0 / np.maximum(std, 1e-6) ** 2, 0.0)
     w_all[~np.isfinite(std)] = 1e-6
     w_all[0] = w_all[-1] = 1e6
-    offs = np.arange(-half, half + 1)
-    idx = np.arange(1, k_total - 1)[:, None] + offs  # (K - 2, window)
-    inside = (idx >= 0) & (idx < k_total)
-    idx = np.clip(idx, 0, k_total - 1)
-    v = np.vander(offs.astype(float), 3, increasing=True)  # (window, 3)
-    w = np.where(inside, w_all[idx] * (1 - (np.abs(offs) / (half + 1)) ** 3) ** 3, 0.0)
-    mat = np.einsum("kr,ri,rj->kij", w, v, v)
-    rhs = np.einsum("kr,ri,kr->ki", w, v, z[idx])
-    uu, ss, vt = np.linalg.svd(mat)
-    cut = np.finfo(float).eps * 3 * ss[:, :1]
-    inv = np.where(ss > cut, 1.0 / np.where(ss > cut, ss, 1.0), 0.0)
-    coef0 = np.einsum("kj,kj,kj->k", vt[:, :, 0], inv, np.einsum("kij,ki->kj", uu, rhs))
     out = z.copy()
-    out[1:-1] = coef0
+    for k in range(1, k_total - 1):
+        lo, hi = max(0, k - half), min(k_total, k + half + 1)
+        u = np.arange(lo, hi) - k
+        v = np.vander(u.astype(float), 3, increasing=True)
+        w = w_all[lo:hi] * (1 - (np.abs(u) / (half + 1)) ** 3) ** 3
+        a = v * w[:, None]
+        coef, *_ = np.linalg.lstsq(a.T @ v, a.T @ z[lo:hi], rcond=None)
+        out[k] = coef[0]
     return out
