@@ -55,26 +55,29 @@ def resolve_branches_with_curves(
         (reconstruction, curve result) - the input reconstruction if nothing changed.
     """
     o = o or CurveOptions()
-    res = reconstruct_curve(curves, rec.rotations(), rec.translations())
-    fr = getattr(res, "frame_residual", None)
-    if (
-        fr is None
-        or rec.branch_alternatives is None
+    search = _coarse(reconstruct_curve, o)
+    cand: list[int] = []
+    if not (
+        rec.branch_alternatives is None
         or rec.branch_alternative_chi2 is None
         or rec.frame_chi2 is None
     ):
-        return rec, res
-    dchi2 = rec.branch_alternative_chi2 - rec.frame_chi2
-    cand = [int(i) for i in np.flatnonzero(np.isfinite(dchi2) & (dchi2 < o.flip_dchi2))]
-    if not cand:
-        return rec, res
+        dchi2 = rec.branch_alternative_chi2 - rec.frame_chi2
+        cand = [int(i) for i in np.flatnonzero(np.isfinite(dchi2) & (dchi2 < o.flip_dchi2))]
+    # the full reconstruction of the start poses only where it is kept (nothing to try, or
+    # nothing switched) or scores the search itself: a switch replaces it (one section-4
+    # reconstruction saved in the scenes with a switch)
+    res = None
+    if search is reconstruct_curve or not cand:
+        res = reconstruct_curve(curves, rec.rotations(), rec.translations())
+        if getattr(res, "frame_residual", None) is None or not cand:
+            return rec, res
     inl = np.asarray(rec.inliers, bool)
 
     def total(r) -> float:
         f = np.asarray(getattr(r, "frame_residual", None), float)
         return float(np.sum(f[inl])) if f.shape == inl.shape else np.inf
 
-    search = _coarse(reconstruct_curve, o)
     switched = np.zeros(len(rec.poses), bool)
     best_total = (
         total(res) if search is reconstruct_curve else total(search(curves, *_rt(rec.poses)))
@@ -95,6 +98,8 @@ def resolve_branches_with_curves(
         best_total = t
     take = [int(i) for i in np.flatnonzero(switched)]
     if not take:
+        if res is None:
+            res = reconstruct_curve(curves, rec.rotations(), rec.translations())
         return rec, res
     poses = np.array(rec.poses)
     poses[take] = rec.branch_alternatives[take]
@@ -143,6 +148,20 @@ def _coarse(reconstruct_curve, o: CurveOptions):
             reconstruct_curve, n_samples=o.search_samples, smooth=False, tangents=dummy
         )
     return reconstruct_curve
+
+
+def _distinct_optima(cands: list[int], shapes: np.ndarray, poses: np.ndarray, tol: float):
+    """The candidates (indices of ``shapes`` (M, 4), ``poses`` (M, N, P)) that are not the
+    same optimum as an earlier one (every shape and pose parameter within ``tol``; all of
+    them for ``tol`` <= 0)."""
+    if tol <= 0:
+        return cands
+    x = np.concatenate([shapes, poses.reshape(len(poses), -1)], axis=1)
+    kept: list[int] = []
+    for k in cands:
+        if not any(np.max(np.abs(x[k] - x[j])) <= tol for j in kept):
+            kept.append(k)
+    return kept
 
 
 def refit_branches_with_curves(
@@ -225,6 +244,7 @@ def refit_branches_with_curves(
         shapes = np.repeat(np.asarray(shape, float)[None], frames.size, axis=0)
         g, p, _, chi2, _, _ = refine_batch(obs, shapes, starts, ps, ts, max_iter=60)
         cands = [k for k in range(frames.size) if chi2[k] < rec.chi2 + o.refit_dchi2]
+        cands = _distinct_optima(cands, g, p, o.refit_same_tol)
         scored = [(total(p[k]), k) for k in cands]
         if not scored:
             break

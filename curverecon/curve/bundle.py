@@ -1152,7 +1152,8 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     # every sweep pose's projected curve in one query (the same distances as one by one)
     proj = np.einsum("pc,mjc->mpj", pts, mms[:, :2]) + poly[0]
     dist = tree.query(proj.reshape(-1, 2))[0].reshape(len(mms), len(pts))
-    cands = [(float(np.mean(d**2)), j, mm) for j, (d, mm) in enumerate(zip(dist, mms, strict=True))]
+    scores = np.mean(dist**2, axis=1)  # row by row: the same sums as one pose at a time
+    cands = [(float(scores[j]), j, mm) for j, mm in enumerate(mms)]
     cands.sort(key=lambda t: t[:2])
     current = float(np.mean(tree.query((pts + a3) @ mi[:2].T + bi[:2])[0] ** 2))
     # only sweep poses that beat the current one even on the coarse grid are refined

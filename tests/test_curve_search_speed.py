@@ -1,0 +1,100 @@
+"""The speed-ups of the branch search by the curve (issue 13, item 6) give the values of the
+constructions they replace: section 4's grid distances with pruned cells against a scan of all
+3 x 3 cells, the median of the frame residuals without the far points' tree queries, the cache
+of validated polylines, and the duplicate joint refits scored once
+(``CurveOptions.refit_same_tol``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from curverecon.curve import polyline as pl
+from curverecon.curve import section4 as s4
+from curverecon.curve.branches import _distinct_optima
+from curverecon.curve.section4_kernel import Grid
+from curverecon.errors import CurveReconError
+
+
+def _scan_all_cells(grid: Grid, q: np.ndarray, bound: float) -> np.ndarray:
+    """Nearest-point distance over every point of the 3 x 3 cells around each query."""
+    out = np.empty(len(q))
+    for p, (qx, qy) in enumerate(q):
+        fx = int(np.floor((qx - grid.x0) / grid.cell))
+        fy = int(np.floor((qy - grid.y0) / grid.cell))
+        best = np.inf
+        for cy in range(max(fy - 1, 0), min(fy + 1, grid.ny - 1) + 1):
+            for cx in range(max(fx - 1, 0), min(fx + 1, grid.nx - 1) + 1):
+                c = cy * grid.nx + cx
+                pts = grid.sorted[grid.start[c] : grid.start[c + 1]]
+                if len(pts):
+                    best = min(best, float(((pts[:, 0] - qx) ** 2 + (pts[:, 1] - qy) ** 2).min()))
+        d = np.sqrt(best)
+        out[p] = d if d < bound else np.inf
+    return out
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_grid_query_prunes_cells_without_changing_distances(seed):
+    rng = np.random.default_rng(seed)
+    t = np.linspace(0.0, 1.0, 3000)
+    pts = np.column_stack([250.0 * t, 80.0 * np.sin(3.0 * t * rng.uniform(1, 3))])
+    cell = rng.uniform(1.0, 6.0)
+    grid = Grid(pts, cell)
+    q = np.vstack(
+        [
+            pts[rng.integers(0, len(pts), 400)] + rng.normal(size=(400, 2)) * cell,
+            # on cell corners and edges, and outside the grid
+            np.column_stack(
+                [
+                    grid.x0 + rng.integers(-2, grid.nx + 2, 100) * cell,
+                    grid.y0 + rng.integers(-2, grid.ny + 2, 100) * cell,
+                ]
+            ),
+            pts[:50],
+        ]
+    )
+    for bound in (cell, 0.4 * cell):
+        np.testing.assert_array_equal(grid.query(q, bound), _scan_all_cells(grid, q, bound))
+
+
+@pytest.mark.parametrize("far_fraction", [0.0, 0.3, 0.5, 0.51, 0.8, 1.0])
+def test_median_distance_equals_median_of_all_distances(far_fraction):
+    rng = np.random.default_rng(7)
+    t = np.linspace(0.0, 1.0, 200)
+    poly = np.column_stack([200.0 * t, 40.0 * np.sin(5.0 * t)])
+    for n in (59, 60):
+        near = poly[rng.integers(0, 200, n)] + rng.normal(size=(n, 2))
+        far = poly[rng.integers(0, 200, n)] + [0.0, 30.0] + rng.normal(size=(n, 2)) * 5
+        pts = np.where((rng.random(n) < far_fraction)[:, None], far, near)
+        full = np.median(s4._distances_for_frame(pts, poly))
+        assert s4._median_distance(pts, poly, 4.0) == full
+
+
+def test_validated_polylines_are_cached_read_only_and_still_checked():
+    rng = np.random.default_rng(3)
+    poly = np.cumsum(rng.normal(size=(50, 2)), axis=0)
+    poly[10] = poly[9]  # a repeated point: removed
+    first = s4._valid_polyline(poly, "frame 0 curve")
+    np.testing.assert_array_equal(first, pl.as_polyline(poly))
+    assert s4._valid_polyline(poly.copy(), "frame 0 curve") is first
+    assert not first.flags.writeable
+    bad = poly.copy()
+    bad[5, 0] = np.nan
+    with pytest.raises(CurveReconError, match="frame 3 curve"):
+        s4._valid_polyline(bad, "frame 3 curve")
+    assert s4._valid_polyline(poly.tolist(), "x").flags.writeable  # not an array: not cached
+
+
+def test_duplicate_refits_scored_once():
+    rng = np.random.default_rng(11)
+    shapes = rng.normal(size=(6, 4))
+    poses = rng.normal(size=(6, 8, 5))
+    # 2 and 4 repeat 0 within the refinement's tolerance; 5 differs from 1 by 1e-3
+    shapes[2], poses[2] = shapes[0] + 2e-5, poses[0] - 2e-5
+    shapes[4], poses[4] = shapes[0], poses[0]
+    shapes[5], poses[5] = shapes[1], poses[1] + 1e-3
+    assert _distinct_optima([0, 1, 2, 3, 4, 5], shapes, poses, 1e-4) == [0, 1, 3, 5]
+    assert _distinct_optima([2, 0, 4], shapes, poses, 1e-4) == [2]
+    assert _distinct_optima([0, 1, 2, 3, 4, 5], shapes, poses, 0.0) == [0, 1, 2, 3, 4, 5]
