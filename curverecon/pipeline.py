@@ -49,9 +49,10 @@ from curverecon.robust.frame_samples import (
     few_frame_hypotheses,
     fixed_shape_fit,
     frame_sample_hypothesis,
+    sample_score,
 )
 from curverecon.robust.outliers import chi2_lower_tail, chi2_tail, find_outlier_frames
-from curverecon.robust.search import Candidate, robust_cost, robust_start
+from curverecon.robust.search import Candidate, robust_start
 from curverecon.solvers import minimal
 from curverecon.solvers.linear import frame_matrix, min_frames, solve_linear
 from curverecon.solvers.pose import poses_from_shape
@@ -253,7 +254,8 @@ def _with_frame_samples(
     if cand is None:
         return rec
     current = fixed_shape_fit(obs, rec.shape, ps, ts, opts.search)
-    if not cand.robust_cost < robust_cost(current.frame_chi2, o.truncate):
+    new_score = sample_score(obs, cand.result.shape, cand.result.frame_chi2, ps, o)
+    if not new_score < sample_score(obs, rec.shape, current.frame_chi2, ps, o):
         return rec
     # steps 2-5 again from the samples' shape (no progress steps: the bar has passed them)
     start = cand.result.frame_chi2 < o.truncate if o.consensus_start else None

@@ -34,14 +34,18 @@ def test_library_call_returns_what_the_command_writes(tmp_path, capsys):
 
 
 def test_outlier_options_reach_the_outlier_stage():
-    """A false-alarm rate of 1e-300 per frame flags nothing; the default flags the gross
-    outlier frames of the same scene."""
+    """A false-alarm rate of 1e-300 per frame (and no cap on the chi2 at which a frame left
+    out of LO-RANSAC's consensus set is taken back, ``take_back_chi2``) flags nothing; the
+    default flags the gross outlier frames of the same scene."""
     scene = make_scene(
         np.random.default_rng(3), 20, point_sigma=1.0, tangent_sigma_deg=1.0, outlier_fraction=0.2
     )
     default = curverecon.reconstruct(scene.observations)
     never = curverecon.reconstruct(
-        scene.observations, options=ReconstructOptions(outliers=OutlierOptions(false_alarm=1e-300))
+        scene.observations,
+        options=ReconstructOptions(
+            outliers=OutlierOptions(false_alarm=1e-300, take_back_chi2=float("inf"))
+        ),
     )
     assert default.outlier_frames()
     assert never.outlier_frames() == []

@@ -93,3 +93,36 @@ def test_required_iterations_formula():
     # (1 - w^m)^k <= 1 - p: w = 0.5, m = 2, p = 0.9999 -> k = ceil(log(1e-4) / log(0.75)) = 33
     assert required_iterations(0.5, 2, o) == 33
     assert required_iterations(0.0, 2, o) == o.max_iterations
+
+
+class _CountingLines(LineEstimator):
+    """LineEstimator that counts refinements and calls every model the same (``same_model``)
+    when ``all_same``."""
+
+    def __init__(self, points: np.ndarray, threshold: float, all_same: bool) -> None:
+        super().__init__(points, threshold)
+        self.refined = 0
+        if all_same:
+            self.same_model = lambda a, b: True
+
+    def refine_model(self, model):
+        self.refined += 1
+        return super().refine_model(model)
+
+
+def test_final_refinements_polish_more_models_and_never_worsen_the_answer():
+    """After the loop, ``final_refinements`` more of the best-scoring unrefined models are
+    refined (the same samples drawn: same seed); the answer's cost is no higher than without,
+    and models the estimator calls the same as one refined before are skipped."""
+    pts = _scene(6, 120, 0.6)[0]
+    base_est = _CountingLines(pts, 0.5, False)
+    base = lo_ransac(base_est, RansacOptions(seed=3, max_iterations=8, min_iterations=8))
+    more_est = _CountingLines(pts, 0.5, False)
+    o = RansacOptions(seed=3, max_iterations=8, min_iterations=8, final_refinements=3)
+    more = lo_ransac(more_est, o)
+    assert more[1].cost <= base[1].cost
+    assert more_est.refined == base_est.refined + 3
+    assert more[1].refinements == base[1].refinements + 3
+    same_est = _CountingLines(pts, 0.5, True)
+    lo_ransac(same_est, o)
+    assert same_est.refined == base_est.refined

@@ -32,7 +32,8 @@ from collections.abc import Iterator
 import numpy as np
 
 from curverecon.errors import CurveReconError
-from curverecon.model.observations import Observations
+from curverecon.model.observations import Observations, wrap_angle
+from curverecon.model.pose import normalise
 from curverecon.options import (
     FewFrameSampleOptions,
     FrameSampleOptions,
@@ -59,6 +60,57 @@ def fixed_shape_fit(
     w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / tangent_sigma] * 2)
     poses = switch_branches(obs, shape, poses_from_branches(obs, shape), w8, options=search)
     return refine(obs, shape, poses, point_sigma, tangent_sigma, max_iter=0, covariance=False)
+
+
+CHORD_BINS = 64
+"""Bins of the chord-length convolution in :func:`chord_costs` (each a quarter of the chord's
+noise standard deviation wide, over +-8 of them)."""
+
+
+def chord_costs(obs: Observations, c: float, point_sigma: float) -> np.ndarray:
+    """(N,) -2 log p(|A'B'| | c) of every frame: the density of the observed chord length when
+    AB's direction is uniform on the sphere (the Haar measure of rotations that the marginal
+    likelihood, ``refine.marginal``, integrates the poses over), so that its length in the image
+    is c cos(u), P(length <= L) = 1 - sqrt(1 - L^2 / c^2), convolved with the noise of the
+    chord's length (sd sqrt(2) point_sigma).  The end points stay right in frames whose tangents
+    are outliers, so every frame says this about c, which the fixed-shape chi2 does not (any
+    pose fits A', B' exactly when |A'B'| <= c).  Each frame's term is capped at the median
+    frame's plus ``FrameSampleOptions.truncate`` (a frame whose end points are wrong)."""
+    length = np.linalg.norm(obs.b - obs.a, axis=1)
+    c = abs(float(c))
+    s = math.sqrt(2.0) * point_sigma
+    lo = np.clip(length - 8.0 * s, 0.0, c)
+    hi = np.clip(length + 8.0 * s, 0.0, c)
+    k = np.linspace(0.0, 1.0, CHORD_BINS + 1)
+    edges = lo[:, None] + (hi - lo)[:, None] * k[None, :]
+    cdf = 1.0 - np.sqrt(np.maximum(0.0, 1.0 - (edges / max(c, 1e-300)) ** 2))
+    mass = np.diff(cdf, axis=1)
+    mid = 0.5 * (edges[:, 1:] + edges[:, :-1])
+    z = (length[:, None] - mid) / s
+    p = np.sum(mass * np.exp(-0.5 * z * z), axis=1) / (math.sqrt(2.0 * math.pi) * s)
+    return -2.0 * np.log(np.maximum(p, 1e-300))
+
+
+def chord_cost(obs: Observations, c: float, point_sigma: float, truncate: float) -> float:
+    """The sum of :func:`chord_costs`, each frame's capped at the median frame's plus
+    ``truncate``."""
+    costs = chord_costs(obs, c, point_sigma)
+    return float(np.sum(np.minimum(costs, float(np.median(costs)) + truncate)))
+
+
+def sample_score(
+    obs: Observations,
+    shape: np.ndarray,
+    frame_chi2: np.ndarray,
+    point_sigma: float,
+    options: FrameSampleOptions,
+) -> float:
+    """What the samples' shapes are compared by: the per-frame chi2 truncated at
+    ``options.truncate``, plus ``options.chord_weight`` times :func:`chord_cost`."""
+    cost = float(np.sum(np.minimum(frame_chi2, options.truncate)))
+    if options.chord_weight > 0.0:
+        cost += options.chord_weight * chord_cost(obs, shape[0], point_sigma, options.truncate)
+    return cost
 
 
 class FrameSampleEstimator:
@@ -114,19 +166,39 @@ class FrameSampleEstimator:
             cost = fit.frame_chi2
         else:
             cost = self._frame_cost(shape)
-        return float(np.sum(np.minimum(cost, t))), int(np.sum(cost < t))
+        score = sample_score(self.obs, shape, cost, self.point_sigma, self.options)
+        return score, int(np.sum(cost < t))
 
     def refine_model(self, shape: np.ndarray) -> np.ndarray:
         """Maximum likelihood on the frames the shape explains (full chi2 below the truncation
-        at the shape's best poses), when there are enough of them."""
-        fit = fixed_shape_fit(self.obs, shape, self.point_sigma, self.tangent_sigma, self.search)
-        inliers = fit.frame_chi2 < self.options.truncate
-        if int(inliers.sum()) < self.options.min_refine_frames:
-            return shape
-        sub = self.obs.subset(inliers)
-        return refine_hypothesis(
-            sub, shape, self.point_sigma, self.tangent_sigma, options=self.search
-        ).shape
+        at the shape's best poses), when there are enough of them; repeated on the frames the
+        refined shape explains while that set changes (at most ``options.lo_rounds`` fits)."""
+        previous = None
+        for _ in range(max(1, self.options.lo_rounds)):
+            fit = fixed_shape_fit(
+                self.obs, shape, self.point_sigma, self.tangent_sigma, self.search
+            )
+            inliers = fit.frame_chi2 < self.options.truncate
+            if int(inliers.sum()) < self.options.min_refine_frames:
+                return shape
+            if previous is not None and np.array_equal(inliers, previous):
+                break
+            previous = inliers
+            sub = self.obs.subset(inliers)
+            shape = refine_hypothesis(
+                sub, shape, self.point_sigma, self.tangent_sigma, options=self.search
+            ).shape
+        return shape
+
+    def same_model(self, a: np.ndarray, b: np.ndarray) -> bool:
+        """Two shapes within ``options.distinct_deg`` in every angle and that fraction of a
+        radian in relative c, after normalisation (``model.pose.normalise``: the symmetries
+        of the shape give equal predictions)."""
+        na = normalise(np.asarray(a, float), np.zeros((0, 5)))[0]
+        nb = normalise(np.asarray(b, float), np.zeros((0, 5)))[0]
+        tol = math.radians(self.options.distinct_deg)
+        d_angles = np.abs(wrap_angle(na[1:] - nb[1:]))
+        return bool(np.all(d_angles < tol) and abs(na[0] - nb[0]) < tol * abs(nb[0]))
 
 
 def frame_sample_hypothesis(
@@ -147,6 +219,7 @@ def frame_sample_hypothesis(
         success_prob=o.success_prob,
         dyn_num_trials_mult=o.dyn_num_trials_mult,
         seed=o.seed,
+        final_refinements=o.final_refinements,
     )
     best, stats = lo_ransac(est, ransac)
     if best is None:

@@ -128,7 +128,7 @@ def consensus_start(
     r = standardised_residuals(sub.shape, poses, obs.measurements(), w8)
     chi2 = np.sum(r * r, axis=1)
     thr = threshold(studentised(obs.subset(inliers), sub, w8, o), o)
-    back = ~inliers & (chi2 <= thr)
+    back = ~inliers & (chi2 <= min(thr, o.take_back_chi2))
     if not back.any():
         return inliers, sub
     inliers |= back

@@ -7,7 +7,10 @@ local optimisation).  The loop keeps the best model; whenever a sample improves 
 best is refined at once (LO) and re-scored.  It stops adaptively once it has drawn k samples in
 all, where k is the number that draws at least one all-inlier sample with probability
 ``success_prob`` at the best model's inlier ratio (times ``dyn_num_trials_mult``), between
-``min_iterations`` and ``max_iterations``.
+``min_iterations`` and ``max_iterations``.  Then (``final_refinements``) the best-scoring
+unrefined models that differ from every model refined so far (the estimator's optional
+``same_model``) are refined too, and the best of all refined models is returned: a sample
+near the truth may score below a wrong model until it is polished.
 
 The loop knows nothing about curves (tests/test_ransac.py runs it on a line-fitting
 estimator); the curve's estimator draws four-frame samples for the minimal solver.
@@ -57,6 +60,8 @@ class RansacOptions:
         success_prob: probability that some sample was all inliers when the loop stops.
         dyn_num_trials_mult: safety factor on the adaptive number of samples.
         seed: the sampler's seed (same input, same output).
+        final_refinements: after the loop, this many more of the best-scoring distinct
+            unrefined models are refined and re-scored (0: PoseLib's loop alone).
     """
 
     max_iterations: int = 1000
@@ -64,6 +69,7 @@ class RansacOptions:
     success_prob: float = 0.9999
     dyn_num_trials_mult: float = 3.0
     seed: int = 0
+    final_refinements: int = 0
 
 
 @dataclass
@@ -103,6 +109,8 @@ def lo_ransac(
     if n < m:
         return None, stats
     limit = o.max_iterations
+    scored: list[tuple[float, int, Model]] = []  # every model's score, for the final refinements
+    refined_from: list[Model] = []
     while stats.iterations < limit:
         stats.iterations += 1
         sample = np.sort(rng.choice(n, size=m, replace=False))
@@ -110,12 +118,14 @@ def lo_ransac(
         for model in estimator.generate_models(sample):
             stats.models += 1
             cost, inl = estimator.score_model(model)
+            scored.append((cost, len(scored), model))
             if cost < stats.cost:
                 best, stats.cost, stats.num_inliers = model, cost, inl
                 improved = True
         if improved and best is not None:
             # local optimisation of the new best, kept if it scores better
             stats.refinements += 1
+            refined_from.append(best)
             refined = estimator.refine_model(best)
             cost, inl = estimator.score_model(refined)
             if cost < stats.cost:
@@ -123,4 +133,38 @@ def lo_ransac(
             stats.inlier_ratio = stats.num_inliers / n
             limit = required_iterations(stats.inlier_ratio, m, o)
         stats.history.append(stats.cost)
+    if o.final_refinements > 0:
+        best = _final_refinements(estimator, scored, refined_from, best, stats, o)
     return best, stats
+
+
+def _final_refinements(
+    estimator: Estimator[Model],
+    scored: list[tuple[float, int, Model]],
+    refined_from: list[Model],
+    best: Model | None,
+    stats: RansacStats,
+    o: RansacOptions,
+) -> Model | None:
+    """The best model after refining the ``o.final_refinements`` best-scoring unrefined models
+    that differ from every model refined before (``estimator.same_model(a, b)`` when the
+    estimator has it; otherwise every model counts as distinct)."""
+    same = getattr(estimator, "same_model", None)
+    done = list(refined_from)
+    count = 0
+    for _, _, model in sorted(scored, key=lambda t: (t[0], t[1])):
+        if count >= o.final_refinements:
+            break
+        if any(model is d for d in done) or (
+            same is not None and any(same(model, d) for d in done)
+        ):
+            continue
+        done.append(model)
+        count += 1
+        stats.refinements += 1
+        refined = estimator.refine_model(model)
+        cost, inl = estimator.score_model(refined)
+        if cost < stats.cost:
+            best, stats.cost, stats.num_inliers = refined, cost, inl
+            stats.inlier_ratio = inl / estimator.num_data
+    return best
