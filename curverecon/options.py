@@ -122,7 +122,9 @@ class OutlierOptions:
     false_alarm: float = 2e-4
     """False-alarm probability per frame (chi2, one degree of freedom).  Lower flags fewer
     outliers (robustness: 53.5 % of 10 % outliers flagged); higher flags good frames of long
-    sequences (scaling: 2 of 4,642 flagged, as 2e-4 predicts)."""
+    sequences (scaling: 2 of 4,642 flagged, as 2e-4 predicts).  Where the test starts from
+    LO-RANSAC's consensus set, a frame left out also needs a chi2 below ``take_back_chi2`` to
+    come back: set that to inf for this rate alone to decide."""
 
     cauchy_k: float = 4.0
     """Scale (standard deviations per frame) of the robust reweighting before the test."""
@@ -149,7 +151,8 @@ class OutlierOptions:
     fell between the two were taken back and pulled the answer.  Scene 4 of seed 4242 (30 %):
     samples' shape 2.3 degrees off, answer 5.4 with the frame taken back, 3.2 without.  30 %,
     scenes 0-29, with ``chord_weight`` 1: seed 4242 (tuned on) 29 of 30 against 27; seed 5151
-    26 of 30 both."""
+    26 of 30 both.  It holds whatever ``false_alarm`` is (a frame above it stays out even at
+    a false-alarm rate of 1e-300); inf leaves the decision to ``false_alarm``."""
 
 
 @dataclass
