@@ -178,7 +178,10 @@ def run(quick: bool = False) -> dict:
     families = ("bezier",) if quick else FAMILIES
     n = {"noise_free": 1, "curve_05": 1, "never_worse": 1, "poly_only": 1, "time_20": 1}
     if not quick:  # about 4-7 minutes on 2 cores
-        n = {"noise_free": 1, "curve_05": 4, "never_worse": 4, "poly_only": 2, "time_20": 1}
+        # never_worse: 8 scenes a family (192 (scene, parameter) pairs for std_coverage_3sigma:
+        # with 96 one pair moved it by 1 %, and seeds 1200-1203 and 1204-1207 gave 0.979 and
+        # 0.990; about 10 s more on 2 workers, bench.std_coverage)
+        n = {"noise_free": 1, "curve_05": 4, "never_worse": 8, "poly_only": 2, "time_20": 1}
     tasks = [
         (kind, fam, SEED0 + 100 * k + j)
         for k, kind in enumerate(n)
