@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from bench.noise_free_curves import distance_to
 from curverecon.model.observations import Observations
 from curverecon.options import CurveOptions, ReconstructOptions
 from curverecon.pipeline import reconstruct
@@ -134,18 +135,10 @@ def _distances(rec, seed: int, family: str, noise: float) -> np.ndarray:
         curve_family=family,
         n_curve_points=5000,
     ).curve_3d
-    seg0, seg = dense[:-1], np.diff(dense, axis=0)
-    best = None
-    for q0, qs in ((seg0, seg), (seg0 * [1.0, 1.0, -1.0], seg * [1.0, 1.0, -1.0])):
-        t = np.clip(
-            np.einsum("pmj,mj->pm", rec.curve3d[:, None] - q0[None], qs) / (qs * qs).sum(1),
-            0.0,
-            1.0,
-        )
-        d = np.linalg.norm(rec.curve3d[:, None] - (q0[None] + t[..., None] * qs[None]), axis=2)
-        d = d.min(axis=1)
-        best = d if best is None or d.mean() < best.mean() else best
-    return best
+    return min(
+        (distance_to(rec.curve3d, q) for q in (dense, dense * [1.0, 1.0, -1.0])),
+        key=lambda d: float(d.mean()),
+    )
 
 
 def test_curve3d_normal_std_matches_the_distances_over_noise_draws():
