@@ -2164,7 +2164,12 @@ def refine_reconstruction(
         """(rotations, translations, start curve) with frame 0 on its other pose branch, the
         start curve turned with it (X_cam = R_0 X_curve + t_0), or None when that branch's
         end-point chi2 is more than ``o.frame0_branch_dchi2`` above frame 0's own."""
-        if rec.branch_alternatives is None or rec.frame_chi2 is None or curve_start is None:
+        if (
+            rec.branch_alternatives is None
+            or rec.branch_alternative_chi2 is None
+            or rec.frame_chi2 is None
+            or curve_start is None
+        ):
             return None
         dchi2 = float(rec.branch_alternative_chi2[0]) - float(rec.frame_chi2[0])
         if not np.isfinite(dchi2) or dchi2 > o.frame0_branch_dchi2:
