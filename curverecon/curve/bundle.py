@@ -2032,6 +2032,7 @@ def curve_point_std(
     u: np.ndarray,
     d_red: np.ndarray | None = None,
     cov: np.ndarray | None = None,
+    xy_var: float = 0.0,
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """Standard deviations (pixels) of the fitted curve's points at parameters u, from the
     fit's covariance (residuals in units of sigma, so (J^T J)^-1; the poses marginalised out
@@ -2042,7 +2043,9 @@ def curve_point_std(
     the curve is to be compared with.  ``d_red``: the pinned parametrisation of
     :func:`fit_curve_fixed_poses` (poses fixed: the std is then the curve's alone, given the
     end-point answer's poses).  ``cov``: the curve parameters' covariance if already known
-    (:func:`_curve_covariance`).  None if the covariance is not finite."""
+    (:func:`_curve_covariance`).  ``xy_var``: the variance (pixels^2) of a translation of the
+    whole curve in x and y, added to every point's (A' as frame 0 measured it, for the pinned
+    fit).  None if the covariance is not finite."""
     if d_red is not None:
         _, jac, _ = prob.residuals(ctrl, m, b, jac=True, poses=False)
         jac = jac @ d_red
@@ -2070,6 +2073,8 @@ def curve_point_std(
             cov3[:, i, j] = cov3[:, j, i] = np.einsum("ij,ij->i", gi, g[j])
     if not np.all(np.isfinite(cov3)):
         return None
+    cov3[:, 0, 0] += xy_var
+    cov3[:, 1, 1] += xy_var
     tangent = basis.d1(u) @ ctrl
     tangent /= np.maximum(np.linalg.norm(tangent, axis=1, keepdims=True), 1e-300)
     total = np.trace(cov3, axis1=1, axis2=2)
@@ -2315,18 +2320,19 @@ def refine_reconstruction(
         prob.poly_w = mask.astype(float)
         prob.smooth_weight = o.fixed_pose_smooth_weight
         base, d = _pinned_map(k, a3[0], b3[0], ta3[0], tb3[0])
-        stds = curve_point_std(prob, ctrl, m, bb, u, d[[j for j in range(3 * k) if j != 2]])
+        # the pinned fit holds A where frame 0 measured it, A' with point_sigma in x and y:
+        # that translation of the whole curve adds point_sigma^2 diag(1, 1, 0) to each point's
+        # covariance
+        stds = curve_point_std(
+            prob,
+            ctrl,
+            m,
+            bb,
+            u,
+            d[[j for j in range(3 * k) if j != 2]],
+            xy_var=point_sigma**2,
+        )
         std, normal_std = (None, None) if stds is None else stds
-        if stds is not None:
-            # the pinned fit holds A where frame 0 measured it, A' with point_sigma in x and y:
-            # that translation of the whole curve (covariance point_sigma^2 diag(1, 1, 0))
-            # adds 2 point_sigma^2 to each point's variance, and across the curve (tangent t)
-            # point_sigma^2 (2 - t_x^2 - t_y^2)
-            t = _Basis(k).d1(u) @ ctrl
-            t /= np.maximum(np.linalg.norm(t, axis=1, keepdims=True), 1e-300)
-            s2a = point_sigma**2
-            std = np.sqrt(std**2 + 2.0 * s2a)
-            normal_std = np.sqrt(normal_std**2 + s2a * (2.0 - t[:, 0] ** 2 - t[:, 1] ** 2))
         info = {
             "control_points": int(k),
             "sigma_px": float(sigma),
