@@ -83,7 +83,9 @@ def mutated_text(draw, base) -> str:
         if op == "drop":
             del box[key]
         elif op == "retype":
-            box[key] = draw(ODD_VALUES)
+            # a copy: sampled_from hands out the same list / dict object every time, and a later
+            # mutation inside it would change the strategy itself (or make the document cyclic)
+            box[key] = copy.deepcopy(draw(ODD_VALUES))
         elif op == "nonfinite":
             box[key] = draw(NON_FINITE)
         elif op == "scale":
