@@ -1,0 +1,74 @@
+"""``bench.issue_targets``: the open issues' targets read from a merged report, and REPORT.md's
+table rewritten (not duplicated) on every section merge."""
+
+from __future__ import annotations
+
+import json
+
+from bench import issue_targets
+from bench.__main__ import merge_section
+
+
+def _cell(noise: float, frames: int, default: float, truth: float) -> dict:
+    return {
+        "noise": noise,
+        "n_frames": frames,
+        "default": {"success_rate": default},
+        "truth_start": {"success_rate": truth},
+    }
+
+
+def _verdicts(doc: dict) -> dict[str, tuple[str, str]]:
+    return {t: (m, v) for _, t, m, v in issue_targets.rows(doc)}
+
+
+def test_missing_keys_are_not_measured_never_pass():
+    got = issue_targets.rows({})
+    assert got and all(v == "MISS" and m == "not measured" for _, _, m, v in got)
+
+
+def test_bounds_are_inclusive_and_a_failed_fuzz_run_misses():
+    doc = {
+        "minimal_solve_seconds_median": 0.02,
+        "success_rate_30pct_outliers": 0.899,
+        "fuzz_tests_passed": False,
+        "fuzz_tracebacks": 0,
+        "bundle_curve_within_half_percent_rate_by_family": {"helix": 1.0, "random": 0.97},
+    }
+    v = _verdicts(doc)
+    assert v["minimal_solve_seconds_median <= 0.02"][1] == "PASS"
+    assert v["success_rate_30pct_outliers >= 0.90"][1] == "MISS"
+    assert v["fuzz: every property test passes"][1] == "MISS"
+    assert v["fuzz: no traceback"][1] == "PASS"
+    family = next(k for k in v if k.startswith("curve3d within 0.5 %"))
+    assert v[family] == ("lowest random 0.97 (2 families)", "MISS")
+
+
+def test_accuracy_cells_criterion_counts_only_cells_of_six_frames_or_more():
+    doc = {
+        "accuracy": [
+            _cell(1.0, 4, 0.10, 0.90),  # below 6 frames: not a cell of the criterion
+            _cell(1.0, 6, 0.80, 0.82),  # 2 points: met (bound inclusive)
+            _cell(2.0, 10, 0.70, 0.75),  # 5 points: missed
+            _cell(2.0, 20, 0.99, 0.98),  # default better: met
+        ]
+    }
+    key = next(k for k in _verdicts(doc) if k.startswith("default success within"))
+    measured, verdict = _verdicts(doc)[key]
+    assert verdict == "MISS"
+    assert measured.startswith("2 of 3 cells") and "2 px / 10 frames (5.0 points)" in measured
+
+
+def test_merge_section_rewrites_one_targets_table_and_fences_long_values(tmp_path):
+    (tmp_path / "report.json").write_text(json.dumps({"minimal_solve_seconds_median": 0.5}))
+    (tmp_path / "REPORT.md").write_text("# report\n\nbody\n")
+    merge_section(tmp_path, "fuzz", {"fuzz_tests_passed": False, "fuzz_failure": "a\n| b |\nc"})
+    merge_section(tmp_path, "fuzz", {"fuzz_tests_passed": True, "fuzz_failure": None})
+    md = (tmp_path / "REPORT.md").read_text()
+    assert md.count("## Issue targets") == 1 and md.count("## Section: fuzz") == 1
+    assert "| 16 | fuzz: every property test passes | True | **PASS** |" in md
+    assert "| 12 | minimal_solve_seconds_median <= 0.02 | 0.5 | **MISS** |" in md
+    merge_section(tmp_path, "fuzz", {"fuzz_failure": "line one\nline two"})
+    md = (tmp_path / "REPORT.md").read_text()
+    assert "| `fuzz_failure` | (below) |" in md and "```\nline one\nline two\n```" in md
+    assert md.index("## Issue targets") < md.index("## Section: fuzz")
