@@ -82,7 +82,7 @@ def run_scenes(
     ``part="default"``: CRLB and the default pipeline; scenes are skipped once the wall clock
     (``time.time()``) is past ``deadline``.  Scene ``i`` of a cell is the same scene in both.
     ``diagnose``: also the chi2 of the answer's basin and of the refinement from the truth
-    (two more refinements per scene; the report shows them for the headline noise level only).
+    (two more refinements per scene, about 3 % of its time; the bench diagnoses every cell).
     """
     lin_min = linear_min_frames()
     sig_t = math.radians(noise)
@@ -165,6 +165,14 @@ def run_scenes(
     return out
 
 
+SAME_MINIMUM_CHI2 = 1e-6
+"""Two polished fits whose chi2 agree to this (relative to 1 + chi2) end in the same minimum."""
+
+
+def _same_minimum(a: float, b: float) -> bool:
+    return abs(a - b) <= SAME_MINIMUM_CHI2 * (1.0 + abs(b))
+
+
 def summarise_method(records: list[dict[str, Any]], method: str) -> dict[str, Any] | None:
     """RMSE, CRLB, their ratio and the success rate of one method over one cell's records."""
     ran = [r for r in records if f"{method}_s" in r]
@@ -225,8 +233,15 @@ def summarise_method(records: list[dict[str, Any]], method: str) -> dict[str, An
             and worst_angle_deg(np.array(r["truth_start_diag"])) < SUCCESS_DEG
         ]
         out["default_only_failures"] = len(only) if pairs else None
+        # 'same': both polish to the same minimum (chi2 equal to SAME_MINIMUM_CHI2), so the
+        # default's answer left it: the marginal estimate sits away from the maximum-likelihood
+        # one (at 6 frames and 0.5 px, 2 of 21 such scenes in the bench's first 100)
+        same = [r for r in only if _same_minimum(r["default_chi2"], r["truth_start_chi2"])]
+        out["default_only_failures_same_minimum"] = len(same) if pairs else None
         out["default_only_failures_lower_chi2"] = (
-            sum(r["default_chi2"] < r["truth_start_chi2"] for r in only) if pairs else None
+            sum(r["default_chi2"] < r["truth_start_chi2"] for r in only if r not in same)
+            if pairs
+            else None
         )
         out["basin_diagnosed_scenes"] = len(pairs)
     return out

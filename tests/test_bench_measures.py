@@ -165,8 +165,10 @@ def test_default_only_failures_are_classified_by_the_chi2_of_their_basins() -> N
         rec(8.0, 1.0, 9.0, 3.0),  # default-only failure, a missed basin
         rec(8.0, 7.0, 3.0, 9.0),  # both fail: not counted
         rec(1.0, 7.0, 3.0, 9.0),  # the default succeeds: not counted
+        rec(8.0, 1.0, 4.0, 4.0 + 1e-9),  # the same minimum: counted apart, not 'lower'
     ]
     out = summarise_method(records, "default")
-    assert out["default_only_failures"] == 2
+    assert out["default_only_failures"] == 3
     assert out["default_only_failures_lower_chi2"] == 1
-    assert out["basin_diagnosed_scenes"] == 4
+    assert out["default_only_failures_same_minimum"] == 1
+    assert out["basin_diagnosed_scenes"] == 5
