@@ -46,6 +46,24 @@ the bundle's internals):
 - One accepted wrong minimum in 576 draws (fourier 5000, draw 11: cost 2134 against 1805 from
   the truth, c and beta 3.6 and 4.3 std off): the end-point answer had alternatives, so the
   curve decided, and frame 9 fitted at 1.47 sigma RMS, just under the restart level (1.53).
+
+Later (2026-11-27, after commit b728435):
+
+- The never-worse gate now also applies where the end-point answer has equally good
+  alternatives, from the least chi2 of the answer and its alternatives
+  (``CurveOptions.never_worse_alternatives``; before, the curve alone decided there).  At 1 px,
+  12 frames those alternatives are mostly nearby minima of a loosely fixed end-point fit, a
+  few std apart.  Seeds 1200-1207: 2 of 192 pairs above 3 (was 3; random 1205 refused,
+  its beta 3.06 std off before); held-out 9100-9119: 8 of 480 both ways (9101 bezier and 9112
+  fourier refused, c of 9112 2.8 -> 0.33 of the widened std), RMS per parameter 1.171, 1.063,
+  1.051, 1.009 -> 1.142, 1.038, 1.050, 1.005.
+- Two tries at the reverse term's kinks, neither kept (seeds 1200-1207, 48 scenes): the
+  reverse term measured from each polyline smoothed by a cubic Savitzky-Golay filter in the
+  joint fit (C1-smooth in effect: the vertex angles become the curve's own): 15 points, 4
+  pairs above 3; 7 points, 4 above, ``curve3d`` within 3 normal std 0.963 and RMS 1.39 (against
+  2, 0.968, 1.29 with the raw polyline); no reverse term in the final polish (the estimator
+  the covariance linearises): 3 above, 0.918 and RMS 2.69 (the reverse term keeps stretches
+  that no polyline point is near in place).  The excess is not the kinks' alone.
 """
 
 from __future__ import annotations

@@ -95,3 +95,48 @@ def test_reported_std_covers_the_errors():
             best, z = d.mean(), d / rec.curve3d_std
     assert np.mean(z < 3.0) >= 0.95
     assert "curve3d_std" in rec.to_json_dict()
+
+
+def test_gate_reference_is_the_best_of_the_answer_and_its_alternatives():
+    """``bundle.gate_reference_chi2``: the least chi2 among the answer and its equally good
+    alternatives (non-finite ones ignored); the answer's own with the option off."""
+    from curverecon.curve.bundle import gate_reference_chi2
+    from curverecon.model.reconstruction import Alternative
+
+    alts = [
+        Alternative(np.ones(4), np.zeros((5, 5)), 3.5),
+        Alternative(np.ones(4), np.zeros((5, 5)), 2.0),
+        Alternative(np.ones(4), np.zeros((5, 5)), float("nan")),
+    ]
+    assert gate_reference_chi2(2.7, alts) == 2.0
+    assert gate_reference_chi2(2.7, alts[:1]) == 2.7
+    assert gate_reference_chi2(2.7, []) == 2.7
+    off = CurveOptions(never_worse_alternatives=False)
+    assert gate_reference_chi2(2.7, alts, off) == 2.7
+
+
+def test_the_gate_holds_where_the_end_points_have_alternatives():
+    """Bench scene random 1205 (1 px, 12 frames): the end-point answer has equally good
+    alternatives, nearby minima of a loosely fixed end-point fit (within 5 of its std).  The
+    bundle's shape lies outside the end points' 99 % region about every one of them; skipping
+    the gate there (the option off, the old rule) took it, beta 3.5 std of the end-point
+    answer off where that answer was 1.24 off: worse beyond noise.  The gate from the best of
+    the answer and its alternatives refuses it."""
+    scene = make_scene(
+        np.random.default_rng(1205), 12, 1.0, 1.0, with_curve=True, curve_family="random"
+    )
+    without = reconstruct(scene.observations, options=NO_BUNDLE)
+    assert without.alternatives
+    e_without = _shape_error(without, scene.truth, without.std)
+    rec = reconstruct(scene.observations)
+    assert not rec.curve_bundle["accepted"]
+    assert rec.curve_bundle["end_point_dchi2"] > CurveOptions().never_worse_dchi2
+    assert _shape_error(rec, scene.truth, without.std) <= e_without + 1.0
+    # the answer kept: its std widened by the disagreement covers the errors
+    assert np.all(np.abs(rec.shape - scene.truth.shape) < 3.0 * rec.std)
+    old = reconstruct(
+        scene.observations,
+        options=ReconstructOptions(curve=CurveOptions(never_worse_alternatives=False)),
+    )
+    assert old.curve_bundle["accepted"]
+    assert _shape_error(old, scene.truth, without.std) > e_without + 1.0

@@ -2090,6 +2090,26 @@ def end_point_chi2(shape: np.ndarray, poses: np.ndarray, obs, inliers, w8) -> np
     return np.sum(resid * resid, axis=1)
 
 
+def gate_reference_chi2(chi2_answer: float, alternatives, options=None) -> float:
+    """The end-point chi2 the never-worse gate measures the bundle's shape from.
+
+    ``chi2_answer``: the end-point answer's chi2 on its inlier frames; ``alternatives``: its
+    equally good ``Reconstruction.alternatives`` (each refitted on the same inlier frames with
+    the same sigmas, so their chi2 compare).  With ``CurveOptions.never_worse_alternatives``
+    the least of these chi2, else the answer's.  The end points' likelihood-ratio confidence
+    region is then the set of shapes within ``never_worse_dchi2`` (in units of the variance
+    factor) of the best fit: the union of the regions about every hypothesis that fits about
+    as well, which takes a bundle that chose one of them by the curve and refuses a shape
+    outside all of them."""
+    o = options if options is not None else CurveOptions()
+    chi2 = float(chi2_answer)
+    if o.never_worse_alternatives:
+        for alt in alternatives or []:
+            if np.isfinite(alt.chi2):
+                chi2 = min(chi2, float(alt.chi2))
+    return chi2
+
+
 def refine_reconstruction(
     rec,
     obs,
@@ -2388,10 +2408,16 @@ def refine_reconstruction(
 
         _, resid = optimise_poses(shape_n, poses_n, obs.measurements(), w8, 10)
         profile = float(np.sum((resid * resid).sum(axis=1)[inl]))
-        dchi2 = (min(profile, float(np.sum(frame_chi2[inl]))) - chi2_ep) / s2
+        dchi2 = (
+            min(profile, float(np.sum(frame_chi2[inl])))
+            - gate_reference_chi2(chi2_ep, rec.alternatives, o)
+        ) / s2
         # the gate guards a determined end-point answer; where the end points leave the shape
-        # undetermined (singular information, or other shapes fitting as well) the curve decides
-        undetermined = rec.std is None or bool(rec.alternatives)
+        # undetermined (singular information; with ``o.never_worse_alternatives`` off also
+        # other shapes fitting as well) the curve decides
+        undetermined = rec.std is None or (
+            bool(rec.alternatives) and not o.never_worse_alternatives
+        )
         accepted = undetermined or dchi2 <= o.never_worse_dchi2
     k = br.control.shape[0]
     if not accepted:
