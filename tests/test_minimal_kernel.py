@@ -41,7 +41,10 @@ def _kernel_eval(mod, x: np.ndarray, q: np.ndarray, dq: np.ndarray):  # type: ig
     w0, f0, jac0 = np.empty_like(w), np.empty_like(f), np.empty_like(jac)
     mod.coefficients(q, w0)
     mod.residual_jacobian(x, w0, f0, jac0)
-    for got, want in ((w0, w), (f0, f), (jac0, jac)):
+    # and dW/dt alone (the tracker's second Newton iteration on) the same dW/dt
+    wt0 = np.empty_like(wt)
+    mod.coefficient_rates(q, dq, wt0)
+    for got, want in ((w0, w), (f0, f), (jac0, jac), (wt0, wt)):
         assert np.abs(got - want).max() <= 1e-13 * np.abs(want).max()
     return f, jac, ft
 

@@ -78,11 +78,13 @@ def _track_kernels(q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end):
     on this file only: after a change to the tracker in ``homotopy.py``, change this file too
     (or delete its cache) or the old tracker runs (2026-11-27: the Hermite predictor; the
     linear solves' elimination plan, ``PolynomialSystem.elimination``, in place of the column
-    order: an old cache would read the plan as a column order)."""
+    order: an old cache would read the plan as a column order; dW/dt only from a try's second
+    Newton iteration on)."""
     k = minimal_unsquared_kernel
     homotopy.track_generated(
         k.coefficients,
         k.coefficients_t,
+        k.coefficient_rates,
         k.residual_jacobian,
         k.residual_jacobian_t,
         k.N_COEFFICIENTS,
