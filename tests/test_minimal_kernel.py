@@ -222,7 +222,7 @@ def test_the_hermite_weights_reproduce_a_quintic() -> None:
     coef = rng.normal(size=6) + 1j * rng.normal(size=6)
     poly, deriv = np.polynomial.Polynomial(coef), np.polynomial.Polynomial(coef).deriv()
     th = np.array([0.1, 0.17, 0.3])
-    wts, z, col = np.empty(6), np.empty(6), np.empty(6)
+    wts, z, col = np.empty(6), np.empty(homotopy.hermite_scratch(3)), np.empty(6)
     for tt in (0.12, 0.3, 0.45, 0.6):
         homotopy._hermite_weights(th, 3, tt, wts, z, col)
         got = sum(wts[2 * j] * poly(th[j]) + wts[2 * j + 1] * deriv(th[j]) for j in range(3))

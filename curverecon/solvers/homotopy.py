@@ -571,26 +571,46 @@ def _hermite_weights(th, npts, tt, wts, z, col):
     """Weights of the Hermite interpolant of ``npts`` points at ``tt``: the polynomial of degree
     2 npts - 1 through values x_j and derivatives v_j at the (distinct, real) ``th[j]`` is
     sum_j wts[2j] x_j + wts[2j + 1] v_j there.  Confluent divided differences (each node twice)
-    of each unit datum, real scalars: the paths' unknowns are combined once, with these."""
+    of each unit datum, real scalars: the paths' unknowns are combined once, with these.
+
+    ``z``: scratch of ``hermite_scratch(npts)`` entries (the nodes, then the reciprocals of
+    their differences, shared by every datum: one division each instead of one per datum);
+    ``col``: scratch of 2 npts."""
     n = 2 * npts
     for j in range(npts):
         z[2 * j] = th[j]
         z[2 * j + 1] = th[j]
+    idx = n
+    for lev in range(1, n):
+        for k in range(n - 1, lev - 1, -1):
+            dz = z[k] - z[k - lev]
+            z[idx] = 1.0 / dz if dz != 0.0 else 0.0  # 0: a repeated node (derivative datum)
+            idx += 1
     for b in range(n):
         for k in range(n):
             col[k] = 1.0 if (b % 2 == 0 and (k == b or k == b + 1)) else 0.0  # values
+        idx = n
         for k in range(n - 1, 0, -1):  # first differences: derivative data at repeated nodes
             if k % 2 == 1:
                 col[k] = 1.0 if b == k else 0.0
             else:
-                col[k] = (col[k] - col[k - 1]) / (z[k] - z[k - 1])
+                col[k] = (col[k] - col[k - 1]) * z[idx]
+            idx += 1
         for lev in range(2, n):
             for k in range(n - 1, lev - 1, -1):
-                col[k] = (col[k] - col[k - 1]) / (z[k] - z[k - lev])
+                col[k] = (col[k] - col[k - 1]) * z[idx]
+                idx += 1
         acc = col[n - 1]
         for k in range(n - 2, -1, -1):
             acc = acc * (tt - z[k]) + col[k]
         wts[b] = acc
+
+
+def hermite_scratch(npts: int) -> int:
+    """Entries of ``_hermite_weights``' scratch ``z``: 2 npts nodes and the reciprocals of
+    their differences at every level."""
+    n = 2 * npts
+    return n + n * (n - 1) // 2
 
 
 @numba.njit(**_JIT)
@@ -859,7 +879,7 @@ def _track_core(
     xh = np.empty((n_hist, n_var), np.complex128)
     vh = np.empty((n_hist, n_var), np.complex128)
     wts = np.empty(2 * n_hist)
-    z = np.empty(2 * n_hist)
+    z = np.empty(2 * n_hist + n_hist * (2 * n_hist - 1))  # hermite_scratch(n_hist)
     col = np.empty(2 * n_hist)
     for p in range(n_paths):
         x = x_start[p].copy()

@@ -79,7 +79,8 @@ def _track_kernels(q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end):
     (or delete its cache) or the old tracker runs (2026-11-27: the Hermite predictor; the
     linear solves' elimination plan, ``PolynomialSystem.elimination``, in place of the column
     order: an old cache would read the plan as a column order; dW/dt only from a try's second
-    Newton iteration on)."""
+    Newton iteration on; the Hermite weights' scratch holds the nodes' reciprocal differences
+    too)."""
     k = minimal_unsquared_kernel
     homotopy.track_generated(
         k.coefficients,
