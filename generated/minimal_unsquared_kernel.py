@@ -788,6 +788,437 @@ def coefficients_t(q: np.ndarray, dq: np.ndarray, w: np.ndarray, wt: np.ndarray)
 
 
 @numba.njit(**_JIT)
+def coefficient_rates(q: np.ndarray, dq: np.ndarray, wt: np.ndarray) -> None:
+    """dW/dt = W_q . dq alone (``coefficients_t`` without W): a tracker needs it only where it
+    keeps a tangent.
+
+    Outputs written in place (every entry): wt.
+    """
+    cp0 = q[0]
+    dp0 = q[1]
+    ep0 = q[2]
+    cp1 = q[3]
+    dp1 = q[4]
+    ep1 = q[5]
+    cp2 = q[6]
+    dp2 = q[7]
+    ep2 = q[8]
+    cp3 = q[9]
+    dp3 = q[10]
+    ep3 = q[11]
+    d_cp0 = dq[0]
+    d_dp0 = dq[1]
+    d_ep0 = dq[2]
+    d_cp1 = dq[3]
+    d_dp1 = dq[4]
+    d_ep1 = dq[5]
+    d_cp2 = dq[6]
+    d_dp2 = dq[7]
+    d_ep2 = dq[8]
+    d_cp3 = dq[9]
+    d_dp3 = dq[10]
+    d_ep3 = dq[11]
+    _tmp0 = ep0 * ep0
+    _tmp1 = cp0 * d_dp0
+    _tmp2 = _tmp0 * _tmp1
+    _tmp3 = dp0 * dp0
+    _tmp4 = cp0 * d_ep0
+    _tmp5 = _tmp3 * _tmp4
+    _tmp6 = _tmp0 * dp0
+    _tmp7 = _tmp6 * d_cp0
+    _tmp8 = _tmp3 * ep0
+    _tmp9 = _tmp8 * d_cp0
+    _tmp10 = _tmp1 * ep0
+    _tmp11 = _tmp10 * dp0
+    _tmp12 = _tmp4 * dp0
+    _tmp13 = _tmp12 * ep0
+    _tmp14 = 2 * _tmp11 + 2 * _tmp13
+    _tmp15 = cp0 * cp0
+    _tmp16 = 2 * _tmp15
+    _tmp17 = _tmp16 * (_tmp14 + _tmp2 + _tmp5 + 3 * _tmp7 + 3 * _tmp9)
+    _tmp18 = dp0 * ep0
+    _tmp19 = 4 * _tmp18
+    _tmp20 = cp0 * cp0 * cp0
+    _tmp21 = 2 * d_cp0
+    _tmp22 = _tmp20 * (_tmp10 + _tmp12 + _tmp18 * _tmp21)
+    _tmp23 = 2 * _tmp18 * _tmp22
+    _tmp24 = -_tmp23
+    _tmp25 = _tmp20 * d_dp0
+    _tmp26 = _tmp25 * ep0
+    _tmp27 = _tmp20 * d_ep0
+    _tmp28 = _tmp27 * dp0
+    _tmp29 = _tmp15 * d_cp0
+    _tmp30 = -_tmp0 * _tmp21 * _tmp3 - 2 * _tmp2 * dp0 - 2 * _tmp5 * ep0
+    _tmp31 = 2 * cp0
+    _tmp32 = _tmp31 * (-_tmp19 * _tmp29 - _tmp26 - _tmp28 - _tmp30)
+    _tmp33 = d_cp0 * dp0
+    _tmp34 = 3 * _tmp15
+    _tmp35 = d_cp0 * ep0
+    _tmp36 = _tmp2 + _tmp7
+    _tmp37 = _tmp5 + _tmp9
+    _tmp38 = _tmp16 * d_cp0
+    _tmp39 = _tmp20 * _tmp21
+    _tmp40 = _tmp6 * d_dp0
+    _tmp41 = _tmp8 * d_ep0
+    _tmp42 = cp0 * d_cp0
+    _tmp43 = ep1 * ep1
+    _tmp44 = cp1 * d_dp1
+    _tmp45 = _tmp43 * _tmp44
+    _tmp46 = dp1 * dp1
+    _tmp47 = cp1 * d_ep1
+    _tmp48 = _tmp46 * _tmp47
+    _tmp49 = _tmp43 * dp1
+    _tmp50 = _tmp49 * d_cp1
+    _tmp51 = _tmp46 * ep1
+    _tmp52 = _tmp51 * d_cp1
+    _tmp53 = _tmp44 * ep1
+    _tmp54 = _tmp53 * dp1
+    _tmp55 = _tmp47 * dp1
+    _tmp56 = _tmp55 * ep1
+    _tmp57 = 2 * _tmp54 + 2 * _tmp56
+    _tmp58 = cp1 * cp1
+    _tmp59 = 2 * _tmp58
+    _tmp60 = _tmp59 * (_tmp45 + _tmp48 + 3 * _tmp50 + 3 * _tmp52 + _tmp57)
+    _tmp61 = dp1 * ep1
+    _tmp62 = 4 * _tmp61
+    _tmp63 = cp1 * cp1 * cp1
+    _tmp64 = 2 * d_cp1
+    _tmp65 = _tmp63 * (_tmp53 + _tmp55 + _tmp61 * _tmp64)
+    _tmp66 = 2 * _tmp61 * _tmp65
+    _tmp67 = -_tmp66
+    _tmp68 = _tmp63 * d_dp1
+    _tmp69 = _tmp68 * ep1
+    _tmp70 = _tmp63 * d_ep1
+    _tmp71 = _tmp70 * dp1
+    _tmp72 = _tmp58 * d_cp1
+    _tmp73 = -_tmp43 * _tmp46 * _tmp64 - 2 * _tmp45 * dp1 - 2 * _tmp48 * ep1
+    _tmp74 = 2 * cp1
+    _tmp75 = _tmp74 * (-_tmp62 * _tmp72 - _tmp69 - _tmp71 - _tmp73)
+    _tmp76 = d_cp1 * dp1
+    _tmp77 = 3 * _tmp58
+    _tmp78 = d_cp1 * ep1
+    _tmp79 = _tmp45 + _tmp50
+    _tmp80 = _tmp48 + _tmp52
+    _tmp81 = _tmp59 * d_cp1
+    _tmp82 = _tmp63 * _tmp64
+    _tmp83 = _tmp49 * d_dp1
+    _tmp84 = _tmp51 * d_ep1
+    _tmp85 = cp1 * d_cp1
+    _tmp86 = ep2 * ep2
+    _tmp87 = cp2 * d_dp2
+    _tmp88 = _tmp86 * _tmp87
+    _tmp89 = dp2 * dp2
+    _tmp90 = cp2 * d_ep2
+    _tmp91 = _tmp89 * _tmp90
+    _tmp92 = _tmp86 * dp2
+    _tmp93 = _tmp92 * d_cp2
+    _tmp94 = _tmp89 * ep2
+    _tmp95 = _tmp94 * d_cp2
+    _tmp96 = _tmp87 * ep2
+    _tmp97 = _tmp96 * dp2
+    _tmp98 = _tmp90 * dp2
+    _tmp99 = _tmp98 * ep2
+    _tmp100 = 2 * _tmp97 + 2 * _tmp99
+    _tmp101 = cp2 * cp2
+    _tmp102 = 2 * _tmp101
+    _tmp103 = _tmp102 * (_tmp100 + _tmp88 + _tmp91 + 3 * _tmp93 + 3 * _tmp95)
+    _tmp104 = dp2 * ep2
+    _tmp105 = 4 * _tmp104
+    _tmp106 = cp2 * cp2 * cp2
+    _tmp107 = 2 * d_cp2
+    _tmp108 = _tmp106 * (_tmp104 * _tmp107 + _tmp96 + _tmp98)
+    _tmp109 = 2 * _tmp104 * _tmp108
+    _tmp110 = -_tmp109
+    _tmp111 = _tmp106 * d_dp2
+    _tmp112 = _tmp111 * ep2
+    _tmp113 = _tmp106 * d_ep2
+    _tmp114 = _tmp113 * dp2
+    _tmp115 = _tmp101 * d_cp2
+    _tmp116 = -_tmp107 * _tmp86 * _tmp89 - 2 * _tmp88 * dp2 - 2 * _tmp91 * ep2
+    _tmp117 = 2 * cp2
+    _tmp118 = _tmp117 * (-_tmp105 * _tmp115 - _tmp112 - _tmp114 - _tmp116)
+    _tmp119 = d_cp2 * dp2
+    _tmp120 = 3 * _tmp101
+    _tmp121 = d_cp2 * ep2
+    _tmp122 = _tmp88 + _tmp93
+    _tmp123 = _tmp91 + _tmp95
+    _tmp124 = _tmp102 * d_cp2
+    _tmp125 = _tmp106 * _tmp107
+    _tmp126 = _tmp92 * d_dp2
+    _tmp127 = _tmp94 * d_ep2
+    _tmp128 = cp2 * d_cp2
+    _tmp129 = ep3 * ep3
+    _tmp130 = cp3 * d_dp3
+    _tmp131 = _tmp129 * _tmp130
+    _tmp132 = dp3 * dp3
+    _tmp133 = cp3 * d_ep3
+    _tmp134 = _tmp132 * _tmp133
+    _tmp135 = _tmp129 * dp3
+    _tmp136 = _tmp135 * d_cp3
+    _tmp137 = _tmp132 * ep3
+    _tmp138 = _tmp137 * d_cp3
+    _tmp139 = _tmp130 * ep3
+    _tmp140 = _tmp139 * dp3
+    _tmp141 = _tmp133 * dp3
+    _tmp142 = _tmp141 * ep3
+    _tmp143 = 2 * _tmp140 + 2 * _tmp142
+    _tmp144 = cp3 * cp3
+    _tmp145 = 2 * _tmp144
+    _tmp146 = _tmp145 * (_tmp131 + _tmp134 + 3 * _tmp136 + 3 * _tmp138 + _tmp143)
+    _tmp147 = dp3 * ep3
+    _tmp148 = 4 * _tmp147
+    _tmp149 = cp3 * cp3 * cp3
+    _tmp150 = 2 * d_cp3
+    _tmp151 = _tmp149 * (_tmp139 + _tmp141 + _tmp147 * _tmp150)
+    _tmp152 = 2 * _tmp147 * _tmp151
+    _tmp153 = -_tmp152
+    _tmp154 = _tmp149 * d_dp3
+    _tmp155 = _tmp154 * ep3
+    _tmp156 = _tmp149 * d_ep3
+    _tmp157 = _tmp156 * dp3
+    _tmp158 = _tmp144 * d_cp3
+    _tmp159 = -_tmp129 * _tmp132 * _tmp150 - 2 * _tmp131 * dp3 - 2 * _tmp134 * ep3
+    _tmp160 = 2 * cp3
+    _tmp161 = _tmp160 * (-_tmp148 * _tmp158 - _tmp155 - _tmp157 - _tmp159)
+    _tmp162 = d_cp3 * dp3
+    _tmp163 = 3 * _tmp144
+    _tmp164 = d_cp3 * ep3
+    _tmp165 = _tmp131 + _tmp136
+    _tmp166 = _tmp134 + _tmp138
+    _tmp167 = _tmp145 * d_cp3
+    _tmp168 = _tmp149 * _tmp150
+    _tmp169 = _tmp135 * d_dp3
+    _tmp170 = _tmp137 * d_ep3
+    _tmp171 = cp3 * d_cp3
+    _tmp172 = _tmp31 * d_cp0
+    _tmp173 = _tmp74 * d_cp1
+    _tmp174 = _tmp117 * d_cp2
+    _tmp175 = _tmp160 * d_cp3
+    wt[0] = _tmp17
+    wt[1] = -_tmp19 * _tmp22
+    wt[2] = -_tmp17
+    wt[3] = _tmp24
+    wt[4] = _tmp24
+    wt[5] = _tmp24
+    wt[6] = _tmp23
+    wt[7] = _tmp32
+    wt[8] = (
+        2 * _tmp14
+        - 2 * _tmp25
+        - 2 * _tmp27
+        - 2 * _tmp33 * _tmp34
+        - 2 * _tmp34 * _tmp35
+        + 2 * _tmp36
+        + 2 * _tmp37
+    )
+    wt[9] = _tmp31 * dp0 * (_tmp13 + _tmp16 * _tmp33 + _tmp25 + _tmp36)
+    wt[10] = _tmp31 * ep0 * (_tmp11 + _tmp16 * _tmp35 + _tmp27 + _tmp37)
+    wt[11] = _tmp32
+    wt[12] = _tmp31 * (
+        _tmp0 * _tmp38
+        + 8 * _tmp18 * _tmp29
+        + _tmp25 * dp0
+        + 2 * _tmp26
+        + _tmp27 * ep0
+        + 2 * _tmp28
+        + _tmp3 * _tmp38
+        + _tmp30
+    )
+    wt[13] = (
+        2 * _tmp15 * d_dp0 * ep0
+        + 2 * _tmp15 * d_ep0 * dp0
+        - 2 * _tmp39
+        - 2 * _tmp40
+        - 2 * _tmp41
+        + 4 * cp0 * d_cp0 * dp0 * ep0
+    )
+    wt[14] = (
+        -2 * _tmp0 * _tmp42
+        - 2 * _tmp15 * d_dp0 * dp0
+        - 2 * _tmp15 * d_ep0 * ep0
+        - 2 * _tmp16 * d_dp0 * ep0
+        - 2 * _tmp16 * d_ep0 * dp0
+        - 2 * _tmp19 * _tmp42
+        - 2 * _tmp3 * _tmp42
+        + 2 * _tmp39
+        + 2 * _tmp40
+        + 2 * _tmp41
+    )
+    wt[15] = _tmp60
+    wt[16] = -_tmp62 * _tmp65
+    wt[17] = -_tmp60
+    wt[18] = _tmp67
+    wt[19] = _tmp67
+    wt[20] = _tmp67
+    wt[21] = _tmp66
+    wt[22] = _tmp75
+    wt[23] = (
+        2 * _tmp57
+        - 2 * _tmp68
+        - 2 * _tmp70
+        - 2 * _tmp76 * _tmp77
+        - 2 * _tmp77 * _tmp78
+        + 2 * _tmp79
+        + 2 * _tmp80
+    )
+    wt[24] = _tmp74 * dp1 * (_tmp56 + _tmp59 * _tmp76 + _tmp68 + _tmp79)
+    wt[25] = _tmp74 * ep1 * (_tmp54 + _tmp59 * _tmp78 + _tmp70 + _tmp80)
+    wt[26] = _tmp75
+    wt[27] = _tmp74 * (
+        _tmp43 * _tmp81
+        + _tmp46 * _tmp81
+        + 8 * _tmp61 * _tmp72
+        + _tmp68 * dp1
+        + 2 * _tmp69
+        + _tmp70 * ep1
+        + 2 * _tmp71
+        + _tmp73
+    )
+    wt[28] = (
+        2 * _tmp58 * d_dp1 * ep1
+        + 2 * _tmp58 * d_ep1 * dp1
+        - 2 * _tmp82
+        - 2 * _tmp83
+        - 2 * _tmp84
+        + 4 * cp1 * d_cp1 * dp1 * ep1
+    )
+    wt[29] = (
+        -2 * _tmp43 * _tmp85
+        - 2 * _tmp46 * _tmp85
+        - 2 * _tmp58 * d_dp1 * dp1
+        - 2 * _tmp58 * d_ep1 * ep1
+        - 2 * _tmp59 * d_dp1 * ep1
+        - 2 * _tmp59 * d_ep1 * dp1
+        - 2 * _tmp62 * _tmp85
+        + 2 * _tmp82
+        + 2 * _tmp83
+        + 2 * _tmp84
+    )
+    wt[30] = _tmp103
+    wt[31] = -_tmp105 * _tmp108
+    wt[32] = -_tmp103
+    wt[33] = _tmp110
+    wt[34] = _tmp110
+    wt[35] = _tmp110
+    wt[36] = _tmp109
+    wt[37] = _tmp118
+    wt[38] = (
+        2 * _tmp100
+        - 2 * _tmp111
+        - 2 * _tmp113
+        - 2 * _tmp119 * _tmp120
+        - 2 * _tmp120 * _tmp121
+        + 2 * _tmp122
+        + 2 * _tmp123
+    )
+    wt[39] = _tmp117 * dp2 * (_tmp102 * _tmp119 + _tmp111 + _tmp122 + _tmp99)
+    wt[40] = _tmp117 * ep2 * (_tmp102 * _tmp121 + _tmp113 + _tmp123 + _tmp97)
+    wt[41] = _tmp118
+    wt[42] = _tmp117 * (
+        8 * _tmp104 * _tmp115
+        + _tmp111 * dp2
+        + 2 * _tmp112
+        + _tmp113 * ep2
+        + 2 * _tmp114
+        + _tmp116
+        + _tmp124 * _tmp86
+        + _tmp124 * _tmp89
+    )
+    wt[43] = (
+        2 * _tmp101 * d_dp2 * ep2
+        + 2 * _tmp101 * d_ep2 * dp2
+        - 2 * _tmp125
+        - 2 * _tmp126
+        - 2 * _tmp127
+        + 4 * cp2 * d_cp2 * dp2 * ep2
+    )
+    wt[44] = (
+        -2 * _tmp101 * d_dp2 * dp2
+        - 2 * _tmp101 * d_ep2 * ep2
+        - 2 * _tmp102 * d_dp2 * ep2
+        - 2 * _tmp102 * d_ep2 * dp2
+        - 2 * _tmp105 * _tmp128
+        + 2 * _tmp125
+        + 2 * _tmp126
+        + 2 * _tmp127
+        - 2 * _tmp128 * _tmp86
+        - 2 * _tmp128 * _tmp89
+    )
+    wt[45] = _tmp146
+    wt[46] = -_tmp148 * _tmp151
+    wt[47] = -_tmp146
+    wt[48] = _tmp153
+    wt[49] = _tmp153
+    wt[50] = _tmp153
+    wt[51] = _tmp152
+    wt[52] = _tmp161
+    wt[53] = (
+        2 * _tmp143
+        - 2 * _tmp154
+        - 2 * _tmp156
+        - 2 * _tmp162 * _tmp163
+        - 2 * _tmp163 * _tmp164
+        + 2 * _tmp165
+        + 2 * _tmp166
+    )
+    wt[54] = _tmp160 * dp3 * (_tmp142 + _tmp145 * _tmp162 + _tmp154 + _tmp165)
+    wt[55] = _tmp160 * ep3 * (_tmp140 + _tmp145 * _tmp164 + _tmp156 + _tmp166)
+    wt[56] = _tmp161
+    wt[57] = _tmp160 * (
+        _tmp129 * _tmp167
+        + _tmp132 * _tmp167
+        + 8 * _tmp147 * _tmp158
+        + _tmp154 * dp3
+        + 2 * _tmp155
+        + _tmp156 * ep3
+        + 2 * _tmp157
+        + _tmp159
+    )
+    wt[58] = (
+        2 * _tmp144 * d_dp3 * ep3
+        + 2 * _tmp144 * d_ep3 * dp3
+        - 2 * _tmp168
+        - 2 * _tmp169
+        - 2 * _tmp170
+        + 4 * cp3 * d_cp3 * dp3 * ep3
+    )
+    wt[59] = (
+        -2 * _tmp129 * _tmp171
+        - 2 * _tmp132 * _tmp171
+        - 2 * _tmp144 * d_dp3 * dp3
+        - 2 * _tmp144 * d_ep3 * ep3
+        - 2 * _tmp145 * d_dp3 * ep3
+        - 2 * _tmp145 * d_ep3 * dp3
+        - 2 * _tmp148 * _tmp171
+        + 2 * _tmp168
+        + 2 * _tmp169
+        + 2 * _tmp170
+    )
+    wt[60] = 0.0
+    wt[61] = _tmp172
+    wt[62] = -_tmp172
+    wt[63] = 0.0
+    wt[64] = 0.0
+    wt[65] = 0.0
+    wt[66] = _tmp173
+    wt[67] = -_tmp173
+    wt[68] = 0.0
+    wt[69] = 0.0
+    wt[70] = 0.0
+    wt[71] = _tmp174
+    wt[72] = -_tmp174
+    wt[73] = 0.0
+    wt[74] = 0.0
+    wt[75] = 0.0
+    wt[76] = _tmp175
+    wt[77] = -_tmp175
+    wt[78] = 0.0
+    wt[79] = 0.0
+    wt[80] = 0.0
+    wt[81] = 0.0
+
+
+@numba.njit(**_JIT)
 def residual_jacobian(x: np.ndarray, w: np.ndarray, f: np.ndarray, jac: np.ndarray) -> None:
     """F(x; q) = W(q) u(x) and its Jacobian F_x, from W's entries w.
 

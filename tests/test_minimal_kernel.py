@@ -41,7 +41,10 @@ def _kernel_eval(mod, x: np.ndarray, q: np.ndarray, dq: np.ndarray):  # type: ig
     w0, f0, jac0 = np.empty_like(w), np.empty_like(f), np.empty_like(jac)
     mod.coefficients(q, w0)
     mod.residual_jacobian(x, w0, f0, jac0)
-    for got, want in ((w0, w), (f0, f), (jac0, jac)):
+    # and dW/dt alone (the tracker's second Newton iteration on) the same dW/dt
+    wt0 = np.empty_like(wt)
+    mod.coefficient_rates(q, dq, wt0)
+    for got, want in ((w0, w), (f0, f), (jac0, jac), (wt0, wt)):
         assert np.abs(got - want).max() <= 1e-13 * np.abs(want).max()
     return f, jac, ft
 
@@ -132,6 +135,58 @@ def test_the_linear_solves_eliminate_each_frames_own_unknown_first() -> None:
     assert names[:4] == ["s0", "s1", "s2", "s3"]
 
 
+def test_the_elimination_plan_pairs_each_s_with_its_two_equations() -> None:
+    """The plan (``PolynomialSystem.elimination``): s_i occurs in its frame's unsquared (12*)
+    (row i) and its definition (row 4 + i) only, so each is one pair; (C, A, B, P, m) are left
+    dense with m**2 - A B P (row 8) the one row in no pair."""
+    system = minimal._system()
+    names = minimal.minimal_unsquared.UNKNOWNS
+    plan = system.elimination
+    assert plan[0] == 9 and plan[1] == 4
+    pairs = plan[2:14].reshape(4, 3)
+    assert [names[v] for v in pairs[:, 0]] == ["s0", "s1", "s2", "s3"]
+    assert [tuple(r) for r in pairs[:, 1:]] == [(0, 4), (1, 5), (2, 6), (3, 7)]
+    assert sorted(names[v] for v in plan[14:19]) == ["A", "B", "C", "P", "m"]
+    assert list(plan[19:]) == [8]
+
+
+@pytest.mark.parametrize("seed", [600_003, 700_011])
+def test_the_paired_elimination_solves_like_lapack(seed) -> None:
+    """The tracker's linear solves (``homotopy._solve_pair``, two right-hand sides) on the
+    minimal system's Jacobian along a scene's paths (3-D generator; points tracked part of the
+    way) against numpy's LAPACK solve: the paired plan, and all nine columns dense.  Then with
+    a pair's two rows scaled apart by 1e8 either way (the pivot is the other row)."""
+    system = minimal._system()
+    obs = make_scene(np.random.default_rng(seed), 4).observations
+    scale = float(np.mean(obs.cp))
+    target = np.column_stack([obs.cp, obs.dp, obs.ep]).ravel() / scale
+    q0, xs = system.start_parameters, system.start_solutions[::10]
+    qh = q0 + 0.6 * (target - q0)
+    xh, st, _ = homotopy.track_once(system, q0, qh, xs)
+    assert np.all(st == homotopy.OK)
+    n = system.n_unknowns
+    dense = np.array([n, 0, *system.column_order, *range(n)], dtype=np.int64)
+    rng = np.random.default_rng(seed)
+    m, r, r2 = np.empty((n, n), complex), np.empty(n, complex), np.empty(n, complex)
+    for x in xh:
+        _, jac = system.evaluate(x, qh)
+        b, c = _crandn(rng, n), _crandn(rng, n)
+        for factor in (1.0, 1e8, 1e-8):
+            a = jac.copy()
+            a[4] *= factor  # s0's definition: the pivot row of pair s0 changes
+            want = np.linalg.solve(a, np.column_stack([b, c]))
+            for plan in (system.elimination, dense):
+                out, out2 = np.empty(n, complex), np.empty(n, complex)
+                assert homotopy._solve_pair(a, b, c, out, out2, m, r, r2, plan, True)
+                got = np.column_stack([out, out2])
+                resid = np.abs(a @ got - np.column_stack([b, c])).max()
+                assert resid < 1e-12 * np.abs(a).max() * (1 + np.abs(got).max())
+                err = np.abs(got - want).max() / np.abs(want).max()
+                assert err < 1e-9
+    singular = np.zeros((n, n), complex)
+    assert not homotopy._solve_pair(singular, b, c, out, out2, m, r, r2, system.elimination, True)
+
+
 def test_newton_on_the_kernels_and_on_the_tables_reach_the_same_solutions() -> None:
     """Real solutions of a four-frame scene, moved by 1e-6: Newton's method on the generated
     kernels and on the tables brings each back to the same point, where F vanishes (1e-12
@@ -167,7 +222,7 @@ def test_the_hermite_weights_reproduce_a_quintic() -> None:
     coef = rng.normal(size=6) + 1j * rng.normal(size=6)
     poly, deriv = np.polynomial.Polynomial(coef), np.polynomial.Polynomial(coef).deriv()
     th = np.array([0.1, 0.17, 0.3])
-    wts, z, col = np.empty(6), np.empty(6), np.empty(6)
+    wts, z, col = np.empty(6), np.empty(homotopy.hermite_scratch(3)), np.empty(6)
     for tt in (0.12, 0.3, 0.45, 0.6):
         homotopy._hermite_weights(th, 3, tt, wts, z, col)
         got = sum(wts[2 * j] * poly(th[j]) + wts[2 * j + 1] * deriv(th[j]) for j in range(3))

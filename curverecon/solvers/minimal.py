@@ -71,16 +71,21 @@ class MinimalResult:
 
 
 @numba.njit(cache=True, nogil=True)
-def _track_kernels(q0, q1, d, x_start, opts, order, x_end, status, steps, t_end):  # type: ignore[no-untyped-def]
+def _track_kernels(q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end):  # type: ignore[no-untyped-def]
     """The homotopy tracker on the generated straight-line kernels of the system
     (``generated/minimal_unsquared_kernel.py``): compiled and cached here, where the kernels
     are known by name (``homotopy.track_generated``).  numba's cache of this function is keyed
     on this file only: after a change to the tracker in ``homotopy.py``, change this file too
-    (or delete its cache) or the old tracker runs (2026-11-27, the Hermite predictor)."""
+    (or delete its cache) or the old tracker runs (2026-11-27: the Hermite predictor; the
+    linear solves' elimination plan, ``PolynomialSystem.elimination``, in place of the column
+    order: an old cache would read the plan as a column order; dW/dt only from a try's second
+    Newton iteration on; the Hermite weights' scratch holds the nodes' reciprocal differences
+    too)."""
     k = minimal_unsquared_kernel
     homotopy.track_generated(
         k.coefficients,
         k.coefficients_t,
+        k.coefficient_rates,
         k.residual_jacobian,
         k.residual_jacobian_t,
         k.N_COEFFICIENTS,
@@ -89,7 +94,7 @@ def _track_kernels(q0, q1, d, x_start, opts, order, x_end, status, steps, t_end)
         d,
         x_start,
         opts,
-        order,
+        plan,
         x_end,
         status,
         steps,
@@ -98,11 +103,11 @@ def _track_kernels(q0, q1, d, x_start, opts, order, x_end, status, steps, t_end)
 
 
 @numba.njit(cache=True, nogil=True)
-def _newton_kernels(xs, q, order, iterations):  # type: ignore[no-untyped-def]
+def _newton_kernels(xs, q, plan, iterations):  # type: ignore[no-untyped-def]
     """Newton's method on the generated kernels (``homotopy.newton_generated``)."""
     k = minimal_unsquared_kernel
     homotopy.newton_generated(
-        k.coefficients, k.residual_jacobian, k.N_COEFFICIENTS, xs, q, order, iterations
+        k.coefficients, k.residual_jacobian, k.N_COEFFICIENTS, xs, q, plan, iterations
     )
 
 

@@ -610,6 +610,7 @@ def system_kernels(record: PolynomialSystem, config: NumPyConfig) -> SystemKerne
 
     * ``coefficients(q, w)``: the nonzero entries of W(q), in (equation, unknown monomial) order;
     * ``coefficients_t(q, dq, w, wt)``: those and their derivative along dq, dW/dt = W_q . dq;
+    * ``coefficient_rates(q, dq, wt)``: that derivative alone;
     * ``residual_jacobian(x, w, f, jac)``: F and F_x at x from the entries w;
     * ``residual_jacobian_t(x, w, wt, f, jac, ft)``: those and F_t = (dW/dt) u(x).
 
@@ -661,6 +662,14 @@ def system_kernels(record: PolynomialSystem, config: NumPyConfig) -> SystemKerne
             [("q", params), ("dq", rates)],
             [("w", values), ("wt", rate_values)],
             "W(q) as ``coefficients`` and its derivative dW/dt = W_q . dq along dq = dq/dt.",
+            config,
+        ),
+        print_array_kernel(
+            "coefficient_rates",
+            [("q", params), ("dq", rates)],
+            [("wt", rate_values)],
+            "dW/dt = W_q . dq alone (``coefficients_t`` without W): a tracker needs it only "
+            "where it keeps a tangent.",
             config,
         ),
         print_array_kernel(
