@@ -548,8 +548,16 @@ class FrameSampleOptions:
     28 / 27.  Weight 1 lost scene 27 of 5151: the samples' near-truth shape (2 degrees) had a
     c 4.7 % long (116.4 against 111.2, the c of a 14-frame fit is loose), and the chord term
     (11.6 higher) outweighed its truncated chi2 (3.2 lower) in favour of a shape 48 degrees
-    off whose c happened to be right; 0.5 loses it too.  (The term is not in the local
-    optimisation: ``refine_hypothesis`` fits the inlier frames alone.)"""
+    off whose c happened to be right; 0.5 loses it too.  (The local optimisation's fit,
+    ``refine_hypothesis`` on the inlier frames, does not see the term; ``chord_prior`` adds it
+    there as a prior on c.)"""
+    chord_prior: bool = True
+    """The local optimisation (``FrameSampleEstimator.refine_model``) ends by moving c to the
+    minimum of the fit's chi2 plus the score's chord term (``chord_weight`` times
+    ``robust.frame_samples.chord_cost``; ``chord_prior_step``), the other parameters
+    following c along the fit's covariance, and keeps that shape if it scores lower: the fit on
+    a sample's consensus set alone ignores what every frame's |A'B'| says of c, and a near-truth
+    shape whose c came out a few per cent long lost to a wrong one by its chord term alone."""
     lo_rounds: int = 3
     """Fits of the local optimisation, each on the frames the last shape explains, until that
     set stops changing (a shape refined on a sample's consensus explains other frames)."""

@@ -8,7 +8,8 @@ loop (:func:`curverecon.robust.ransac.lo_ransac`, PoseLib's calling convention) 
 shape of a sample (:func:`curverecon.solvers.minimal.solve`), scores a shape on all frames by
 its truncated per-frame chi2 with the shape held fixed (:func:`fixed_shape_fit`, the measure
 the answer is then accepted by; ``FrameSampleOptions.score``), and refines the best on the
-frames it explains (``refine.start.refine_hypothesis``, the local optimisation).
+frames it explains (``refine.start.refine_hypothesis``, the local optimisation; then c moves
+to the minimum of that fit's chi2 plus the score's chord term, :func:`chord_prior_step`).
 
 :func:`frame_sample_hypothesis` runs the loop and returns the answer as a :class:`Candidate`:
 the shape held fixed and every frame's pose at its best branch, so that its robust cost
@@ -30,6 +31,7 @@ import math
 from collections.abc import Iterator
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
 from curverecon.errors import CurveReconError
 from curverecon.model.observations import Observations, wrap_angle
@@ -96,6 +98,57 @@ def chord_cost(obs: Observations, c: float, point_sigma: float, truncate: float)
     ``truncate``."""
     costs = chord_costs(obs, c, point_sigma)
     return float(np.sum(np.minimum(costs, float(np.median(costs)) + truncate)))
+
+
+CHORD_PRIOR_SPAN = 4.0
+""":func:`chord_prior_step` searches c within this many standard deviations of the fit's."""
+CHORD_PRIOR_GRID = 81
+"""Grid points of that search (then a bounded scalar minimisation around the best one)."""
+
+
+def chord_prior_step(
+    obs: Observations,
+    shape: np.ndarray,
+    covariance: np.ndarray,
+    point_sigma: float,
+    weight: float,
+    truncate: float,
+) -> np.ndarray:
+    """The shape that minimises a fit's chi2 plus ``weight`` times :func:`chord_cost`, the chi2
+    in the Gaussian approximation of the fit (shape (4,) at its minimum, shape covariance (4, 4)
+    from the same frames).
+
+    The chi2 of the shape with c held at a value is, to second order, (c - c0)^2 / var(c)
+    above its minimum, with the other parameters at their conditional optimum, shape0 +
+    cov[:, 0] / var(c) (c - c0) (the regression of the shape on c).  So c minimises
+    q(c) = (c - c0)^2 / var(c) + weight * chord_cost(c) (1-D: a grid over
+    +-``CHORD_PRIOR_SPAN`` standard deviations, then a bounded scalar minimisation around its
+    best point) and the rest follow.  The chord term is the prior on c that every frame's
+    |A'B'| gives, outlier tangents or not; the fit alone does not see it.  Returns ``shape``
+    when var(c) is not positive and finite."""
+    shape = np.asarray(shape, float)
+    cov = np.asarray(covariance, float)
+    c0, var = float(shape[0]), float(cov[0, 0])
+    if not (math.isfinite(var) and var > 0.0 and np.all(np.isfinite(cov[:, 0]))):
+        return shape
+    sd = math.sqrt(var)
+    lo, hi = max(c0 - CHORD_PRIOR_SPAN * sd, 0.5 * c0), c0 + CHORD_PRIOR_SPAN * sd
+
+    def q(c: float) -> float:
+        return (c - c0) ** 2 / var + weight * chord_cost(obs, c, point_sigma, truncate)
+
+    grid = np.linspace(lo, hi, CHORD_PRIOR_GRID)
+    values = np.array([q(float(c)) for c in grid])
+    k = int(np.argmin(values))
+    a, b = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+    best_c, best_q = float(grid[k]), float(values[k])
+    res = minimize_scalar(q, bounds=(float(a), float(b)), method="bounded")
+    if res.success and float(res.fun) < best_q:
+        best_c = float(res.x)
+    q0 = q(c0)
+    if not best_q < q0 and not (res.success and float(res.fun) < q0):
+        return shape
+    return shape + cov[:, 0] / var * (best_c - c0)
 
 
 def sample_score(
@@ -185,10 +238,37 @@ class FrameSampleEstimator:
                 break
             previous = inliers
             sub = self.obs.subset(inliers)
-            shape = refine_hypothesis(
+            fit_sub = refine_hypothesis(
                 sub, shape, self.point_sigma, self.tangent_sigma, options=self.search
-            ).shape
+            )
+            shape = fit_sub.shape
+        if self.options.chord_prior and self.options.chord_weight > 0.0 and previous is not None:
+            # the chord term of the score as a prior on c (the fit above ignores it)
+            shape = self._better_scored(shape, self._chord_prior_shape(sub, fit_sub))
         return shape
+
+    def _chord_prior_shape(self, sub: Observations, fit: RefineResult) -> np.ndarray:
+        """``fit``'s shape moved to the minimum of its chi2 on ``sub`` plus the score's chord
+        term (:func:`chord_prior_step`, the chi2 in its Gaussian approximation)."""
+        cov = refine(
+            sub, fit.shape, fit.poses, self.point_sigma, self.tangent_sigma, max_iter=0
+        ).covariance
+        if cov is None:
+            return fit.shape
+        return chord_prior_step(
+            self.obs,
+            fit.shape,
+            cov,
+            self.point_sigma,
+            self.options.chord_weight,
+            self.options.truncate,
+        )
+
+    def _better_scored(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Of shapes ``a`` and ``b`` the one of lower :meth:`score_model` (``a`` on a tie)."""
+        if np.array_equal(a, b):
+            return a
+        return b if self.score_model(b)[0] < self.score_model(a)[0] else a
 
     def same_model(self, a: np.ndarray, b: np.ndarray) -> bool:
         """Two shapes within ``options.distinct_deg`` in every angle and that fraction of a
