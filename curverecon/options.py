@@ -558,6 +558,16 @@ class FrameSampleOptions:
     following c along the fit's covariance, and keeps that shape if it scores lower: the fit on
     a sample's consensus set alone ignores what every frame's |A'B'| says of c, and a near-truth
     shape whose c came out a few per cent long lost to a wrong one by its chord term alone."""
+    search_answer_start: bool = True
+    """The search's answer joins the samples' shapes as a hypothesis of the loop (scored and,
+    if best so far, polished by the same local optimisation on the frames it explains), not
+    only as the answer the samples' shape must beat."""
+    anneal_steps: int = 2
+    """Fits at a raised threshold that start the local optimisation (before the ``lo_rounds``
+    at ``truncate``; 0: none): on the frames below ``anneal_start`` times the truncation,
+    then lower multiples, falling geometrically towards 1."""
+    anneal_start: float = 4.0
+    """The first of those thresholds, in multiples of ``truncate`` (chi2: twice the residual)."""
     lo_rounds: int = 3
     """Fits of the local optimisation, each on the frames the last shape explains, until that
     set stops changing (a shape refined on a sample's consensus explains other frames)."""

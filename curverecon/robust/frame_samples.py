@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 
 import numpy as np
 from scipy.optimize import minimize_scalar
@@ -226,6 +226,7 @@ class FrameSampleEstimator:
         """Maximum likelihood on the frames the shape explains (full chi2 below the truncation
         at the shape's best poses), when there are enough of them; repeated on the frames the
         refined shape explains while that set changes (at most ``options.lo_rounds`` fits)."""
+        shape = self._annealed(shape)
         previous = None
         for _ in range(max(1, self.options.lo_rounds)):
             fit = fixed_shape_fit(
@@ -245,6 +246,31 @@ class FrameSampleEstimator:
         if self.options.chord_prior and self.options.chord_weight > 0.0 and previous is not None:
             # the chord term of the score as a prior on c (the fit above ignores it)
             shape = self._better_scored(shape, self._chord_prior_shape(sub, fit_sub))
+        return shape
+
+    def _annealed(self, shape: np.ndarray) -> np.ndarray:
+        """``shape`` refitted on the frames below ``options.anneal_start`` times the truncation,
+        then below lower multiples of it (``options.anneal_steps`` fits, the multiple falling
+        geometrically towards 1): the local optimisation's fits at a decreasing threshold
+        (Lebeda, Matas and Chum 2012), so that a rough sample's shape first takes in the
+        good frames it misses by a little, not only those it already explains."""
+        o = self.options
+        steps = max(0, o.anneal_steps)
+        for j in range(steps):
+            mult = o.anneal_start ** (1.0 - j / steps)
+            fit = fixed_shape_fit(
+                self.obs, shape, self.point_sigma, self.tangent_sigma, self.search
+            )
+            inliers = fit.frame_chi2 < mult * o.truncate
+            if int(inliers.sum()) < o.min_refine_frames:
+                break
+            shape = refine_hypothesis(
+                self.obs.subset(inliers),
+                shape,
+                self.point_sigma,
+                self.tangent_sigma,
+                options=self.search,
+            ).shape
         return shape
 
     def _chord_prior_shape(self, sub: Observations, fit: RefineResult) -> np.ndarray:
@@ -288,9 +314,12 @@ def frame_sample_hypothesis(
     options: FrameSampleOptions | None = None,
     minimal_options: MinimalOptions | None = None,
     search: SearchOptions | None = None,
+    initial_shapes: Sequence[np.ndarray] = (),
 ) -> tuple[Candidate | None, RansacStats]:
     """LO-RANSAC over four-frame samples: the best shape as a fixed-shape :class:`Candidate`
-    (its ``robust_cost`` from :func:`fixed_shape_fit`), or None when no sample gave a shape."""
+    (its ``robust_cost`` from :func:`fixed_shape_fit`), or None when no sample gave a shape.
+    ``initial_shapes`` (e.g. the search's answer) compete with the samples' shapes from the
+    start, polished by the same local optimisation (``lo_ransac``'s ``initial_models``)."""
     o = options or FrameSampleOptions()
     est = FrameSampleEstimator(obs, point_sigma, tangent_sigma, o, minimal_options, search)
     ransac = RansacOptions(
@@ -301,7 +330,7 @@ def frame_sample_hypothesis(
         seed=o.seed,
         final_refinements=o.final_refinements,
     )
-    best, stats = lo_ransac(est, ransac)
+    best, stats = lo_ransac(est, ransac, [np.asarray(s, float) for s in initial_shapes])
     if best is None:
         return None, stats
     fit = fixed_shape_fit(obs, best, point_sigma, tangent_sigma, search)
