@@ -10,7 +10,9 @@ all, where k is the number that draws at least one all-inlier sample with probab
 ``min_iterations`` and ``max_iterations``.  Then (``final_refinements``) the best-scoring
 unrefined models that differ from every model refined so far (the estimator's optional
 ``same_model``) are refined too, and the best of all refined models is returned: a sample
-near the truth may score below a wrong model until it is polished.
+near the truth may score below a wrong model until it is polished.  Hypotheses from elsewhere
+(``initial_models``, e.g. another method's answer) enter before the first sample, scored and
+refined like a sample's models.
 
 The loop knows nothing about curves (tests/test_ransac.py runs it on a line-fitting
 estimator); the curve's estimator draws four-frame samples for the minimal solver.
