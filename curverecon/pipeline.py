@@ -250,7 +250,8 @@ def _with_frame_samples(
     on all frames (shape held fixed, every frame at its best pose) is lower than ``rec``'s."""
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
     o = opts.frame_samples
-    cand, stats = frame_sample_hypothesis(obs, ps, ts, o, opts.minimal, opts.search)
+    initial = [rec.shape] if o.search_answer_start else []
+    cand, stats = frame_sample_hypothesis(obs, ps, ts, o, opts.minimal, opts.search, initial)
     if cand is None:
         return rec
     current = fixed_shape_fit(obs, rec.shape, ps, ts, opts.search)

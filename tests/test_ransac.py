@@ -126,3 +126,34 @@ def test_final_refinements_polish_more_models_and_never_worsen_the_answer():
     same_est = _CountingLines(pts, 0.5, True)
     lo_ransac(same_est, o)
     assert same_est.refined == base_est.refined
+
+
+def test_an_initial_model_is_scored_and_refined_before_the_samples():
+    """``initial_models``: a rough line near the true one (0.5 degrees, 0.3 off), given at
+    the start, is refined before any sample (one refinement more, one model more, the same
+    number of samples), and with a single sample that has an outlier in it the answer is the
+    true line, where without it the answer is that sample's wrong line."""
+    pts, n_true, d_true, out = _scene(8, 100, 0.5)
+    a = math.atan2(n_true[1], n_true[0]) + math.radians(0.5)
+    rough = (np.array([math.cos(a), math.sin(a)]), d_true + 0.3)
+    # a seed whose only sample has an outlier in it
+    seed = next(
+        s
+        for s in range(100)
+        if out[np.random.default_rng(s).choice(len(pts), size=2, replace=False)].any()
+    )
+    o = RansacOptions(seed=seed, max_iterations=1, min_iterations=1)
+    plain_est = _CountingLines(pts, 0.5, False)
+    plain, plain_stats = lo_ransac(plain_est, o)
+    est = _CountingLines(pts, 0.5, False)
+    model, stats = lo_ransac(est, o, [rough])
+    assert stats.iterations == plain_stats.iterations == 1
+    assert stats.models == plain_stats.models + 1
+    assert est.refined == 1  # the initial model; the sample's line scores worse
+
+    def angle_to_truth(m) -> float:  # type: ignore[no-untyped-def]
+        return math.degrees(math.acos(min(1.0, abs(float(m[0] @ n_true)))))
+
+    assert angle_to_truth(plain) > 1.0
+    assert angle_to_truth(model) < 0.1
+    assert abs(abs(model[1]) - abs(d_true)) < 0.1

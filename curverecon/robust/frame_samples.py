@@ -8,7 +8,8 @@ loop (:func:`curverecon.robust.ransac.lo_ransac`, PoseLib's calling convention) 
 shape of a sample (:func:`curverecon.solvers.minimal.solve`), scores a shape on all frames by
 its truncated per-frame chi2 with the shape held fixed (:func:`fixed_shape_fit`, the measure
 the answer is then accepted by; ``FrameSampleOptions.score``), and refines the best on the
-frames it explains (``refine.start.refine_hypothesis``, the local optimisation).
+frames it explains (``refine.start.refine_hypothesis``, the local optimisation; then c moves
+to the minimum of that fit's chi2 plus the score's chord term, :func:`chord_prior_step`).
 
 :func:`frame_sample_hypothesis` runs the loop and returns the answer as a :class:`Candidate`:
 the shape held fixed and every frame's pose at its best branch, so that its robust cost
@@ -27,9 +28,10 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
 from curverecon.errors import CurveReconError
 from curverecon.model.observations import Observations, wrap_angle
@@ -96,6 +98,57 @@ def chord_cost(obs: Observations, c: float, point_sigma: float, truncate: float)
     ``truncate``."""
     costs = chord_costs(obs, c, point_sigma)
     return float(np.sum(np.minimum(costs, float(np.median(costs)) + truncate)))
+
+
+CHORD_PRIOR_SPAN = 4.0
+""":func:`chord_prior_step` searches c within this many standard deviations of the fit's."""
+CHORD_PRIOR_GRID = 81
+"""Grid points of that search (then a bounded scalar minimisation around the best one)."""
+
+
+def chord_prior_step(
+    obs: Observations,
+    shape: np.ndarray,
+    covariance: np.ndarray,
+    point_sigma: float,
+    weight: float,
+    truncate: float,
+) -> np.ndarray:
+    """The shape that minimises a fit's chi2 plus ``weight`` times :func:`chord_cost`, the chi2
+    in the Gaussian approximation of the fit (shape (4,) at its minimum, shape covariance (4, 4)
+    from the same frames).
+
+    The chi2 of the shape with c held at a value is, to second order, (c - c0)^2 / var(c)
+    above its minimum, with the other parameters at their conditional optimum, shape0 +
+    cov[:, 0] / var(c) (c - c0) (the regression of the shape on c).  So c minimises
+    q(c) = (c - c0)^2 / var(c) + weight * chord_cost(c) (1-D: a grid over
+    +-``CHORD_PRIOR_SPAN`` standard deviations, then a bounded scalar minimisation around its
+    best point) and the rest follow.  The chord term is the prior on c that every frame's
+    |A'B'| gives, outlier tangents or not; the fit alone does not see it.  Returns ``shape``
+    when var(c) is not positive and finite."""
+    shape = np.asarray(shape, float)
+    cov = np.asarray(covariance, float)
+    c0, var = float(shape[0]), float(cov[0, 0])
+    if not (math.isfinite(var) and var > 0.0 and np.all(np.isfinite(cov[:, 0]))):
+        return shape
+    sd = math.sqrt(var)
+    lo, hi = max(c0 - CHORD_PRIOR_SPAN * sd, 0.5 * c0), c0 + CHORD_PRIOR_SPAN * sd
+
+    def q(c: float) -> float:
+        return (c - c0) ** 2 / var + weight * chord_cost(obs, c, point_sigma, truncate)
+
+    grid = np.linspace(lo, hi, CHORD_PRIOR_GRID)
+    values = np.array([q(float(c)) for c in grid])
+    k = int(np.argmin(values))
+    a, b = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+    best_c, best_q = float(grid[k]), float(values[k])
+    res = minimize_scalar(q, bounds=(float(a), float(b)), method="bounded")
+    if res.success and float(res.fun) < best_q:
+        best_c = float(res.x)
+    q0 = q(c0)
+    if not best_q < q0 and not (res.success and float(res.fun) < q0):
+        return shape
+    return shape + cov[:, 0] / var * (best_c - c0)
 
 
 def sample_score(
@@ -173,6 +226,7 @@ class FrameSampleEstimator:
         """Maximum likelihood on the frames the shape explains (full chi2 below the truncation
         at the shape's best poses), when there are enough of them; repeated on the frames the
         refined shape explains while that set changes (at most ``options.lo_rounds`` fits)."""
+        shape = self._annealed(shape)
         previous = None
         for _ in range(max(1, self.options.lo_rounds)):
             fit = fixed_shape_fit(
@@ -185,10 +239,62 @@ class FrameSampleEstimator:
                 break
             previous = inliers
             sub = self.obs.subset(inliers)
-            shape = refine_hypothesis(
+            fit_sub = refine_hypothesis(
                 sub, shape, self.point_sigma, self.tangent_sigma, options=self.search
+            )
+            shape = fit_sub.shape
+        if self.options.chord_prior and self.options.chord_weight > 0.0 and previous is not None:
+            # the chord term of the score as a prior on c (the fit above ignores it)
+            shape = self._better_scored(shape, self._chord_prior_shape(sub, fit_sub))
+        return shape
+
+    def _annealed(self, shape: np.ndarray) -> np.ndarray:
+        """``shape`` refitted on the frames below ``options.anneal_start`` times the truncation,
+        then below lower multiples of it (``options.anneal_steps`` fits, the multiple falling
+        geometrically towards 1): the local optimisation's fits at a decreasing threshold
+        (Lebeda, Matas and Chum 2012), so that a rough sample's shape first takes in the
+        good frames it misses by a little, not only those it already explains."""
+        o = self.options
+        steps = max(0, o.anneal_steps)
+        for j in range(steps):
+            mult = o.anneal_start ** (1.0 - j / steps)
+            fit = fixed_shape_fit(
+                self.obs, shape, self.point_sigma, self.tangent_sigma, self.search
+            )
+            inliers = fit.frame_chi2 < mult * o.truncate
+            if int(inliers.sum()) < o.min_refine_frames:
+                break
+            shape = refine_hypothesis(
+                self.obs.subset(inliers),
+                shape,
+                self.point_sigma,
+                self.tangent_sigma,
+                options=self.search,
             ).shape
         return shape
+
+    def _chord_prior_shape(self, sub: Observations, fit: RefineResult) -> np.ndarray:
+        """``fit``'s shape moved to the minimum of its chi2 on ``sub`` plus the score's chord
+        term (:func:`chord_prior_step`, the chi2 in its Gaussian approximation)."""
+        cov = refine(
+            sub, fit.shape, fit.poses, self.point_sigma, self.tangent_sigma, max_iter=0
+        ).covariance
+        if cov is None:
+            return fit.shape
+        return chord_prior_step(
+            self.obs,
+            fit.shape,
+            cov,
+            self.point_sigma,
+            self.options.chord_weight,
+            self.options.truncate,
+        )
+
+    def _better_scored(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Of shapes ``a`` and ``b`` the one of lower :meth:`score_model` (``a`` on a tie)."""
+        if np.array_equal(a, b):
+            return a
+        return b if self.score_model(b)[0] < self.score_model(a)[0] else a
 
     def same_model(self, a: np.ndarray, b: np.ndarray) -> bool:
         """Two shapes within ``options.distinct_deg`` in every angle and that fraction of a
@@ -208,9 +314,12 @@ def frame_sample_hypothesis(
     options: FrameSampleOptions | None = None,
     minimal_options: MinimalOptions | None = None,
     search: SearchOptions | None = None,
+    initial_shapes: Sequence[np.ndarray] = (),
 ) -> tuple[Candidate | None, RansacStats]:
     """LO-RANSAC over four-frame samples: the best shape as a fixed-shape :class:`Candidate`
-    (its ``robust_cost`` from :func:`fixed_shape_fit`), or None when no sample gave a shape."""
+    (its ``robust_cost`` from :func:`fixed_shape_fit`), or None when no sample gave a shape.
+    ``initial_shapes`` (e.g. the search's answer) compete with the samples' shapes from the
+    start, polished by the same local optimisation (``lo_ransac``'s ``initial_models``)."""
     o = options or FrameSampleOptions()
     est = FrameSampleEstimator(obs, point_sigma, tangent_sigma, o, minimal_options, search)
     ransac = RansacOptions(
@@ -221,7 +330,7 @@ def frame_sample_hypothesis(
         seed=o.seed,
         final_refinements=o.final_refinements,
     )
-    best, stats = lo_ransac(est, ransac)
+    best, stats = lo_ransac(est, ransac, [np.asarray(s, float) for s in initial_shapes])
     if best is None:
         return None, stats
     fit = fixed_shape_fit(obs, best, point_sigma, tangent_sigma, search)

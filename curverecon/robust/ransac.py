@@ -10,7 +10,9 @@ all, where k is the number that draws at least one all-inlier sample with probab
 ``min_iterations`` and ``max_iterations``.  Then (``final_refinements``) the best-scoring
 unrefined models that differ from every model refined so far (the estimator's optional
 ``same_model``) are refined too, and the best of all refined models is returned: a sample
-near the truth may score below a wrong model until it is polished.
+near the truth may score below a wrong model until it is polished.  Hypotheses from elsewhere
+(``initial_models``, e.g. another method's answer) enter before the first sample, scored and
+refined like a sample's models.
 
 The loop knows nothing about curves (tests/test_ransac.py runs it on a line-fitting
 estimator); the curve's estimator draws four-frame samples for the minimal solver.
@@ -19,6 +21,7 @@ estimator); the curve's estimator draws four-frame samples for the minimal solve
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Generic, Protocol, TypeVar
 
@@ -98,9 +101,15 @@ def required_iterations(inlier_ratio: float, sample_size: int, o: RansacOptions)
 
 
 def lo_ransac(
-    estimator: Estimator[Model], options: RansacOptions | None = None
+    estimator: Estimator[Model],
+    options: RansacOptions | None = None,
+    initial_models: Sequence[Model] = (),
 ) -> tuple[Model | None, RansacStats]:
-    """The best model (refined) and the loop's statistics; None if no sample gave a model."""
+    """The best model (refined) and the loop's statistics; None if no sample gave a model.
+
+    ``initial_models``: hypotheses from elsewhere (e.g. another method's answer), scored and
+    the best of them refined before the first sample, as if a sample had given them (they
+    count as models, not as samples; ``min_iterations`` samples are drawn all the same)."""
     o = options or RansacOptions()
     rng = np.random.default_rng(o.seed)
     stats: RansacStats = RansacStats()
@@ -111,11 +120,12 @@ def lo_ransac(
     limit = o.max_iterations
     scored: list[tuple[float, int, Model]] = []  # every model's score, for the final refinements
     refined_from: list[Model] = []
-    while stats.iterations < limit:
-        stats.iterations += 1
-        sample = np.sort(rng.choice(n, size=m, replace=False))
+
+    def consider(models: Sequence[Model]) -> None:
+        """Score ``models``; if one is the new best, refine it (LO) and update the limit."""
+        nonlocal best, limit
         improved = False
-        for model in estimator.generate_models(sample):
+        for model in models:
             stats.models += 1
             cost, inl = estimator.score_model(model)
             scored.append((cost, len(scored), model))
@@ -132,6 +142,13 @@ def lo_ransac(
                 best, stats.cost, stats.num_inliers = refined, cost, inl
             stats.inlier_ratio = stats.num_inliers / n
             limit = required_iterations(stats.inlier_ratio, m, o)
+
+    if len(initial_models):
+        consider(initial_models)
+    while stats.iterations < limit:
+        stats.iterations += 1
+        sample = np.sort(rng.choice(n, size=m, replace=False))
+        consider(estimator.generate_models(sample))
         stats.history.append(stats.cost)
     if o.final_refinements > 0:
         best = _final_refinements(estimator, scored, refined_from, best, stats, o)
