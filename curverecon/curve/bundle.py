@@ -95,6 +95,7 @@ from curverecon.curve import polyline as pl
 from curverecon.curve.bundle_kernel import (
     foot_parameters,
     forward_rows,
+    nearest_distances,
     polyline_normal_blocks,
     segment_offsets,
 )
@@ -362,6 +363,7 @@ class _Problem:
         from scipy.spatial import cKDTree
 
         self.trees = [cKDTree(p) for p in polys]
+        self._resampled: list[np.ndarray | None] = [None] * self.n
         self.frame_w = np.ones(self.n)  # frame weights (the coarse stage's robust reweighting)
         # weight of each frame's polyline rows (0: a polyline flagged as contradicting the given
         # end points and tangents is left out; the frame keeps its end-point measurements)
@@ -378,6 +380,13 @@ class _Problem:
             np.sqrt(REVERSE_WEIGHT * max(len(p) - 2, 1) / len(self.rev_basis)) for p in polys
         ]
         self._setup_batch()
+
+    def resampled(self, i: int) -> np.ndarray:
+        """Frame i's polyline resampled to 200 points equally spaced in arc length (the pose
+        sweep's distances, :func:`_resect_starts`), computed once per problem."""
+        if self._resampled[i] is None:
+            self._resampled[i] = np.ascontiguousarray(pl.resample(self.polys[i], 200)[0], float)
+        return self._resampled[i]
 
     def _to_polyline(self, pts: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
         """Direction and signed distance of image points from frame i's polyline (normal of the
@@ -1008,10 +1017,10 @@ class _Problem:
         ok = self.cidx >= 0
         c2[ok] += dx[self.cidx[ok]]
         m2, b2 = m.copy(), b.copy()
-        for i in range(1, self.n):
-            off = self.n_curve + 5 * (i - 1)
-            m2[i] = _expm_so3(dx[off : off + 3]) @ m[i]
-            b2[i, :2] += dx[off + 3 : off + 5]
+        if self.n > 1:  # every frame's increment at once (frame 0: the gauge)
+            dp = dx[self.n_curve :].reshape(self.n - 1, 5)
+            m2[1:] = _expm_so3_batch(dp[:, :3]) @ m[1:]
+            b2[1:, :2] += dp[:, 3:5]
         return c2, m2, b2
 
 
@@ -1069,11 +1078,13 @@ def _lm_bundle(prob, state, max_iter: int, lam: float = 1e-3, rel_tol: float = R
         rel = (cost - cost2) / max(cost, 1e-300)
         state = new
         lam = max(lam / 10.0, 1e-9)
+        if rel < rel_tol or it >= max_iter:
+            # the last step: its cost is the trial's (the same residuals), no linearisation
+            converged = rel < rel_tol
+            cost = cost2
+            break
         r, blocks, _ = prob.normal_equations(*state)
         cost = float(r @ r)
-        if rel < rel_tol:
-            converged = True
-            break
     return state, cost, it, converged
 
 
@@ -1130,8 +1141,6 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     by LM if they score below ``RESECT_GAIN`` times the current pose (a frame on the right
     branch scores near the noise level, far below any grid pose).  Returns the (m_i, b_i) to
     refine (:func:`_resect_all`), none when no sweep pose beats the current one."""
-    from scipy.spatial import cKDTree
-
     poly = prob.polys[i]
     a3 = ctrl[0]
     ab = ctrl[-1] - a3
@@ -1145,17 +1154,17 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     tau_abs = float(np.arccos(min(cp / c, 1.0)))
     theta = float(np.arctan2(chord[1], chord[0]))
     pts = prob.basis.values(np.linspace(0.0, 1.0, 40)) @ ctrl - a3
-    tree = cKDTree(pl.resample(poly, 200)[0])
+    dense = prob.resampled(i)
     deltas = np.radians(np.arange(0.0, 360.0, 10.0))
     taus = np.array(sorted({tau_abs, -tau_abs}))
     mms = _rot_zyx(theta, np.repeat(taus, len(deltas)), np.tile(deltas, len(taus))) @ cmat.T
     # every sweep pose's projected curve in one query (the same distances as one by one)
     proj = np.einsum("pc,mjc->mpj", pts, mms[:, :2]) + poly[0]
-    dist = tree.query(proj.reshape(-1, 2))[0].reshape(len(mms), len(pts))
+    dist = nearest_distances(dense, proj.reshape(-1, 2)).reshape(len(mms), len(pts))
     scores = np.mean(dist**2, axis=1)  # row by row: the same sums as one pose at a time
     cands = [(float(scores[j]), j, mm) for j, mm in enumerate(mms)]
     cands.sort(key=lambda t: t[:2])
-    current = float(np.mean(tree.query((pts + a3) @ mi[:2].T + bi[:2])[0] ** 2))
+    current = float(np.mean(nearest_distances(dense, (pts + a3) @ mi[:2].T + bi[:2]) ** 2))
     # only sweep poses that beat the current one even on the coarse grid are refined
     starts = [
         (mm, np.append(poly[0] - (mm @ a3)[:2], 0.0))
