@@ -639,7 +639,7 @@ class _Problem:
         """:meth:`foot_points` of every frame's interior polyline points at once (the search
         and the Newton steps in ``bundle_kernel.foot_parameters``); ``ordered`` (default
         ``self.ordered_feet``): then :meth:`_ordered_feet`."""
-        proj = np.einsum("gc,njc->ngj", self.n_grid @ ctrl, m[:, :2]) + b[:, None, :2]
+        proj = (self.n_grid @ ctrl) @ np.transpose(m[:, :2], (0, 2, 1)) + b[:, None, :2]
         if not np.all(np.isfinite(proj)):
             proj = np.nan_to_num(proj, nan=0.0, posinf=0.0, neginf=0.0)
         # the projected curve per knot span as a cubic in the span's local coordinate: a point's
@@ -684,7 +684,8 @@ class _Problem:
         """(N, spans, 4, 2): every frame's projected curve, per knot span the power-series
         coefficients in the span's local coordinate."""
         sc = np.einsum("sdk,kc->sdc", self.basis.coef, ctrl)
-        ps = np.einsum("sdc,njc->nsdj", sc, m[:, :2])
+        ps = sc.reshape(-1, 3) @ np.transpose(m[:, :2], (0, 2, 1))  # (N, spans 4, 2)
+        ps = ps.reshape(len(m), *sc.shape[:2], 2)
         ps[:, :, 0] += b[:, None, :2]
         return ps
 
@@ -763,7 +764,7 @@ class _Problem:
             rms = np.sqrt(np.bincount(fid, dist2, minlength=n) / self.q_cnt)
         # reverse term
         xs = self.rev_basis @ ctrl
-        ps = (np.einsum("rc,njc->nrj", xs, m[:, :2]) + b[:, None, :2]).reshape(-1, 2)
+        ps = (xs @ np.transpose(m[:, :2], (0, 2, 1)) + b[:, None, :2]).reshape(-1, 2)
         rfid = np.repeat(np.arange(n), self.n_rev)
         rev_dir, rev_r = cached[2] if cached else self._to_polylines(ps, rfid)
         self._last = (key, u, (rev_dir, rev_r))
@@ -784,8 +785,8 @@ class _Problem:
             xx = np.vstack([x, np.tile(xs, (n, 1))])
             dirs = np.vstack([direc, rev_dir])
             mr = m[rows_f]
-            dm = np.einsum("ij,ijc->ic", dirs, mr[:, :2])
-            yy = np.einsum("ijc,ic->ij", mr, xx)
+            dm = (dirs[:, None, :] @ mr[:, :2])[:, 0]
+            yy = (mr @ xx[:, :, None])[:, :, 0]
             wj = np.where(big, HUBER_K / np.maximum(fa, 1e-300), 1.0) * wt
             scale = (wj / s)[:, None]
             if compact:
@@ -954,8 +955,8 @@ class _Problem:
         jcf = jc[: n * per].reshape(n, per, nc)
         jpf = jp2[: n * per].reshape(n, per, 5)
         rf = r2[: n * per].reshape(n, per)
-        v[1:] += np.einsum("npi,npj->nij", jpf[1:], jpf[1:])
-        w[1:] += np.einsum("npc,npj->ncj", jcf[1:], jpf[1:])
+        v[1:] += np.transpose(jpf[1:], (0, 2, 1)) @ jpf[1:]
+        w[1:] += np.transpose(jcf[1:], (0, 2, 1)) @ jpf[1:]
         gp[1:] += np.einsum("npi,np->ni", jpf[1:], rf[1:])
         return r, (u, gc, v, w, gp), rms
 
@@ -1036,6 +1037,13 @@ class _Problem:
         return c2, m2, b2
 
 
+def _sum_products(w: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """``sum_n w[n] @ x[n]`` for w (N, C, P), x (N, P, K): one matrix product (C, N P) (N P, K)
+    (an einsum of these shapes took several times longer)."""
+    n, c, p = w.shape
+    return np.transpose(w, (1, 0, 2)).reshape(c, n * p) @ x.reshape(n * p, -1)
+
+
 def _schur_solve(blocks, lam: float) -> np.ndarray:
     """The LM step ``-(J^T J + lam D)^-1 J^T r`` (D: Marquardt's diagonal of J^T J, floored
     at 1e-12 of its largest entry) from the normal equations' blocks of
@@ -1052,7 +1060,7 @@ def _schur_solve(blocks, lam: float) -> np.ndarray:
     # (V + lam D)^-1 [W^T | gp] for every frame at once
     rhs = np.concatenate([np.transpose(w[1:], (0, 2, 1)), gp[1:, :, None]], axis=2)
     sol = np.linalg.solve(vd, rhs)  # (N - 1, 5, n_curve + 1)
-    s = a - np.einsum("ncp,npk->ck", w[1:], sol[:, :, :-1])
+    s = a - _sum_products(w[1:], sol[:, :, :-1])
     rc = gc - np.einsum("ncp,np->c", w[1:], sol[:, :, -1])
     dc = -np.linalg.solve(s, rc)
     dp = -(sol[:, :, -1] + np.einsum("npk,k->np", sol[:, :, :-1], dc))
@@ -1068,7 +1076,7 @@ def _model_decrease(blocks, dx: np.ndarray) -> float:
     nc = len(gc)
     dc, dp = dx[:nc], dx[nc:].reshape(-1, 5)
     hc = u @ dc + np.einsum("ncp,np->c", w[1:], dp)
-    hp = np.einsum("ncp,c->np", w[1:], dc) + np.einsum("npq,nq->np", v[1:], dp)
+    hp = np.transpose(w[1:], (0, 2, 1)) @ dc + (v[1:] @ dp[:, :, None])[:, :, 0]
     g_dx = float(gc @ dc + np.sum(gp[1:] * dp))
     return -(2.0 * g_dx + float(dc @ hc + np.sum(dp * hp)))
 
@@ -1200,7 +1208,7 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     taus = np.array(sorted({tau_abs, -tau_abs}))
     mms = _rot_zyx(theta, np.repeat(taus, len(deltas)), np.tile(deltas, len(taus))) @ cmat.T
     # every sweep pose's projected curve in one query (the same distances as one by one)
-    proj = np.einsum("pc,mjc->mpj", pts, mms[:, :2]) + poly[0]
+    proj = pts @ np.transpose(mms[:, :2], (0, 2, 1)) + poly[0]
     dist = nearest_distances(dense, proj.reshape(-1, 2)).reshape(len(mms), len(pts))
     scores = np.mean(dist**2, axis=1)  # row by row: the same sums as one pose at a time
     cands = [(float(scores[j]), j, mm) for j, mm in enumerate(mms)]
@@ -2009,7 +2017,7 @@ def _curve_covariance(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.nda
     _, (u, _, v, w, _), _ = prob.normal_equations(ctrl, m, b)
     try:
         vinv_wt = np.linalg.solve(v[1:], np.transpose(w[1:], (0, 2, 1)))
-        s = u - np.einsum("ncp,npk->ck", w[1:], vinv_wt)
+        s = u - _sum_products(w[1:], vinv_wt)
         cov = np.linalg.pinv(s)
     except np.linalg.LinAlgError:
         return None
