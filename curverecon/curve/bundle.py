@@ -372,9 +372,9 @@ class _Problem:
         idx.reshape(-1)[flat] = np.arange(self.n_curve)
         self.cidx = idx
         self.free_cols = np.array(flat)
-        from scipy.spatial import cKDTree
-
-        self.trees = [cKDTree(p) for p in polys]
+        # k-d trees of the polylines for the per-frame reference path (:meth:`_to_polyline`),
+        # built on first use (the batched evaluation scans in ``bundle_kernel``)
+        self._trees: list | None = None
         self._resampled: list[np.ndarray | None] = [None] * self.n
         self.frame_w = np.ones(self.n)  # frame weights (the coarse stage's robust reweighting)
         # weight of each frame's polyline rows (0: a polyline flagged as contradicting the given
@@ -404,7 +404,11 @@ class _Problem:
         """Direction and signed distance of image points from frame i's polyline (normal of the
         nearest segment; the offset direction beyond the polyline's ends)."""
         poly = self.polys[i]
-        return _segment_offsets(poly, pts, self.trees[i].query(pts)[1], 0, len(poly) - 1)
+        if self._trees is None:
+            from scipy.spatial import cKDTree
+
+            self._trees = [cKDTree(p) for p in self.polys]
+        return _segment_offsets(poly, pts, self._trees[i].query(pts)[1], 0, len(poly) - 1)
 
     def foot_points(self, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int) -> np.ndarray:
         """Curve parameter u of the foot point of each interior polyline point of frame i."""
