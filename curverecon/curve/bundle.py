@@ -143,9 +143,10 @@ COARSE_MAX_ITER = 30
 #: moving the shape by under 0.004 of its std (bench seed 1400, 20 frames, fourier: the GN
 #: prediction there 0.2-0.5, the cost rough at that scale); a fifth of the LM's evaluations.
 #: The final polish then starts elsewhere and can settle in another dip of the rough floor: on
-#: 30 scenes (1 px, 20 frames, seeds 1400, 2000-2003, every family) the shapes moved by a median
-#: 0.007 and at most 0.12 of their std, curve errors both ways (-0.11 to +0.07 % of the length);
-#: seed 1400 fourier's curve 0.22 of its std across the curve (median point) from the tight solve.
+#: 30 scenes (1 px, 20 frames, seeds 1400, 2000-2003, every family; with the matrix products'
+#: rounding) the shapes moved by a median 0.002 and at most 0.12 of their std, the curve errors
+#: of 14 both ways (-0.11 to +0.07 % of the length); seed 1400 fourier's curve 0.22 of its std
+#: across the curve (median point) from the tight solve's.
 LM_GN_LAMBDA = 1e-6
 LM_STOP_DCHI2 = 0.5
 #: A swept pose is refined only if its grid score (mean squared distance) is below this multiple
