@@ -143,3 +143,24 @@ def test_bundle_on_a_seeded_scene_reaches_the_truth():
     res = bd.bundle_adjust(scene.observations.curves, rot, tr, scene.curve_3d)
     assert curve_error(res.curve_points(), scene.curve_3d) < 0.005
     assert np.max(res.rms) < 2.0
+
+
+@pytest.mark.parametrize("family", ["helix", "random"])
+def test_pose_sweep_distances_equal_the_k_d_tree(family):
+    """``bundle_kernel.nearest_distances`` (the pose sweep of ``bundle._resect_starts``):
+    a frame's resampled polyline against the projected curve samples of every sweep pose and
+    scattered points, the same distances as a k-d tree's query (to the last bit: the same
+    squared differences, the same nearest point up to ties)."""
+    prob, *_ = _truth_problem(3, 6, family, False)
+    rng = np.random.default_rng(4)
+    for i in range(prob.n):
+        dense = prob.resampled(i)
+        q = np.vstack(
+            [
+                dense + rng.normal(scale=3.0, size=dense.shape),
+                dense.mean(axis=0) + rng.normal(scale=80.0, size=(500, 2)),
+            ]
+        )
+        expected = cKDTree(dense).query(q)[0]
+        got = bk.nearest_distances(dense, q)
+        assert np.array_equal(got, expected)

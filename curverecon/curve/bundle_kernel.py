@@ -286,3 +286,23 @@ def polyline_normal_blocks(nus, dmw, jp, res, rows, cidx, u, gc, v, w, gp):
                 v[f, p, q2] += jpp * jp[i, q2]
             for a in range(m):
                 w[f, cols[a], p] += vals[a] * jpp
+
+
+@numba.njit(**_JIT)
+def nearest_distances(pts, q):
+    """Distance of each point q[i] from the nearest of pts (the pose sweep of
+    ``bundle._resect_starts``: a polyline resampled, every sweep pose's projected curve
+    samples): the pruned scan, each query starting from the previous one's nearest point
+    (consecutive queries are neighbouring curve samples).  The same distances as a k-d tree's
+    query."""
+    g = pts.shape[0]
+    box = _boxes(pts, 0, g, RUN)
+    out = np.empty(q.shape[0])
+    guess = 0
+    for i in range(q.shape[0]):
+        j = _scan(pts, 0, g, box, RUN, q[i, 0], q[i, 1], guess)
+        guess = j
+        ex = pts[j, 0] - q[i, 0]
+        ey = pts[j, 1] - q[i, 1]
+        out[i] = np.sqrt(ex * ex + ey * ey)
+    return out
