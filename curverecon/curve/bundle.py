@@ -1378,6 +1378,7 @@ def bundle_adjust(
     resect_first: bool = False,
     smooth_weight: float = SMOOTH_WEIGHT,
     misfit_z: float = CurveOptions.bundle_misfit_z,
+    order_tol: float = 0.0,
 ) -> BundleResult:
     """Refine the poses and the 3-D curve jointly against every frame's polyline.
 
@@ -1395,6 +1396,9 @@ def bundle_adjust(
     polyline_mask: optional (N,) bool, False for frames whose polyline is left out of the fit
         (flagged as contradicting the given end points and tangents; needs ``ends``).
     smooth_weight: the difference penalty's weight (``CurveOptions.bundle_smooth_weight``).
+    order_tol: above 0, a curve folded over itself (:func:`_folded` with this tolerance, in
+        sigma) is refitted from its points in a polyline's order with every foot in the
+        polylines' order (``CurveOptions.bundle_order_tol``); 0 never.
 
     Stages: a coarse curve (``K_COARSE`` control points) with the start poses; every frame's
     pose searched again against that curve (``_resect_all``: the wrong-branch poses the end
@@ -1503,6 +1507,18 @@ def bundle_adjust(
     if END_POLISH:
         prob = problem(k)
         prob.robust_ends = True
+        (ctrl, m, b), cost, it, converged = _lm_bundle(prob, (ctrl, m, b), max_iter)
+        total_it += it
+    if order_tol > 0.0 and _folded(prob, ctrl, m, b, order_tol):
+        # the spline has folded over itself (forward, back, forward along one stretch): with
+        # the nearest feet its strands share the polyline points and fit the noise, a cost no
+        # single curve reaches; refitted with the feet in the polylines' order, kept whatever
+        # its cost (``CurveOptions.bundle_order_tol``), from the curve's points at the feet in
+        # a polyline's order (they run along the curve once)
+        pts = _unfolded_points(prob, ctrl, m, b, prob.poly_w > 0.0)
+        if pts is not None:
+            ctrl = fit_spline(pts, k)
+        prob.ordered_feet = True
         (ctrl, m, b), cost, it, converged = _lm_bundle(prob, (ctrl, m, b), max_iter)
         total_it += it
     rms = prob.residuals(ctrl, m, b, jac=False)[2]
@@ -1749,6 +1765,45 @@ def _bic(prob: _Problem, rms: np.ndarray, n_par: int, per_param: float | None = 
     rss = float(np.sum(counts * rms[use] ** 2))
     pen = np.log(n_obs) if per_param is None else per_param
     return float(n_obs * np.log(max(rss, 1e-300) / n_obs) + n_par * pen)
+
+
+def _folded(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, tol: float) -> bool:
+    """Whether the fitted curve has folded over itself: in more than half of the frames whose
+    polylines are fitted some polyline point's nearest foot steps back along the curve (against
+    the polyline's order) by more than ``tol`` sigma of the projected curve's arc length from
+    where its in-order neighbours' feet put it, or the feet leave a stretch of the projected
+    curve that long (beyond twice the points' spacing) without any foot.  The noise moves feet
+    by about a sigma; a fold's strands lie on the polyline in every frame, a crossing of the
+    projected curve with itself only in a few."""
+    u = prob._all_foot_points(ctrl, m, b, ordered=False)
+    used = np.flatnonzero(np.asarray(prob.poly_w) > 0.0)
+    dense = prob.n_grid @ ctrl
+    count = 0
+    for f in used:
+        lo, cnt = int(prob.q_lo[f]), int(prob.q_cnt[f])
+        if cnt < 3:
+            continue
+        uf = u[lo : lo + cnt]
+        q = prob.q_all[lo : lo + cnt]
+        length = float(np.sum(np.linalg.norm(np.diff(q, axis=0), axis=1)))
+        limit = tol * prob.sigma
+        # the feet as arc length along the projected curve
+        proj = dense @ m[f, :2].T
+        arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(proj, axis=0), axis=1))])
+        sf = np.interp(uf, prob.u_grid, arc)
+        if np.any(np.diff(uf) < 0.0):
+            keep = _longest_nondecreasing(uf)
+            bad, idx = np.flatnonzero(~keep), np.flatnonzero(keep)
+            v = np.interp(bad, idx, sf[idx])
+            if np.any(np.abs(sf[bad] - v) > limit):
+                count += 1
+                continue
+        # ... or a stretch of the projected curve that no point's foot lands on (the strands
+        # of a fold that the nearest feet all leave for one of them), longer than the limit
+        # beyond the polyline's point spacing
+        gaps = np.diff(np.concatenate([[0.0], np.sort(sf), [arc[-1]]]))
+        count += bool(gaps.max() > limit + 2.0 * length / (cnt - 1))
+    return count > len(used) // 2
 
 
 def _longest_nondecreasing(x: np.ndarray) -> np.ndarray:
@@ -2246,6 +2301,7 @@ def refine_reconstruction(
         "k_max": o.bundle_max_control_points,
         "smooth_weight": o.bundle_smooth_weight,
         "misfit_z": o.bundle_misfit_z,
+        "order_tol": o.bundle_order_tol,
     }
 
     def frame0_other_branch():
