@@ -244,6 +244,26 @@ def summarise_method(records: list[dict[str, Any]], method: str) -> dict[str, An
             else None
         )
         out["basin_diagnosed_scenes"] = len(pairs)
+        # the same scenes scored on the basin that a chi2 minimiser without the truth would
+        # take of the two it is shown: the truth's (the refinement from the truth) where that
+        # fits at least as well (lower chi2, or the same minimum), else the default's own
+        # answer.  What separates the default from this is a better fit it missed; what
+        # separates this from refinement from the truth is the truth's pose branches only.
+        if pairs:
+            paired = {id(r) for r in pairs}
+
+            def chosen_ok(r: dict[str, Any], default_ok: bool) -> bool:
+                if id(r) not in paired:
+                    return default_ok
+                truth_fits = r["truth_start_chi2"] < r["default_chi2"] or _same_minimum(
+                    r["default_chi2"], r["truth_start_chi2"]
+                )
+                if not truth_fits:
+                    return default_ok
+                return bool(worst_angle_deg(np.array(r["truth_start_diag"])) < SUCCESS_DEG)
+
+            chosen = [chosen_ok(r, bool(s)) for r, s in zip(finite, success, strict=True)]
+            out["chi2_choice_success_rate"] = float(np.sum(chosen) / len(ran))
     return out
 
 

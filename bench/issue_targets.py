@@ -34,19 +34,30 @@ def _get(doc: dict[str, Any], path: str) -> Any:
     return v
 
 
-def _cell_gaps(doc: dict[str, Any]) -> tuple[int, int, list[str]] | None:
+def _cell_gaps(
+    doc: dict[str, Any], reference: Callable[[dict[str, Any]], float | None] | None = None
+) -> tuple[int, int, list[str]] | None:
     """(cells meeting the 2-point criterion, cells, the cells that miss) over the grid's cells
-    with >= ``MIN_CELL_FRAMES`` frames and noise >= 0.25 px."""
+    with >= ``MIN_CELL_FRAMES`` frames and noise >= 0.25 px.  ``reference(cell)``: the success
+    rate the default is held to (refinement from the truth unless given)."""
+    if reference is None:
+
+        def reference(a: dict[str, Any]) -> float | None:
+            return a["truth_start"]["success_rate"]
+
     cells = [
         a
         for a in doc.get("accuracy") or []
-        if a.get("n_frames", 0) >= MIN_CELL_FRAMES and a.get("default") and a.get("truth_start")
+        if a.get("n_frames", 0) >= MIN_CELL_FRAMES
+        and a.get("default")
+        and a.get("truth_start")
+        and reference(a) is not None
     ]
     if not cells:
         return None
     missed = []
     for a in cells:
-        gap = 100.0 * (a["truth_start"]["success_rate"] - a["default"]["success_rate"])
+        gap = 100.0 * (reference(a) - a["default"]["success_rate"])
         if gap > GAP_POINTS:
             missed.append(f"{a['noise']:g} px / {a['n_frames']} frames ({gap:.1f} points)")
     return len(cells) - len(missed), len(cells), missed
@@ -73,6 +84,22 @@ def _cells(doc: dict[str, Any]) -> tuple[str, str, str, str]:
     good, n, missed = got
     shown = f"{good} of {n} cells" + (f"; misses: {', '.join(missed)}" if missed else "")
     return "12", text, shown, "PASS" if good == n else "MISS"
+
+
+def chi2_choice_note(doc: dict[str, Any]) -> str | None:
+    """Issue 12's cell criterion held to the chi2 choice instead (``bench.accuracy``: every
+    scene scored on the lower-chi2 basin of the default's and the truth's): a diagnostic that
+    separates fits the default missed from the truth's pose branches, not the issue's target."""
+    got = _cell_gaps(doc, lambda a: a["default"].get("chi2_choice_success_rate"))
+    if got is None:
+        return None
+    good, n, missed = got
+    return (
+        f"Diagnostic, not an issue target: the default within {GAP_POINTS:g} points of the chi2 "
+        f"choice (each scene scored on the lower-chi2 basin of the default's and the truth "
+        f"start's) in {good} of {n} cells with >= {MIN_CELL_FRAMES} frames"
+        + (f"; misses: {', '.join(missed)}." if missed else ".")
+    )
 
 
 def _min_family(v: dict[str, float]) -> str:
@@ -208,6 +235,9 @@ def markdown(doc: dict[str, Any]) -> str:
         "|---|---|---|---|",
         *(f"| {i} | {t} | {m} | **{v}** |" for i, t, m, v in got),
     ]
+    note = chi2_choice_note(doc)
+    if note:
+        lines += ["", note]
     return "\n".join(lines) + "\n"
 
 

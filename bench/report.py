@@ -198,6 +198,20 @@ def headline(cfg: Config, sections: dict[str, Any]) -> dict[str, Any]:
             for row in sections["accuracy"]
             if row["default"] and row["default"].get("default_only_failures") is not None
         },
+        # success of the default, of the lower-chi2 basin of the default's and the truth's
+        # (bench.accuracy: what a chi2 minimiser shown both would take) and of refinement from
+        # the truth, per cell (noise|frames), in per cent
+        "success_default_chi2_choice_truth_start_by_cell": {
+            f"{row['noise']:g}|{row['n_frames']}": [
+                round(100.0 * row["default"]["success_rate"], 1),
+                round(100.0 * row["default"]["chi2_choice_success_rate"], 1),
+                round(100.0 * row["truth_start"]["success_rate"], 1),
+            ]
+            for row in sections["accuracy"]
+            if row["default"]
+            and row.get("truth_start")
+            and row["default"].get("chi2_choice_success_rate") is not None
+        },
         # ... and of them polished to the very minimum the truth's refinement reaches
         "default_only_failures_same_minimum_by_cell": {
             f"{row['noise']:g}|{row['n_frames']}": row["default"].get(
@@ -616,19 +630,26 @@ def _markdown(cfg: Config, sections: dict[str, Any], command: str, started: str)
             "without the truth would choose the truth's basin (the refinement from the truth "
             "keeps every frame on the truth's pose branch).  'same minimum': both polish to "
             "the same chi2 (to 1e-6), so the answer (the marginal-likelihood estimate) left the "
-            "maximum-likelihood minimum that the truth's refinement finds."
+            "maximum-likelihood minimum that the truth's refinement finds.  'success, chi2 "
+            "choice': every scene scored on the basin that a chi2 minimiser shown both would "
+            "take (the truth's where it fits at least as well, else the default's answer); "
+            "the default's gap to it is a better fit it missed, the rest of the gap to "
+            "refinement from the truth is the truth's pose branches."
         )
         add("")
         add(
             "| noise | frames | scenes diagnosed | default fails, truth start succeeds "
-            "| ... lower chi2 | ... same minimum |"
+            "| ... lower chi2 | ... same minimum | success: default / chi2 choice / truth start |"
         )
-        add("|---|---|---|---|---|---|")
+        add("|---|---|---|---|---|---|---|")
         for row, d in basin_rows:
+            choice = d.get("chi2_choice_success_rate")
+            ts = (row.get("truth_start") or {}).get("success_rate")
             add(
                 f"| {row['noise']:g} | {row['n_frames']} | {d['basin_diagnosed_scenes']} | "
                 f"{d['default_only_failures']} | {d['default_only_failures_lower_chi2']} | "
-                f"{d.get('default_only_failures_same_minimum')} |"
+                f"{d.get('default_only_failures_same_minimum')} | "
+                f"{_pct(d.get('success_rate'))} / {_pct(choice)} / {_pct(ts)} |"
             )
         add("")
     add(

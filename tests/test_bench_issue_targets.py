@@ -59,6 +59,21 @@ def test_accuracy_cells_criterion_counts_only_cells_of_six_frames_or_more():
     assert measured.startswith("2 of 3 cells") and "2 px / 10 frames (5.0 points)" in measured
 
 
+def test_chi2_choice_note_holds_the_default_to_the_lower_chi2_basin():
+    c6 = _cell(1.0, 6, 0.60, 0.85)
+    c6["default"]["chi2_choice_success_rate"] = 0.61  # 1 point: met
+    c10 = _cell(2.0, 10, 0.70, 0.75)
+    c10["default"]["chi2_choice_success_rate"] = 0.73  # 3 points: missed
+    doc = {"accuracy": [c6, c10, _cell(1.0, 4, 0.1, 0.9)]}
+    note = issue_targets.chi2_choice_note(doc)
+    assert "in 1 of 2 cells" in note and "2 px / 10 frames (3.0 points)" in note
+    assert note in issue_targets.markdown(doc)
+    # the issue's own criterion is unchanged by it: both cells miss against the truth start
+    key = next(k for k in _verdicts(doc) if k.startswith("default success within"))
+    assert _verdicts(doc)[key][0].startswith("0 of 2 cells")
+    assert issue_targets.chi2_choice_note({"accuracy": [_cell(1.0, 6, 0.6, 0.8)]}) is None
+
+
 def test_merge_section_rewrites_one_targets_table_and_fences_long_values(tmp_path):
     (tmp_path / "report.json").write_text(json.dumps({"minimal_solve_seconds_median": 0.5}))
     (tmp_path / "REPORT.md").write_text("# report\n\nbody\n")

@@ -172,3 +172,28 @@ def test_default_only_failures_are_classified_by_the_chi2_of_their_basins() -> N
     assert out["default_only_failures_lower_chi2"] == 1
     assert out["default_only_failures_same_minimum"] == 1
     assert out["basin_diagnosed_scenes"] == 5
+    # the chi2 choice scores each scene on the basin that fits at least as well: the truth's in
+    # scenes 2 (missed basin: success) and 5 (same minimum: success), the default's elsewhere
+    # (scene 1: its lower basin fails; scene 3: its lower basin fails; scene 4: it succeeds)
+    assert out["success_rate"] == 1 / 5
+    assert out["chi2_choice_success_rate"] == 3 / 5
+
+
+def test_chi2_choice_takes_the_truths_failure_where_the_truth_fits_better() -> None:
+    """A scene the default gets right in a basin that fits worse than the truth's failing one
+    counts against the chi2 choice: it is a score of basins, not the better of two answers."""
+    from bench.accuracy import summarise_method
+
+    rec = {
+        "crlb_var": [1e-4] * 4,
+        "default": [0.0, math.radians(1.0), 0.0, 0.0],
+        "default_s": 0.1,
+        "default_outliers": 0,
+        "default_chi2": 9.0,
+        "truth_start_chi2": 3.0,
+        "truth_start_diag": [0.0, math.radians(7.0), 0.0, 0.0],
+    }
+    undiagnosed = {**rec, "default_outliers": 2}  # a frame dropped: the default's answer stands
+    out = summarise_method([rec, undiagnosed], "default")
+    assert out["success_rate"] == 1.0
+    assert out["chi2_choice_success_rate"] == 0.5
