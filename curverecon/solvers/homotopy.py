@@ -96,12 +96,20 @@ class HomotopyOptions:
     most 1/2 is still required), not only when an update is below it: 2.1 Newton steps a try
     against 2.6, the same endpoints (Hermite predictor only; RK4 keeps the old test)."""
     estimate_order: float = 2.0
-    """The convergence order that estimate assumes: the update after the next is estimated
-    as |dx_k| (|dx_k| / |dx_(k-1)|)^order.  Newton's method converges quadratically here
-    (|dx_1| is about |dx_0|^2 relative to 1 + |x|: median ratio 1.2, 10 scenes), so 2; 1 (the
-    linear estimate |dx_k|^2 / |dx_(k-1)|) ran a third iteration on 43 % of the accepted steps.
-    2026-11-27, interleaved runs, one core: 6 % less tracking time, the same steps (85 a path)
-    and the same real solutions on seeds 700,000+300 and 1,200,000+300."""
+    """The convergence order that estimate assumes up to ``estimate_order_until``: the update
+    after the next is estimated as |dx_k| (|dx_k| / |dx_(k-1)|)^order.  Newton's method
+    converges quadratically here (|dx_1| is about |dx_0|^2 relative to 1 + |x|: median ratio
+    1.2, 10 scenes), so 2; 1 (the linear estimate |dx_k|^2 / |dx_(k-1)|) ran a third
+    iteration on 43 % of the accepted steps.  2026-11-27, one core, interleaved: 2 against 1
+    on the whole path took 6.7 % less time a minimal solve (median per-scene ratio 0.933,
+    seeds 700,000+300, the same real solutions), but on seed 1,200,055 two paths ended on one
+    of two near-double roots (phi 0.2 degrees, 1e-5 apart) and its twin was lost: hence
+    ``estimate_order_until``."""
+    estimate_order_until: float = 0.9
+    """Beyond this t the estimate is linear (order 1): paths come close to each other only
+    near t = 1, at near-double roots of the real target (seed 1,200,055: with order 2 up to
+    t = 1 a path jumped there; with 0.9 the old solutions, on seeds 700,000, 1,200,000 and
+    1,500,000 +300 each the same real solutions as order 1 throughout)."""
     max_steps: int = 2000
     """Steps per path before it is declared failed (a generic path needs tens)."""
     divergence: float = 1e8
@@ -917,6 +925,7 @@ def _track_core(
     tol_grow = opts[9]
     estimate = opts[10] > 0.0 and n_hermite > 0
     order = opts[11]  # the order the estimate assumes (1: linear, 2: quadratic convergence)
+    quad_until = opts[12]  # ... up to this t (linear beyond: near-double roots at t = 1)
     n_paths, n_var = x_start.shape
     n_par = q0.shape[0]
     q = np.empty(n_par, np.complex128)
@@ -1041,9 +1050,9 @@ def _track_core(
                         break
                     for i in range(n_var):
                         y[i] -= dx[i]
-                    if nd <= tol_corr * scale or (
-                        estimate and it > 0 and nd * (nd / prev) ** order <= tol_corr * scale
-                    ):
+                    if it > 0:  # the update after this one, estimated
+                        nxt = nd * (nd / prev) ** (order if t + h <= quad_until else 1.0)
+                    if nd <= tol_corr * scale or (estimate and it > 0 and nxt <= tol_corr * scale):
                         good = True
                         break
                     prev = nd
@@ -1189,6 +1198,7 @@ def _options_vector(o: HomotopyOptions) -> np.ndarray:
             o.growth_tolerance,
             1.0 if o.corrector_estimate else 0.0,
             o.estimate_order,
+            o.estimate_order_until,
         ]
     )
 
