@@ -81,7 +81,7 @@ def _track_kernels(q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end):
     order: an old cache would read the plan as a column order; dW/dt only from a try's second
     Newton iteration on; the Hermite weights' scratch holds the nodes' reciprocal differences
     too; the generated straight-line ``solve_pair`` in place of the tracker's loop solve, the
-    quadratic corrector estimate and the Hermite table kept between tries)."""
+    quadratic corrector estimate up to t = 0.9 and the Hermite table kept between tries)."""
     k = minimal_unsquared_kernel
     homotopy.track_generated(
         k.coefficients,
