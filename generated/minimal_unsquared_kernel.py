@@ -277,510 +277,434 @@ def coefficients_t(q: np.ndarray, dq: np.ndarray, w: np.ndarray, wt: np.ndarray)
     d_cp3 = dq[9]
     d_dp3 = dq[10]
     d_ep3 = dq[11]
-    _tmp0 = cp0 * cp0 * cp0
-    _tmp1 = dp0 * ep0
-    _tmp2 = 2 * _tmp0 * _tmp1
-    _tmp3 = _tmp2 * (dp0 + ep0)
-    _tmp4 = cp0 * cp0 * cp0 * cp0
-    _tmp5 = dp0 * dp0
-    _tmp6 = ep0 * ep0
-    _tmp7 = _tmp5 * _tmp6
-    _tmp8 = _tmp4 * _tmp7
-    _tmp9 = -_tmp8
-    _tmp10 = cp0 * cp0
-    _tmp11 = 2 * _tmp10
-    _tmp12 = _tmp1 * _tmp11 * (-_tmp10 + dp0 * ep0)
-    _tmp13 = _tmp10 * dp0
-    _tmp14 = _tmp10 * ep0
-    _tmp15 = 2 * cp0
-    _tmp16 = _tmp10 * _tmp5
-    _tmp17 = _tmp10 * _tmp6
-    _tmp18 = 2 * _tmp7
-    _tmp19 = 4 * _tmp1
-    _tmp20 = _tmp10 * _tmp19
-    _tmp21 = _tmp16 + _tmp17 + _tmp20
-    _tmp22 = cp1 * cp1 * cp1
-    _tmp23 = dp1 * ep1
-    _tmp24 = 2 * _tmp22 * _tmp23
-    _tmp25 = _tmp24 * (dp1 + ep1)
-    _tmp26 = cp1 * cp1 * cp1 * cp1
-    _tmp27 = dp1 * dp1
-    _tmp28 = ep1 * ep1
-    _tmp29 = _tmp27 * _tmp28
-    _tmp30 = _tmp26 * _tmp29
-    _tmp31 = -_tmp30
-    _tmp32 = cp1 * cp1
-    _tmp33 = 2 * _tmp32
-    _tmp34 = _tmp23 * _tmp33 * (-_tmp32 + dp1 * ep1)
-    _tmp35 = _tmp32 * dp1
-    _tmp36 = _tmp32 * ep1
-    _tmp37 = 2 * cp1
-    _tmp38 = _tmp27 * _tmp32
-    _tmp39 = _tmp28 * _tmp32
-    _tmp40 = 2 * _tmp29
-    _tmp41 = 4 * _tmp23
-    _tmp42 = _tmp32 * _tmp41
-    _tmp43 = _tmp38 + _tmp39 + _tmp42
-    _tmp44 = cp2 * cp2 * cp2
-    _tmp45 = dp2 * ep2
-    _tmp46 = 2 * _tmp44 * _tmp45
-    _tmp47 = _tmp46 * (dp2 + ep2)
-    _tmp48 = cp2 * cp2 * cp2 * cp2
-    _tmp49 = dp2 * dp2
-    _tmp50 = ep2 * ep2
-    _tmp51 = _tmp49 * _tmp50
-    _tmp52 = _tmp48 * _tmp51
-    _tmp53 = -_tmp52
-    _tmp54 = cp2 * cp2
-    _tmp55 = 2 * _tmp54
-    _tmp56 = _tmp45 * _tmp55 * (-_tmp54 + dp2 * ep2)
-    _tmp57 = _tmp54 * dp2
-    _tmp58 = _tmp54 * ep2
-    _tmp59 = 2 * cp2
-    _tmp60 = _tmp49 * _tmp54
-    _tmp61 = _tmp50 * _tmp54
-    _tmp62 = 2 * _tmp51
-    _tmp63 = 4 * _tmp45
-    _tmp64 = _tmp54 * _tmp63
-    _tmp65 = _tmp60 + _tmp61 + _tmp64
-    _tmp66 = cp3 * cp3 * cp3
-    _tmp67 = dp3 * ep3
-    _tmp68 = 2 * _tmp66 * _tmp67
-    _tmp69 = _tmp68 * (dp3 + ep3)
-    _tmp70 = cp3 * cp3 * cp3 * cp3
-    _tmp71 = dp3 * dp3
-    _tmp72 = ep3 * ep3
-    _tmp73 = _tmp71 * _tmp72
-    _tmp74 = _tmp70 * _tmp73
-    _tmp75 = -_tmp74
-    _tmp76 = cp3 * cp3
-    _tmp77 = 2 * _tmp76
-    _tmp78 = _tmp67 * _tmp77 * (-_tmp76 + dp3 * ep3)
-    _tmp79 = _tmp76 * dp3
-    _tmp80 = _tmp76 * ep3
-    _tmp81 = 2 * cp3
-    _tmp82 = _tmp71 * _tmp76
-    _tmp83 = _tmp72 * _tmp76
-    _tmp84 = 2 * _tmp73
-    _tmp85 = 4 * _tmp67
-    _tmp86 = _tmp76 * _tmp85
-    _tmp87 = _tmp82 + _tmp83 + _tmp86
-    _tmp88 = cp0 * d_dp0
-    _tmp89 = _tmp6 * _tmp88
-    _tmp90 = cp0 * d_ep0
-    _tmp91 = _tmp5 * _tmp90
-    _tmp92 = _tmp6 * dp0
-    _tmp93 = _tmp92 * d_cp0
-    _tmp94 = _tmp5 * ep0
-    _tmp95 = _tmp94 * d_cp0
-    _tmp96 = _tmp1 * _tmp15
-    _tmp97 = _tmp96 * d_dp0 + _tmp96 * d_ep0
-    _tmp98 = _tmp11 * (_tmp89 + _tmp91 + 3 * _tmp93 + 3 * _tmp95 + _tmp97)
-    _tmp99 = 2 * d_cp0
-    _tmp100 = _tmp1 * _tmp99 + _tmp88 * ep0 + _tmp90 * dp0
-    _tmp101 = _tmp100 * _tmp2
-    _tmp102 = -_tmp101
-    _tmp103 = _tmp0 * d_dp0
-    _tmp104 = _tmp103 * ep0
-    _tmp105 = _tmp0 * d_ep0
-    _tmp106 = _tmp105 * dp0
-    _tmp107 = _tmp92 * d_dp0
-    _tmp108 = _tmp94 * d_ep0
-    _tmp109 = -_tmp107 * _tmp15 - _tmp108 * _tmp15 - _tmp18 * d_cp0
-    _tmp110 = _tmp15 * (-_tmp104 - _tmp106 - _tmp109 - _tmp20 * d_cp0)
-    _tmp111 = 3 * d_cp0
-    _tmp112 = _tmp89 + _tmp93
-    _tmp113 = _tmp91 + _tmp95
-    _tmp114 = _tmp0 * _tmp99
-    _tmp115 = cp0 * d_cp0
-    _tmp116 = cp1 * d_dp1
-    _tmp117 = _tmp116 * _tmp28
-    _tmp118 = cp1 * d_ep1
-    _tmp119 = _tmp118 * _tmp27
-    _tmp120 = _tmp28 * dp1
-    _tmp121 = _tmp120 * d_cp1
-    _tmp122 = _tmp27 * ep1
-    _tmp123 = _tmp122 * d_cp1
-    _tmp124 = _tmp23 * _tmp37
-    _tmp125 = _tmp124 * d_dp1 + _tmp124 * d_ep1
-    _tmp126 = _tmp33 * (_tmp117 + _tmp119 + 3 * _tmp121 + 3 * _tmp123 + _tmp125)
-    _tmp127 = 2 * d_cp1
-    _tmp128 = _tmp116 * ep1 + _tmp118 * dp1 + _tmp127 * _tmp23
-    _tmp129 = _tmp128 * _tmp24
-    _tmp130 = -_tmp129
-    _tmp131 = _tmp22 * d_dp1
-    _tmp132 = _tmp131 * ep1
-    _tmp133 = _tmp22 * d_ep1
-    _tmp134 = _tmp133 * dp1
-    _tmp135 = _tmp120 * d_dp1
-    _tmp136 = _tmp122 * d_ep1
-    _tmp137 = -_tmp135 * _tmp37 - _tmp136 * _tmp37 - _tmp40 * d_cp1
-    _tmp138 = _tmp37 * (-_tmp132 - _tmp134 - _tmp137 - _tmp42 * d_cp1)
-    _tmp139 = 3 * d_cp1
-    _tmp140 = _tmp117 + _tmp121
-    _tmp141 = _tmp119 + _tmp123
-    _tmp142 = _tmp127 * _tmp22
-    _tmp143 = cp1 * d_cp1
-    _tmp144 = cp2 * d_dp2
-    _tmp145 = _tmp144 * _tmp50
-    _tmp146 = cp2 * d_ep2
-    _tmp147 = _tmp146 * _tmp49
-    _tmp148 = _tmp50 * dp2
-    _tmp149 = _tmp148 * d_cp2
-    _tmp150 = _tmp49 * ep2
-    _tmp151 = _tmp150 * d_cp2
-    _tmp152 = _tmp45 * _tmp59
-    _tmp153 = _tmp152 * d_dp2 + _tmp152 * d_ep2
-    _tmp154 = _tmp55 * (_tmp145 + _tmp147 + 3 * _tmp149 + 3 * _tmp151 + _tmp153)
-    _tmp155 = 2 * d_cp2
-    _tmp156 = _tmp144 * ep2 + _tmp146 * dp2 + _tmp155 * _tmp45
-    _tmp157 = _tmp156 * _tmp46
-    _tmp158 = -_tmp157
-    _tmp159 = _tmp44 * d_dp2
-    _tmp160 = _tmp159 * ep2
-    _tmp161 = _tmp44 * d_ep2
-    _tmp162 = _tmp161 * dp2
-    _tmp163 = _tmp148 * d_dp2
-    _tmp164 = _tmp150 * d_ep2
-    _tmp165 = -_tmp163 * _tmp59 - _tmp164 * _tmp59 - _tmp62 * d_cp2
-    _tmp166 = _tmp59 * (-_tmp160 - _tmp162 - _tmp165 - _tmp64 * d_cp2)
-    _tmp167 = 3 * d_cp2
-    _tmp168 = _tmp145 + _tmp149
-    _tmp169 = _tmp147 + _tmp151
-    _tmp170 = _tmp155 * _tmp44
-    _tmp171 = cp2 * d_cp2
-    _tmp172 = cp3 * d_dp3
-    _tmp173 = _tmp172 * _tmp72
-    _tmp174 = cp3 * d_ep3
-    _tmp175 = _tmp174 * _tmp71
-    _tmp176 = _tmp72 * dp3
-    _tmp177 = _tmp176 * d_cp3
-    _tmp178 = _tmp71 * ep3
-    _tmp179 = _tmp178 * d_cp3
-    _tmp180 = _tmp67 * _tmp81
-    _tmp181 = _tmp180 * d_dp3 + _tmp180 * d_ep3
-    _tmp182 = _tmp77 * (_tmp173 + _tmp175 + 3 * _tmp177 + 3 * _tmp179 + _tmp181)
-    _tmp183 = 2 * d_cp3
-    _tmp184 = _tmp172 * ep3 + _tmp174 * dp3 + _tmp183 * _tmp67
-    _tmp185 = _tmp184 * _tmp68
-    _tmp186 = -_tmp185
-    _tmp187 = _tmp66 * d_dp3
-    _tmp188 = _tmp187 * ep3
-    _tmp189 = _tmp66 * d_ep3
-    _tmp190 = _tmp189 * dp3
-    _tmp191 = _tmp176 * d_dp3
-    _tmp192 = _tmp178 * d_ep3
-    _tmp193 = -_tmp191 * _tmp81 - _tmp192 * _tmp81 - _tmp84 * d_cp3
-    _tmp194 = _tmp81 * (-_tmp188 - _tmp190 - _tmp193 - _tmp86 * d_cp3)
-    _tmp195 = 3 * d_cp3
-    _tmp196 = _tmp173 + _tmp177
-    _tmp197 = _tmp175 + _tmp179
-    _tmp198 = _tmp183 * _tmp66
-    _tmp199 = cp3 * d_cp3
-    _tmp200 = _tmp15 * d_cp0
-    _tmp201 = _tmp37 * d_cp1
-    _tmp202 = _tmp59 * d_cp2
-    _tmp203 = _tmp81 * d_cp3
-    w[0] = _tmp3
-    w[1] = -2 * _tmp8
-    w[2] = -_tmp3
-    w[3] = _tmp9
-    w[4] = _tmp9
-    w[5] = _tmp9
-    w[6] = _tmp8
-    w[7] = _tmp12
-    w[8] = _tmp15 * (-_tmp13 - _tmp14 + _tmp5 * ep0 + _tmp6 * dp0)
-    w[9] = _tmp16 * (_tmp10 + _tmp6)
-    w[10] = _tmp17 * (_tmp10 + _tmp5)
-    w[11] = _tmp12
-    w[12] = _tmp10 * (-_tmp18 + _tmp21)
-    w[13] = 2 * _tmp10 * dp0 * ep0 - _tmp4 - _tmp7
-    w[14] = -_tmp21 + _tmp4 + _tmp7
-    w[15] = _tmp25
-    w[16] = -2 * _tmp30
-    w[17] = -_tmp25
-    w[18] = _tmp31
-    w[19] = _tmp31
-    w[20] = _tmp31
-    w[21] = _tmp30
-    w[22] = _tmp34
-    w[23] = _tmp37 * (_tmp27 * ep1 + _tmp28 * dp1 - _tmp35 - _tmp36)
-    w[24] = _tmp38 * (_tmp28 + _tmp32)
-    w[25] = _tmp39 * (_tmp27 + _tmp32)
-    w[26] = _tmp34
-    w[27] = _tmp32 * (-_tmp40 + _tmp43)
-    w[28] = -_tmp26 - _tmp29 + 2 * _tmp32 * dp1 * ep1
-    w[29] = _tmp26 + _tmp29 - _tmp43
-    w[30] = _tmp47
-    w[31] = -2 * _tmp52
-    w[32] = -_tmp47
-    w[33] = _tmp53
-    w[34] = _tmp53
-    w[35] = _tmp53
-    w[36] = _tmp52
-    w[37] = _tmp56
-    w[38] = _tmp59 * (_tmp49 * ep2 + _tmp50 * dp2 - _tmp57 - _tmp58)
-    w[39] = _tmp60 * (_tmp50 + _tmp54)
-    w[40] = _tmp61 * (_tmp49 + _tmp54)
-    w[41] = _tmp56
-    w[42] = _tmp54 * (-_tmp62 + _tmp65)
-    w[43] = -_tmp48 - _tmp51 + 2 * _tmp54 * dp2 * ep2
-    w[44] = _tmp48 + _tmp51 - _tmp65
-    w[45] = _tmp69
-    w[46] = -2 * _tmp74
-    w[47] = -_tmp69
-    w[48] = _tmp75
-    w[49] = _tmp75
-    w[50] = _tmp75
-    w[51] = _tmp74
-    w[52] = _tmp78
-    w[53] = _tmp81 * (_tmp71 * ep3 + _tmp72 * dp3 - _tmp79 - _tmp80)
-    w[54] = _tmp82 * (_tmp72 + _tmp76)
-    w[55] = _tmp83 * (_tmp71 + _tmp76)
-    w[56] = _tmp78
-    w[57] = _tmp76 * (-_tmp84 + _tmp87)
-    w[58] = -_tmp70 - _tmp73 + 2 * _tmp76 * dp3 * ep3
-    w[59] = _tmp70 + _tmp73 - _tmp87
+    _tmp0 = dp0 + ep0
+    _tmp1 = cp0 * cp0 * cp0
+    _tmp2 = dp0 * ep0
+    _tmp3 = 2 * _tmp2
+    _tmp4 = _tmp1 * _tmp3
+    _tmp5 = _tmp0 * _tmp4
+    _tmp6 = cp0 * cp0 * cp0 * cp0
+    _tmp7 = dp0 * dp0
+    _tmp8 = ep0 * ep0
+    _tmp9 = _tmp7 * _tmp8
+    _tmp10 = _tmp6 * _tmp9
+    _tmp11 = -_tmp10
+    _tmp12 = cp0 * cp0
+    _tmp13 = -_tmp2
+    _tmp14 = _tmp12 + _tmp13
+    _tmp15 = 2 * _tmp12
+    _tmp16 = -_tmp14 * _tmp15 * _tmp2
+    _tmp17 = _tmp8 * dp0
+    _tmp18 = -_tmp17
+    _tmp19 = _tmp7 * ep0
+    _tmp20 = -_tmp19
+    _tmp21 = 2 * cp0
+    _tmp22 = _tmp12 + _tmp8
+    _tmp23 = _tmp12 * _tmp7
+    _tmp24 = _tmp12 + _tmp7
+    _tmp25 = _tmp12 * _tmp8
+    _tmp26 = 4 * _tmp2
+    _tmp27 = _tmp12 * _tmp26 + _tmp23 + _tmp25
+    _tmp28 = -_tmp9
+    _tmp29 = dp1 + ep1
+    _tmp30 = cp1 * cp1 * cp1
+    _tmp31 = dp1 * ep1
+    _tmp32 = 2 * _tmp31
+    _tmp33 = _tmp30 * _tmp32
+    _tmp34 = _tmp29 * _tmp33
+    _tmp35 = cp1 * cp1 * cp1 * cp1
+    _tmp36 = dp1 * dp1
+    _tmp37 = ep1 * ep1
+    _tmp38 = _tmp36 * _tmp37
+    _tmp39 = _tmp35 * _tmp38
+    _tmp40 = -_tmp39
+    _tmp41 = cp1 * cp1
+    _tmp42 = -_tmp31
+    _tmp43 = _tmp41 + _tmp42
+    _tmp44 = 2 * _tmp41
+    _tmp45 = -_tmp31 * _tmp43 * _tmp44
+    _tmp46 = _tmp37 * dp1
+    _tmp47 = -_tmp46
+    _tmp48 = _tmp36 * ep1
+    _tmp49 = -_tmp48
+    _tmp50 = 2 * cp1
+    _tmp51 = _tmp37 + _tmp41
+    _tmp52 = _tmp36 * _tmp41
+    _tmp53 = _tmp36 + _tmp41
+    _tmp54 = _tmp37 * _tmp41
+    _tmp55 = 4 * _tmp31
+    _tmp56 = _tmp41 * _tmp55 + _tmp52 + _tmp54
+    _tmp57 = -_tmp38
+    _tmp58 = dp2 + ep2
+    _tmp59 = cp2 * cp2 * cp2
+    _tmp60 = dp2 * ep2
+    _tmp61 = 2 * _tmp60
+    _tmp62 = _tmp59 * _tmp61
+    _tmp63 = _tmp58 * _tmp62
+    _tmp64 = cp2 * cp2 * cp2 * cp2
+    _tmp65 = dp2 * dp2
+    _tmp66 = ep2 * ep2
+    _tmp67 = _tmp65 * _tmp66
+    _tmp68 = _tmp64 * _tmp67
+    _tmp69 = -_tmp68
+    _tmp70 = cp2 * cp2
+    _tmp71 = -_tmp60
+    _tmp72 = _tmp70 + _tmp71
+    _tmp73 = 2 * _tmp70
+    _tmp74 = -_tmp60 * _tmp72 * _tmp73
+    _tmp75 = _tmp66 * dp2
+    _tmp76 = -_tmp75
+    _tmp77 = _tmp65 * ep2
+    _tmp78 = -_tmp77
+    _tmp79 = 2 * cp2
+    _tmp80 = _tmp66 + _tmp70
+    _tmp81 = _tmp65 * _tmp70
+    _tmp82 = _tmp65 + _tmp70
+    _tmp83 = _tmp66 * _tmp70
+    _tmp84 = 4 * _tmp60
+    _tmp85 = _tmp70 * _tmp84 + _tmp81 + _tmp83
+    _tmp86 = -_tmp67
+    _tmp87 = dp3 + ep3
+    _tmp88 = cp3 * cp3 * cp3
+    _tmp89 = dp3 * ep3
+    _tmp90 = 2 * _tmp89
+    _tmp91 = _tmp88 * _tmp90
+    _tmp92 = _tmp87 * _tmp91
+    _tmp93 = cp3 * cp3 * cp3 * cp3
+    _tmp94 = dp3 * dp3
+    _tmp95 = ep3 * ep3
+    _tmp96 = _tmp94 * _tmp95
+    _tmp97 = _tmp93 * _tmp96
+    _tmp98 = -_tmp97
+    _tmp99 = cp3 * cp3
+    _tmp100 = -_tmp89
+    _tmp101 = _tmp100 + _tmp99
+    _tmp102 = 2 * _tmp99
+    _tmp103 = -_tmp101 * _tmp102 * _tmp89
+    _tmp104 = _tmp95 * dp3
+    _tmp105 = -_tmp104
+    _tmp106 = _tmp94 * ep3
+    _tmp107 = -_tmp106
+    _tmp108 = 2 * cp3
+    _tmp109 = _tmp95 + _tmp99
+    _tmp110 = _tmp94 * _tmp99
+    _tmp111 = _tmp94 + _tmp99
+    _tmp112 = _tmp95 * _tmp99
+    _tmp113 = 4 * _tmp89
+    _tmp114 = _tmp110 + _tmp112 + _tmp113 * _tmp99
+    _tmp115 = -_tmp96
+    _tmp116 = -_tmp12
+    _tmp117 = -_tmp41
+    _tmp118 = -_tmp70
+    _tmp119 = -_tmp99
+    _tmp120 = _tmp0 * d_cp0
+    _tmp121 = 2 * dp0
+    _tmp122 = _tmp121 + ep0
+    _tmp123 = d_dp0 * ep0
+    _tmp124 = _tmp123 * cp0
+    _tmp125 = 2 * ep0
+    _tmp126 = _tmp125 + dp0
+    _tmp127 = _tmp126 * dp0
+    _tmp128 = cp0 * d_ep0
+    _tmp129 = _tmp15 * (3 * _tmp120 * _tmp2 + _tmp122 * _tmp124 + _tmp127 * _tmp128)
+    _tmp130 = d_ep0 * dp0
+    _tmp131 = _tmp130 * cp0
+    _tmp132 = _tmp3 * d_cp0
+    _tmp133 = _tmp124 + _tmp131 + _tmp132
+    _tmp134 = _tmp133 * _tmp4
+    _tmp135 = -_tmp134
+    _tmp136 = _tmp12 - _tmp3
+    _tmp137 = -_tmp21 * (_tmp124 * _tmp136 + _tmp131 * _tmp136 + _tmp132 * (_tmp13 + _tmp15))
+    _tmp138 = cp0 * d_dp0
+    _tmp139 = _tmp12 * _tmp126
+    _tmp140 = _tmp12 * _tmp122
+    _tmp141 = _tmp8 + dp0 * (dp0 + 4 * ep0)
+    _tmp142 = _tmp21 * d_cp0
+    _tmp143 = -_tmp142
+    _tmp144 = _tmp29 * d_cp1
+    _tmp145 = 2 * dp1
+    _tmp146 = _tmp145 + ep1
+    _tmp147 = d_dp1 * ep1
+    _tmp148 = _tmp147 * cp1
+    _tmp149 = 2 * ep1
+    _tmp150 = _tmp149 + dp1
+    _tmp151 = _tmp150 * dp1
+    _tmp152 = cp1 * d_ep1
+    _tmp153 = _tmp44 * (3 * _tmp144 * _tmp31 + _tmp146 * _tmp148 + _tmp151 * _tmp152)
+    _tmp154 = d_ep1 * dp1
+    _tmp155 = _tmp154 * cp1
+    _tmp156 = _tmp32 * d_cp1
+    _tmp157 = _tmp148 + _tmp155 + _tmp156
+    _tmp158 = _tmp157 * _tmp33
+    _tmp159 = -_tmp158
+    _tmp160 = -_tmp32 + _tmp41
+    _tmp161 = -_tmp50 * (_tmp148 * _tmp160 + _tmp155 * _tmp160 + _tmp156 * (_tmp42 + _tmp44))
+    _tmp162 = cp1 * d_dp1
+    _tmp163 = _tmp150 * _tmp41
+    _tmp164 = _tmp146 * _tmp41
+    _tmp165 = _tmp37 + dp1 * (dp1 + 4 * ep1)
+    _tmp166 = _tmp50 * d_cp1
+    _tmp167 = -_tmp166
+    _tmp168 = _tmp58 * d_cp2
+    _tmp169 = 2 * dp2
+    _tmp170 = _tmp169 + ep2
+    _tmp171 = d_dp2 * ep2
+    _tmp172 = _tmp171 * cp2
+    _tmp173 = 2 * ep2
+    _tmp174 = _tmp173 + dp2
+    _tmp175 = _tmp174 * dp2
+    _tmp176 = cp2 * d_ep2
+    _tmp177 = _tmp73 * (3 * _tmp168 * _tmp60 + _tmp170 * _tmp172 + _tmp175 * _tmp176)
+    _tmp178 = d_ep2 * dp2
+    _tmp179 = _tmp178 * cp2
+    _tmp180 = _tmp61 * d_cp2
+    _tmp181 = _tmp172 + _tmp179 + _tmp180
+    _tmp182 = _tmp181 * _tmp62
+    _tmp183 = -_tmp182
+    _tmp184 = -_tmp61 + _tmp70
+    _tmp185 = -_tmp79 * (_tmp172 * _tmp184 + _tmp179 * _tmp184 + _tmp180 * (_tmp71 + _tmp73))
+    _tmp186 = cp2 * d_dp2
+    _tmp187 = _tmp174 * _tmp70
+    _tmp188 = _tmp170 * _tmp70
+    _tmp189 = _tmp66 + dp2 * (dp2 + 4 * ep2)
+    _tmp190 = _tmp79 * d_cp2
+    _tmp191 = -_tmp190
+    _tmp192 = _tmp87 * d_cp3
+    _tmp193 = 2 * dp3
+    _tmp194 = _tmp193 + ep3
+    _tmp195 = d_dp3 * ep3
+    _tmp196 = _tmp195 * cp3
+    _tmp197 = 2 * ep3
+    _tmp198 = _tmp197 + dp3
+    _tmp199 = _tmp198 * dp3
+    _tmp200 = cp3 * d_ep3
+    _tmp201 = _tmp102 * (3 * _tmp192 * _tmp89 + _tmp194 * _tmp196 + _tmp199 * _tmp200)
+    _tmp202 = d_ep3 * dp3
+    _tmp203 = _tmp202 * cp3
+    _tmp204 = _tmp90 * d_cp3
+    _tmp205 = _tmp196 + _tmp203 + _tmp204
+    _tmp206 = _tmp205 * _tmp91
+    _tmp207 = -_tmp206
+    _tmp208 = -_tmp90 + _tmp99
+    _tmp209 = -_tmp108 * (_tmp196 * _tmp208 + _tmp203 * _tmp208 + _tmp204 * (_tmp100 + _tmp102))
+    _tmp210 = cp3 * d_dp3
+    _tmp211 = _tmp198 * _tmp99
+    _tmp212 = _tmp194 * _tmp99
+    _tmp213 = _tmp95 + dp3 * (dp3 + 4 * ep3)
+    _tmp214 = _tmp108 * d_cp3
+    _tmp215 = -_tmp214
+    w[0] = _tmp5
+    w[1] = -2 * _tmp10
+    w[2] = -_tmp5
+    w[3] = _tmp11
+    w[4] = _tmp11
+    w[5] = _tmp11
+    w[6] = _tmp10
+    w[7] = _tmp16
+    w[8] = _tmp21 * (-_tmp12 * dp0 - _tmp12 * ep0 - _tmp18 - _tmp20)
+    w[9] = _tmp22 * _tmp23
+    w[10] = _tmp24 * _tmp25
+    w[11] = _tmp16
+    w[12] = _tmp12 * (_tmp27 - 2 * _tmp9)
+    w[13] = 2 * _tmp12 * dp0 * ep0 - _tmp6 - _tmp9
+    w[14] = -_tmp27 - _tmp28 + _tmp6
+    w[15] = _tmp34
+    w[16] = -2 * _tmp39
+    w[17] = -_tmp34
+    w[18] = _tmp40
+    w[19] = _tmp40
+    w[20] = _tmp40
+    w[21] = _tmp39
+    w[22] = _tmp45
+    w[23] = _tmp50 * (-_tmp41 * dp1 - _tmp41 * ep1 - _tmp47 - _tmp49)
+    w[24] = _tmp51 * _tmp52
+    w[25] = _tmp53 * _tmp54
+    w[26] = _tmp45
+    w[27] = _tmp41 * (-2 * _tmp38 + _tmp56)
+    w[28] = -_tmp35 - _tmp38 + 2 * _tmp41 * dp1 * ep1
+    w[29] = _tmp35 - _tmp56 - _tmp57
+    w[30] = _tmp63
+    w[31] = -2 * _tmp68
+    w[32] = -_tmp63
+    w[33] = _tmp69
+    w[34] = _tmp69
+    w[35] = _tmp69
+    w[36] = _tmp68
+    w[37] = _tmp74
+    w[38] = _tmp79 * (-_tmp70 * dp2 - _tmp70 * ep2 - _tmp76 - _tmp78)
+    w[39] = _tmp80 * _tmp81
+    w[40] = _tmp82 * _tmp83
+    w[41] = _tmp74
+    w[42] = _tmp70 * (-2 * _tmp67 + _tmp85)
+    w[43] = -_tmp64 - _tmp67 + 2 * _tmp70 * dp2 * ep2
+    w[44] = _tmp64 - _tmp85 - _tmp86
+    w[45] = _tmp92
+    w[46] = -2 * _tmp97
+    w[47] = -_tmp92
+    w[48] = _tmp98
+    w[49] = _tmp98
+    w[50] = _tmp98
+    w[51] = _tmp97
+    w[52] = _tmp103
+    w[53] = _tmp108 * (-_tmp105 - _tmp107 - _tmp99 * dp3 - _tmp99 * ep3)
+    w[54] = _tmp109 * _tmp110
+    w[55] = _tmp111 * _tmp112
+    w[56] = _tmp103
+    w[57] = _tmp99 * (_tmp114 - 2 * _tmp96)
+    w[58] = -_tmp93 - _tmp96 + 2 * _tmp99 * dp3 * ep3
+    w[59] = -_tmp114 - _tmp115 + _tmp93
     w[60] = 1
-    w[61] = _tmp10
-    w[62] = -_tmp10
+    w[61] = _tmp12
+    w[62] = _tmp116
     w[63] = -1
     w[64] = 1
     w[65] = 1
-    w[66] = _tmp32
-    w[67] = -_tmp32
+    w[66] = _tmp41
+    w[67] = _tmp117
     w[68] = -1
     w[69] = 1
     w[70] = 1
-    w[71] = _tmp54
-    w[72] = -_tmp54
+    w[71] = _tmp70
+    w[72] = _tmp118
     w[73] = -1
     w[74] = 1
     w[75] = 1
-    w[76] = _tmp76
-    w[77] = -_tmp76
+    w[76] = _tmp99
+    w[77] = _tmp119
     w[78] = -1
     w[79] = 1
     w[80] = 1
     w[81] = -1
-    wt[0] = _tmp98
-    wt[1] = -_tmp0 * _tmp100 * _tmp19
-    wt[2] = -_tmp98
-    wt[3] = _tmp102
-    wt[4] = _tmp102
-    wt[5] = _tmp102
-    wt[6] = _tmp101
-    wt[7] = _tmp110
+    wt[0] = _tmp129
+    wt[1] = -_tmp1 * _tmp133 * _tmp26
+    wt[2] = -_tmp129
+    wt[3] = _tmp135
+    wt[4] = _tmp135
+    wt[5] = _tmp135
+    wt[6] = _tmp134
+    wt[7] = _tmp137
     wt[8] = (
-        -2 * _tmp103
-        - 2 * _tmp105
-        - 2 * _tmp111 * _tmp13
-        - 2 * _tmp111 * _tmp14
-        + 2 * _tmp112
-        + 2 * _tmp113
-        + 2 * _tmp97
+        -2 * _tmp120 * (3 * _tmp12 + _tmp13)
+        - 2 * _tmp128 * (_tmp12 - _tmp127)
+        + 2 * cp0 * d_dp0 * (_tmp116 + _tmp3 + _tmp8)
     )
-    wt[9] = _tmp15 * dp0 * (_tmp1 * _tmp90 + _tmp103 + _tmp112 + _tmp13 * _tmp99)
-    wt[10] = _tmp15 * ep0 * (_tmp1 * _tmp88 + _tmp105 + _tmp113 + _tmp14 * _tmp99)
-    wt[11] = _tmp110
-    wt[12] = _tmp15 * (
-        8 * _tmp1 * _tmp10 * d_cp0
-        + _tmp103 * dp0
-        + 2 * _tmp104
-        + _tmp105 * ep0
-        + 2 * _tmp106
-        + _tmp109
-        + _tmp16 * _tmp99
-        + _tmp17 * _tmp99
+    wt[9] = _tmp121 * cp0 * (_tmp128 * _tmp2 + _tmp138 * _tmp22 + d_cp0 * dp0 * (_tmp15 + _tmp8))
+    wt[10] = _tmp125 * cp0 * (_tmp128 * _tmp24 + _tmp138 * _tmp2 + d_cp0 * ep0 * (_tmp15 + _tmp7))
+    wt[11] = _tmp137
+    wt[12] = _tmp21 * (
+        _tmp128 * (_tmp140 - 2 * _tmp19)
+        + _tmp138 * (_tmp139 - 2 * _tmp17)
+        + 2 * d_cp0 * (_tmp12 * _tmp141 + _tmp28)
     )
-    wt[13] = (
-        2 * _tmp10 * d_dp0 * ep0
-        + 2 * _tmp10 * d_ep0 * dp0
-        - 2 * _tmp107
-        - 2 * _tmp108
-        - 2 * _tmp114
-        + 4 * cp0 * d_cp0 * dp0 * ep0
-    )
+    wt[13] = 2 * _tmp14 * (_tmp123 + _tmp130 + _tmp143)
     wt[14] = (
-        2 * _tmp107
-        + 2 * _tmp108
-        + 2 * _tmp114
-        - 2 * _tmp115 * _tmp19
-        - 2 * _tmp115 * _tmp5
-        - 2 * _tmp115 * _tmp6
-        - 2 * _tmp13 * d_dp0
-        - 4 * _tmp13 * d_ep0
-        - 4 * _tmp14 * d_dp0
-        - 2 * _tmp14 * d_ep0
+        -2 * cp0 * d_cp0 * (_tmp141 - _tmp15)
+        - 2 * d_dp0 * (_tmp139 + _tmp18)
+        - 2 * d_ep0 * (_tmp140 + _tmp20)
     )
-    wt[15] = _tmp126
-    wt[16] = -_tmp128 * _tmp22 * _tmp41
-    wt[17] = -_tmp126
-    wt[18] = _tmp130
-    wt[19] = _tmp130
-    wt[20] = _tmp130
-    wt[21] = _tmp129
-    wt[22] = _tmp138
+    wt[15] = _tmp153
+    wt[16] = -_tmp157 * _tmp30 * _tmp55
+    wt[17] = -_tmp153
+    wt[18] = _tmp159
+    wt[19] = _tmp159
+    wt[20] = _tmp159
+    wt[21] = _tmp158
+    wt[22] = _tmp161
     wt[23] = (
-        2 * _tmp125
-        - 2 * _tmp131
-        - 2 * _tmp133
-        - 2 * _tmp139 * _tmp35
-        - 2 * _tmp139 * _tmp36
-        + 2 * _tmp140
-        + 2 * _tmp141
+        -2 * _tmp144 * (3 * _tmp41 + _tmp42)
+        - 2 * _tmp152 * (-_tmp151 + _tmp41)
+        + 2 * cp1 * d_dp1 * (_tmp117 + _tmp32 + _tmp37)
     )
-    wt[24] = _tmp37 * dp1 * (_tmp118 * _tmp23 + _tmp127 * _tmp35 + _tmp131 + _tmp140)
-    wt[25] = _tmp37 * ep1 * (_tmp116 * _tmp23 + _tmp127 * _tmp36 + _tmp133 + _tmp141)
-    wt[26] = _tmp138
-    wt[27] = _tmp37 * (
-        _tmp127 * _tmp38
-        + _tmp127 * _tmp39
-        + _tmp131 * dp1
-        + 2 * _tmp132
-        + _tmp133 * ep1
-        + 2 * _tmp134
-        + _tmp137
-        + 8 * _tmp23 * _tmp32 * d_cp1
+    wt[24] = _tmp145 * cp1 * (_tmp152 * _tmp31 + _tmp162 * _tmp51 + d_cp1 * dp1 * (_tmp37 + _tmp44))
+    wt[25] = _tmp149 * cp1 * (_tmp152 * _tmp53 + _tmp162 * _tmp31 + d_cp1 * ep1 * (_tmp36 + _tmp44))
+    wt[26] = _tmp161
+    wt[27] = _tmp50 * (
+        _tmp152 * (_tmp164 - 2 * _tmp48)
+        + _tmp162 * (_tmp163 - 2 * _tmp46)
+        + 2 * d_cp1 * (_tmp165 * _tmp41 + _tmp57)
     )
-    wt[28] = (
-        -2 * _tmp135
-        - 2 * _tmp136
-        - 2 * _tmp142
-        + 2 * _tmp32 * d_dp1 * ep1
-        + 2 * _tmp32 * d_ep1 * dp1
-        + 4 * cp1 * d_cp1 * dp1 * ep1
-    )
+    wt[28] = 2 * _tmp43 * (_tmp147 + _tmp154 + _tmp167)
     wt[29] = (
-        2 * _tmp135
-        + 2 * _tmp136
-        + 2 * _tmp142
-        - 2 * _tmp143 * _tmp27
-        - 2 * _tmp143 * _tmp28
-        - 2 * _tmp143 * _tmp41
-        - 2 * _tmp35 * d_dp1
-        - 4 * _tmp35 * d_ep1
-        - 4 * _tmp36 * d_dp1
-        - 2 * _tmp36 * d_ep1
+        -2 * cp1 * d_cp1 * (_tmp165 - _tmp44)
+        - 2 * d_dp1 * (_tmp163 + _tmp47)
+        - 2 * d_ep1 * (_tmp164 + _tmp49)
     )
-    wt[30] = _tmp154
-    wt[31] = -_tmp156 * _tmp44 * _tmp63
-    wt[32] = -_tmp154
-    wt[33] = _tmp158
-    wt[34] = _tmp158
-    wt[35] = _tmp158
-    wt[36] = _tmp157
-    wt[37] = _tmp166
+    wt[30] = _tmp177
+    wt[31] = -_tmp181 * _tmp59 * _tmp84
+    wt[32] = -_tmp177
+    wt[33] = _tmp183
+    wt[34] = _tmp183
+    wt[35] = _tmp183
+    wt[36] = _tmp182
+    wt[37] = _tmp185
     wt[38] = (
-        2 * _tmp153
-        - 2 * _tmp159
-        - 2 * _tmp161
-        - 2 * _tmp167 * _tmp57
-        - 2 * _tmp167 * _tmp58
-        + 2 * _tmp168
-        + 2 * _tmp169
+        -2 * _tmp168 * (3 * _tmp70 + _tmp71)
+        - 2 * _tmp176 * (-_tmp175 + _tmp70)
+        + 2 * cp2 * d_dp2 * (_tmp118 + _tmp61 + _tmp66)
     )
-    wt[39] = _tmp59 * dp2 * (_tmp146 * _tmp45 + _tmp155 * _tmp57 + _tmp159 + _tmp168)
-    wt[40] = _tmp59 * ep2 * (_tmp144 * _tmp45 + _tmp155 * _tmp58 + _tmp161 + _tmp169)
-    wt[41] = _tmp166
-    wt[42] = _tmp59 * (
-        _tmp155 * _tmp60
-        + _tmp155 * _tmp61
-        + _tmp159 * dp2
-        + 2 * _tmp160
-        + _tmp161 * ep2
-        + 2 * _tmp162
-        + _tmp165
-        + 8 * _tmp45 * _tmp54 * d_cp2
+    wt[39] = _tmp169 * cp2 * (_tmp176 * _tmp60 + _tmp186 * _tmp80 + d_cp2 * dp2 * (_tmp66 + _tmp73))
+    wt[40] = _tmp173 * cp2 * (_tmp176 * _tmp82 + _tmp186 * _tmp60 + d_cp2 * ep2 * (_tmp65 + _tmp73))
+    wt[41] = _tmp185
+    wt[42] = _tmp79 * (
+        _tmp176 * (_tmp188 - 2 * _tmp77)
+        + _tmp186 * (_tmp187 - 2 * _tmp75)
+        + 2 * d_cp2 * (_tmp189 * _tmp70 + _tmp86)
     )
-    wt[43] = (
-        -2 * _tmp163
-        - 2 * _tmp164
-        - 2 * _tmp170
-        + 2 * _tmp54 * d_dp2 * ep2
-        + 2 * _tmp54 * d_ep2 * dp2
-        + 4 * cp2 * d_cp2 * dp2 * ep2
-    )
+    wt[43] = 2 * _tmp72 * (_tmp171 + _tmp178 + _tmp191)
     wt[44] = (
-        2 * _tmp163
-        + 2 * _tmp164
-        + 2 * _tmp170
-        - 2 * _tmp171 * _tmp49
-        - 2 * _tmp171 * _tmp50
-        - 2 * _tmp171 * _tmp63
-        - 2 * _tmp57 * d_dp2
-        - 4 * _tmp57 * d_ep2
-        - 4 * _tmp58 * d_dp2
-        - 2 * _tmp58 * d_ep2
+        -2 * cp2 * d_cp2 * (_tmp189 - _tmp73)
+        - 2 * d_dp2 * (_tmp187 + _tmp76)
+        - 2 * d_ep2 * (_tmp188 + _tmp78)
     )
-    wt[45] = _tmp182
-    wt[46] = -_tmp184 * _tmp66 * _tmp85
-    wt[47] = -_tmp182
-    wt[48] = _tmp186
-    wt[49] = _tmp186
-    wt[50] = _tmp186
-    wt[51] = _tmp185
-    wt[52] = _tmp194
+    wt[45] = _tmp201
+    wt[46] = -_tmp113 * _tmp205 * _tmp88
+    wt[47] = -_tmp201
+    wt[48] = _tmp207
+    wt[49] = _tmp207
+    wt[50] = _tmp207
+    wt[51] = _tmp206
+    wt[52] = _tmp209
     wt[53] = (
-        2 * _tmp181
-        - 2 * _tmp187
-        - 2 * _tmp189
-        - 2 * _tmp195 * _tmp79
-        - 2 * _tmp195 * _tmp80
-        + 2 * _tmp196
-        + 2 * _tmp197
+        -2 * _tmp192 * (_tmp100 + 3 * _tmp99)
+        - 2 * _tmp200 * (-_tmp199 + _tmp99)
+        + 2 * cp3 * d_dp3 * (_tmp119 + _tmp90 + _tmp95)
     )
-    wt[54] = _tmp81 * dp3 * (_tmp174 * _tmp67 + _tmp183 * _tmp79 + _tmp187 + _tmp196)
-    wt[55] = _tmp81 * ep3 * (_tmp172 * _tmp67 + _tmp183 * _tmp80 + _tmp189 + _tmp197)
-    wt[56] = _tmp194
-    wt[57] = _tmp81 * (
-        _tmp183 * _tmp82
-        + _tmp183 * _tmp83
-        + _tmp187 * dp3
-        + 2 * _tmp188
-        + _tmp189 * ep3
-        + 2 * _tmp190
-        + _tmp193
-        + 8 * _tmp67 * _tmp76 * d_cp3
+    wt[54] = (
+        _tmp193 * cp3 * (_tmp109 * _tmp210 + _tmp200 * _tmp89 + d_cp3 * dp3 * (_tmp102 + _tmp95))
     )
-    wt[58] = (
-        -2 * _tmp191
-        - 2 * _tmp192
-        - 2 * _tmp198
-        + 2 * _tmp76 * d_dp3 * ep3
-        + 2 * _tmp76 * d_ep3 * dp3
-        + 4 * cp3 * d_cp3 * dp3 * ep3
+    wt[55] = (
+        _tmp197 * cp3 * (_tmp111 * _tmp200 + _tmp210 * _tmp89 + d_cp3 * ep3 * (_tmp102 + _tmp94))
     )
+    wt[56] = _tmp209
+    wt[57] = _tmp108 * (
+        _tmp200 * (-2 * _tmp106 + _tmp212)
+        + _tmp210 * (-2 * _tmp104 + _tmp211)
+        + 2 * d_cp3 * (_tmp115 + _tmp213 * _tmp99)
+    )
+    wt[58] = 2 * _tmp101 * (_tmp195 + _tmp202 + _tmp215)
     wt[59] = (
-        2 * _tmp191
-        + 2 * _tmp192
-        + 2 * _tmp198
-        - 2 * _tmp199 * _tmp71
-        - 2 * _tmp199 * _tmp72
-        - 2 * _tmp199 * _tmp85
-        - 2 * _tmp79 * d_dp3
-        - 4 * _tmp79 * d_ep3
-        - 4 * _tmp80 * d_dp3
-        - 2 * _tmp80 * d_ep3
+        -2 * cp3 * d_cp3 * (-_tmp102 + _tmp213)
+        - 2 * d_dp3 * (_tmp105 + _tmp211)
+        - 2 * d_ep3 * (_tmp107 + _tmp212)
     )
     wt[60] = 0.0
-    wt[61] = _tmp200
-    wt[62] = -_tmp200
+    wt[61] = _tmp142
+    wt[62] = _tmp143
     wt[63] = 0.0
     wt[64] = 0.0
     wt[65] = 0.0
-    wt[66] = _tmp201
-    wt[67] = -_tmp201
+    wt[66] = _tmp166
+    wt[67] = _tmp167
     wt[68] = 0.0
     wt[69] = 0.0
     wt[70] = 0.0
-    wt[71] = _tmp202
-    wt[72] = -_tmp202
+    wt[71] = _tmp190
+    wt[72] = _tmp191
     wt[73] = 0.0
     wt[74] = 0.0
     wt[75] = 0.0
-    wt[76] = _tmp203
-    wt[77] = -_tmp203
+    wt[76] = _tmp214
+    wt[77] = _tmp215
     wt[78] = 0.0
     wt[79] = 0.0
     wt[80] = 0.0
@@ -818,400 +742,288 @@ def coefficient_rates(q: np.ndarray, dq: np.ndarray, wt: np.ndarray) -> None:
     d_cp3 = dq[9]
     d_dp3 = dq[10]
     d_ep3 = dq[11]
-    _tmp0 = ep0 * ep0
-    _tmp1 = cp0 * d_dp0
-    _tmp2 = _tmp0 * _tmp1
-    _tmp3 = dp0 * dp0
-    _tmp4 = cp0 * d_ep0
-    _tmp5 = _tmp3 * _tmp4
-    _tmp6 = _tmp0 * dp0
-    _tmp7 = _tmp6 * d_cp0
-    _tmp8 = _tmp3 * ep0
-    _tmp9 = _tmp8 * d_cp0
-    _tmp10 = _tmp1 * ep0
-    _tmp11 = _tmp10 * dp0
-    _tmp12 = _tmp4 * dp0
-    _tmp13 = _tmp12 * ep0
-    _tmp14 = 2 * _tmp11 + 2 * _tmp13
-    _tmp15 = cp0 * cp0
-    _tmp16 = 2 * _tmp15
-    _tmp17 = _tmp16 * (_tmp14 + _tmp2 + _tmp5 + 3 * _tmp7 + 3 * _tmp9)
-    _tmp18 = dp0 * ep0
-    _tmp19 = 4 * _tmp18
-    _tmp20 = cp0 * cp0 * cp0
-    _tmp21 = 2 * d_cp0
-    _tmp22 = _tmp20 * (_tmp10 + _tmp12 + _tmp18 * _tmp21)
-    _tmp23 = 2 * _tmp18 * _tmp22
-    _tmp24 = -_tmp23
-    _tmp25 = _tmp20 * d_dp0
-    _tmp26 = _tmp25 * ep0
-    _tmp27 = _tmp20 * d_ep0
-    _tmp28 = _tmp27 * dp0
-    _tmp29 = _tmp15 * d_cp0
-    _tmp30 = -_tmp0 * _tmp21 * _tmp3 - 2 * _tmp2 * dp0 - 2 * _tmp5 * ep0
-    _tmp31 = 2 * cp0
-    _tmp32 = _tmp31 * (-_tmp19 * _tmp29 - _tmp26 - _tmp28 - _tmp30)
-    _tmp33 = d_cp0 * dp0
-    _tmp34 = 3 * _tmp15
-    _tmp35 = d_cp0 * ep0
-    _tmp36 = _tmp2 + _tmp7
-    _tmp37 = _tmp5 + _tmp9
-    _tmp38 = _tmp16 * d_cp0
-    _tmp39 = _tmp20 * _tmp21
-    _tmp40 = _tmp6 * d_dp0
-    _tmp41 = _tmp8 * d_ep0
-    _tmp42 = cp0 * d_cp0
-    _tmp43 = ep1 * ep1
-    _tmp44 = cp1 * d_dp1
-    _tmp45 = _tmp43 * _tmp44
-    _tmp46 = dp1 * dp1
-    _tmp47 = cp1 * d_ep1
-    _tmp48 = _tmp46 * _tmp47
-    _tmp49 = _tmp43 * dp1
-    _tmp50 = _tmp49 * d_cp1
-    _tmp51 = _tmp46 * ep1
-    _tmp52 = _tmp51 * d_cp1
-    _tmp53 = _tmp44 * ep1
-    _tmp54 = _tmp53 * dp1
-    _tmp55 = _tmp47 * dp1
-    _tmp56 = _tmp55 * ep1
-    _tmp57 = 2 * _tmp54 + 2 * _tmp56
-    _tmp58 = cp1 * cp1
-    _tmp59 = 2 * _tmp58
-    _tmp60 = _tmp59 * (_tmp45 + _tmp48 + 3 * _tmp50 + 3 * _tmp52 + _tmp57)
-    _tmp61 = dp1 * ep1
-    _tmp62 = 4 * _tmp61
-    _tmp63 = cp1 * cp1 * cp1
-    _tmp64 = 2 * d_cp1
-    _tmp65 = _tmp63 * (_tmp53 + _tmp55 + _tmp61 * _tmp64)
-    _tmp66 = 2 * _tmp61 * _tmp65
-    _tmp67 = -_tmp66
-    _tmp68 = _tmp63 * d_dp1
-    _tmp69 = _tmp68 * ep1
-    _tmp70 = _tmp63 * d_ep1
-    _tmp71 = _tmp70 * dp1
-    _tmp72 = _tmp58 * d_cp1
-    _tmp73 = -_tmp43 * _tmp46 * _tmp64 - 2 * _tmp45 * dp1 - 2 * _tmp48 * ep1
-    _tmp74 = 2 * cp1
-    _tmp75 = _tmp74 * (-_tmp62 * _tmp72 - _tmp69 - _tmp71 - _tmp73)
-    _tmp76 = d_cp1 * dp1
-    _tmp77 = 3 * _tmp58
-    _tmp78 = d_cp1 * ep1
-    _tmp79 = _tmp45 + _tmp50
-    _tmp80 = _tmp48 + _tmp52
-    _tmp81 = _tmp59 * d_cp1
-    _tmp82 = _tmp63 * _tmp64
-    _tmp83 = _tmp49 * d_dp1
-    _tmp84 = _tmp51 * d_ep1
-    _tmp85 = cp1 * d_cp1
-    _tmp86 = ep2 * ep2
-    _tmp87 = cp2 * d_dp2
-    _tmp88 = _tmp86 * _tmp87
-    _tmp89 = dp2 * dp2
-    _tmp90 = cp2 * d_ep2
-    _tmp91 = _tmp89 * _tmp90
-    _tmp92 = _tmp86 * dp2
-    _tmp93 = _tmp92 * d_cp2
-    _tmp94 = _tmp89 * ep2
-    _tmp95 = _tmp94 * d_cp2
-    _tmp96 = _tmp87 * ep2
-    _tmp97 = _tmp96 * dp2
-    _tmp98 = _tmp90 * dp2
-    _tmp99 = _tmp98 * ep2
-    _tmp100 = 2 * _tmp97 + 2 * _tmp99
-    _tmp101 = cp2 * cp2
-    _tmp102 = 2 * _tmp101
-    _tmp103 = _tmp102 * (_tmp100 + _tmp88 + _tmp91 + 3 * _tmp93 + 3 * _tmp95)
-    _tmp104 = dp2 * ep2
-    _tmp105 = 4 * _tmp104
-    _tmp106 = cp2 * cp2 * cp2
-    _tmp107 = 2 * d_cp2
-    _tmp108 = _tmp106 * (_tmp104 * _tmp107 + _tmp96 + _tmp98)
-    _tmp109 = 2 * _tmp104 * _tmp108
-    _tmp110 = -_tmp109
-    _tmp111 = _tmp106 * d_dp2
-    _tmp112 = _tmp111 * ep2
-    _tmp113 = _tmp106 * d_ep2
-    _tmp114 = _tmp113 * dp2
-    _tmp115 = _tmp101 * d_cp2
-    _tmp116 = -_tmp107 * _tmp86 * _tmp89 - 2 * _tmp88 * dp2 - 2 * _tmp91 * ep2
-    _tmp117 = 2 * cp2
-    _tmp118 = _tmp117 * (-_tmp105 * _tmp115 - _tmp112 - _tmp114 - _tmp116)
-    _tmp119 = d_cp2 * dp2
-    _tmp120 = 3 * _tmp101
-    _tmp121 = d_cp2 * ep2
-    _tmp122 = _tmp88 + _tmp93
-    _tmp123 = _tmp91 + _tmp95
-    _tmp124 = _tmp102 * d_cp2
-    _tmp125 = _tmp106 * _tmp107
-    _tmp126 = _tmp92 * d_dp2
-    _tmp127 = _tmp94 * d_ep2
-    _tmp128 = cp2 * d_cp2
-    _tmp129 = ep3 * ep3
-    _tmp130 = cp3 * d_dp3
-    _tmp131 = _tmp129 * _tmp130
-    _tmp132 = dp3 * dp3
-    _tmp133 = cp3 * d_ep3
-    _tmp134 = _tmp132 * _tmp133
-    _tmp135 = _tmp129 * dp3
-    _tmp136 = _tmp135 * d_cp3
-    _tmp137 = _tmp132 * ep3
-    _tmp138 = _tmp137 * d_cp3
-    _tmp139 = _tmp130 * ep3
-    _tmp140 = _tmp139 * dp3
-    _tmp141 = _tmp133 * dp3
-    _tmp142 = _tmp141 * ep3
-    _tmp143 = 2 * _tmp140 + 2 * _tmp142
-    _tmp144 = cp3 * cp3
-    _tmp145 = 2 * _tmp144
-    _tmp146 = _tmp145 * (_tmp131 + _tmp134 + 3 * _tmp136 + 3 * _tmp138 + _tmp143)
-    _tmp147 = dp3 * ep3
-    _tmp148 = 4 * _tmp147
-    _tmp149 = cp3 * cp3 * cp3
-    _tmp150 = 2 * d_cp3
-    _tmp151 = _tmp149 * (_tmp139 + _tmp141 + _tmp147 * _tmp150)
-    _tmp152 = 2 * _tmp147 * _tmp151
-    _tmp153 = -_tmp152
-    _tmp154 = _tmp149 * d_dp3
-    _tmp155 = _tmp154 * ep3
-    _tmp156 = _tmp149 * d_ep3
-    _tmp157 = _tmp156 * dp3
-    _tmp158 = _tmp144 * d_cp3
-    _tmp159 = -_tmp129 * _tmp132 * _tmp150 - 2 * _tmp131 * dp3 - 2 * _tmp134 * ep3
-    _tmp160 = 2 * cp3
-    _tmp161 = _tmp160 * (-_tmp148 * _tmp158 - _tmp155 - _tmp157 - _tmp159)
-    _tmp162 = d_cp3 * dp3
-    _tmp163 = 3 * _tmp144
-    _tmp164 = d_cp3 * ep3
-    _tmp165 = _tmp131 + _tmp136
-    _tmp166 = _tmp134 + _tmp138
-    _tmp167 = _tmp145 * d_cp3
-    _tmp168 = _tmp149 * _tmp150
-    _tmp169 = _tmp135 * d_dp3
-    _tmp170 = _tmp137 * d_ep3
-    _tmp171 = cp3 * d_cp3
-    _tmp172 = _tmp31 * d_cp0
-    _tmp173 = _tmp74 * d_cp1
-    _tmp174 = _tmp117 * d_cp2
-    _tmp175 = _tmp160 * d_cp3
-    wt[0] = _tmp17
-    wt[1] = -_tmp19 * _tmp22
-    wt[2] = -_tmp17
-    wt[3] = _tmp24
-    wt[4] = _tmp24
-    wt[5] = _tmp24
-    wt[6] = _tmp23
-    wt[7] = _tmp32
+    _tmp0 = dp0 * ep0
+    _tmp1 = d_cp0 * (dp0 + ep0)
+    _tmp2 = 2 * dp0
+    _tmp3 = _tmp2 + ep0
+    _tmp4 = d_dp0 * ep0
+    _tmp5 = _tmp4 * cp0
+    _tmp6 = 2 * ep0
+    _tmp7 = _tmp6 + dp0
+    _tmp8 = _tmp7 * dp0
+    _tmp9 = cp0 * d_ep0
+    _tmp10 = cp0 * cp0
+    _tmp11 = 2 * _tmp10
+    _tmp12 = _tmp11 * (3 * _tmp0 * _tmp1 + _tmp3 * _tmp5 + _tmp8 * _tmp9)
+    _tmp13 = d_ep0 * dp0
+    _tmp14 = _tmp13 * cp0
+    _tmp15 = _tmp2 * ep0
+    _tmp16 = _tmp15 * d_cp0
+    _tmp17 = (cp0 * cp0 * cp0) * (_tmp14 + _tmp16 + _tmp5)
+    _tmp18 = _tmp15 * _tmp17
+    _tmp19 = -_tmp18
+    _tmp20 = _tmp10 - _tmp15
+    _tmp21 = -_tmp0
+    _tmp22 = 2 * cp0
+    _tmp23 = -_tmp22 * (_tmp14 * _tmp20 + _tmp16 * (_tmp11 + _tmp21) + _tmp20 * _tmp5)
+    _tmp24 = ep0 * ep0
+    _tmp25 = cp0 * d_dp0
+    _tmp26 = dp0 * dp0
+    _tmp27 = _tmp10 * _tmp7
+    _tmp28 = _tmp10 * _tmp3
+    _tmp29 = _tmp24 + dp0 * (dp0 + 4 * ep0)
+    _tmp30 = _tmp22 * d_cp0
+    _tmp31 = -_tmp30
+    _tmp32 = dp1 * ep1
+    _tmp33 = d_cp1 * (dp1 + ep1)
+    _tmp34 = 2 * dp1
+    _tmp35 = _tmp34 + ep1
+    _tmp36 = d_dp1 * ep1
+    _tmp37 = _tmp36 * cp1
+    _tmp38 = 2 * ep1
+    _tmp39 = _tmp38 + dp1
+    _tmp40 = _tmp39 * dp1
+    _tmp41 = cp1 * d_ep1
+    _tmp42 = cp1 * cp1
+    _tmp43 = 2 * _tmp42
+    _tmp44 = _tmp43 * (3 * _tmp32 * _tmp33 + _tmp35 * _tmp37 + _tmp40 * _tmp41)
+    _tmp45 = d_ep1 * dp1
+    _tmp46 = _tmp45 * cp1
+    _tmp47 = _tmp34 * ep1
+    _tmp48 = _tmp47 * d_cp1
+    _tmp49 = (cp1 * cp1 * cp1) * (_tmp37 + _tmp46 + _tmp48)
+    _tmp50 = _tmp47 * _tmp49
+    _tmp51 = -_tmp50
+    _tmp52 = _tmp42 - _tmp47
+    _tmp53 = -_tmp32
+    _tmp54 = 2 * cp1
+    _tmp55 = -_tmp54 * (_tmp37 * _tmp52 + _tmp46 * _tmp52 + _tmp48 * (_tmp43 + _tmp53))
+    _tmp56 = ep1 * ep1
+    _tmp57 = cp1 * d_dp1
+    _tmp58 = dp1 * dp1
+    _tmp59 = _tmp39 * _tmp42
+    _tmp60 = _tmp35 * _tmp42
+    _tmp61 = _tmp56 + dp1 * (dp1 + 4 * ep1)
+    _tmp62 = _tmp54 * d_cp1
+    _tmp63 = -_tmp62
+    _tmp64 = dp2 * ep2
+    _tmp65 = d_cp2 * (dp2 + ep2)
+    _tmp66 = 2 * dp2
+    _tmp67 = _tmp66 + ep2
+    _tmp68 = d_dp2 * ep2
+    _tmp69 = _tmp68 * cp2
+    _tmp70 = 2 * ep2
+    _tmp71 = _tmp70 + dp2
+    _tmp72 = _tmp71 * dp2
+    _tmp73 = cp2 * d_ep2
+    _tmp74 = cp2 * cp2
+    _tmp75 = 2 * _tmp74
+    _tmp76 = _tmp75 * (3 * _tmp64 * _tmp65 + _tmp67 * _tmp69 + _tmp72 * _tmp73)
+    _tmp77 = d_ep2 * dp2
+    _tmp78 = _tmp77 * cp2
+    _tmp79 = _tmp66 * ep2
+    _tmp80 = _tmp79 * d_cp2
+    _tmp81 = (cp2 * cp2 * cp2) * (_tmp69 + _tmp78 + _tmp80)
+    _tmp82 = _tmp79 * _tmp81
+    _tmp83 = -_tmp82
+    _tmp84 = _tmp74 - _tmp79
+    _tmp85 = -_tmp64
+    _tmp86 = 2 * cp2
+    _tmp87 = -_tmp86 * (_tmp69 * _tmp84 + _tmp78 * _tmp84 + _tmp80 * (_tmp75 + _tmp85))
+    _tmp88 = ep2 * ep2
+    _tmp89 = cp2 * d_dp2
+    _tmp90 = dp2 * dp2
+    _tmp91 = _tmp71 * _tmp74
+    _tmp92 = _tmp67 * _tmp74
+    _tmp93 = _tmp88 + dp2 * (dp2 + 4 * ep2)
+    _tmp94 = _tmp86 * d_cp2
+    _tmp95 = -_tmp94
+    _tmp96 = dp3 * ep3
+    _tmp97 = d_cp3 * (dp3 + ep3)
+    _tmp98 = 2 * dp3
+    _tmp99 = _tmp98 + ep3
+    _tmp100 = d_dp3 * ep3
+    _tmp101 = _tmp100 * cp3
+    _tmp102 = 2 * ep3
+    _tmp103 = _tmp102 + dp3
+    _tmp104 = _tmp103 * dp3
+    _tmp105 = cp3 * d_ep3
+    _tmp106 = cp3 * cp3
+    _tmp107 = 2 * _tmp106
+    _tmp108 = _tmp107 * (_tmp101 * _tmp99 + _tmp104 * _tmp105 + 3 * _tmp96 * _tmp97)
+    _tmp109 = d_ep3 * dp3
+    _tmp110 = _tmp109 * cp3
+    _tmp111 = _tmp98 * ep3
+    _tmp112 = _tmp111 * d_cp3
+    _tmp113 = (cp3 * cp3 * cp3) * (_tmp101 + _tmp110 + _tmp112)
+    _tmp114 = _tmp111 * _tmp113
+    _tmp115 = -_tmp114
+    _tmp116 = _tmp106 - _tmp111
+    _tmp117 = -_tmp96
+    _tmp118 = 2 * cp3
+    _tmp119 = -_tmp118 * (_tmp101 * _tmp116 + _tmp110 * _tmp116 + _tmp112 * (_tmp107 + _tmp117))
+    _tmp120 = ep3 * ep3
+    _tmp121 = cp3 * d_dp3
+    _tmp122 = dp3 * dp3
+    _tmp123 = _tmp103 * _tmp106
+    _tmp124 = _tmp106 * _tmp99
+    _tmp125 = _tmp120 + dp3 * (dp3 + 4 * ep3)
+    _tmp126 = _tmp118 * d_cp3
+    _tmp127 = -_tmp126
+    wt[0] = _tmp12
+    wt[1] = -4 * _tmp0 * _tmp17
+    wt[2] = -_tmp12
+    wt[3] = _tmp19
+    wt[4] = _tmp19
+    wt[5] = _tmp19
+    wt[6] = _tmp18
+    wt[7] = _tmp23
     wt[8] = (
-        2 * _tmp14
-        - 2 * _tmp25
-        - 2 * _tmp27
-        - 2 * _tmp33 * _tmp34
-        - 2 * _tmp34 * _tmp35
-        + 2 * _tmp36
-        + 2 * _tmp37
+        -2 * _tmp1 * (3 * _tmp10 + _tmp21)
+        - 2 * _tmp9 * (_tmp10 - _tmp8)
+        + 2 * cp0 * d_dp0 * (-_tmp10 + _tmp15 + _tmp24)
     )
-    wt[9] = _tmp31 * dp0 * (_tmp13 + _tmp16 * _tmp33 + _tmp25 + _tmp36)
-    wt[10] = _tmp31 * ep0 * (_tmp11 + _tmp16 * _tmp35 + _tmp27 + _tmp37)
-    wt[11] = _tmp32
-    wt[12] = _tmp31 * (
-        _tmp0 * _tmp38
-        + 8 * _tmp18 * _tmp29
-        + _tmp25 * dp0
-        + 2 * _tmp26
-        + _tmp27 * ep0
-        + 2 * _tmp28
-        + _tmp3 * _tmp38
-        + _tmp30
+    wt[9] = (
+        _tmp2 * cp0 * (_tmp0 * _tmp9 + _tmp25 * (_tmp10 + _tmp24) + d_cp0 * dp0 * (_tmp11 + _tmp24))
     )
-    wt[13] = (
-        2 * _tmp15 * d_dp0 * ep0
-        + 2 * _tmp15 * d_ep0 * dp0
-        - 2 * _tmp39
-        - 2 * _tmp40
-        - 2 * _tmp41
-        + 4 * cp0 * d_cp0 * dp0 * ep0
+    wt[10] = (
+        _tmp6 * cp0 * (_tmp0 * _tmp25 + _tmp9 * (_tmp10 + _tmp26) + d_cp0 * ep0 * (_tmp11 + _tmp26))
     )
+    wt[11] = _tmp23
+    wt[12] = _tmp22 * (
+        _tmp25 * (-_tmp2 * _tmp24 + _tmp27)
+        + _tmp9 * (-_tmp26 * _tmp6 + _tmp28)
+        + 2 * d_cp0 * (_tmp10 * _tmp29 - _tmp24 * _tmp26)
+    )
+    wt[13] = 2 * (_tmp10 + _tmp21) * (_tmp13 + _tmp31 + _tmp4)
     wt[14] = (
-        -2 * _tmp0 * _tmp42
-        - 2 * _tmp15 * d_dp0 * dp0
-        - 2 * _tmp15 * d_ep0 * ep0
-        - 2 * _tmp16 * d_dp0 * ep0
-        - 2 * _tmp16 * d_ep0 * dp0
-        - 2 * _tmp19 * _tmp42
-        - 2 * _tmp3 * _tmp42
-        + 2 * _tmp39
-        + 2 * _tmp40
-        + 2 * _tmp41
+        -2 * cp0 * d_cp0 * (-_tmp11 + _tmp29)
+        - 2 * d_dp0 * (-_tmp24 * dp0 + _tmp27)
+        - 2 * d_ep0 * (-_tmp26 * ep0 + _tmp28)
     )
-    wt[15] = _tmp60
-    wt[16] = -_tmp62 * _tmp65
-    wt[17] = -_tmp60
-    wt[18] = _tmp67
-    wt[19] = _tmp67
-    wt[20] = _tmp67
-    wt[21] = _tmp66
-    wt[22] = _tmp75
+    wt[15] = _tmp44
+    wt[16] = -4 * _tmp32 * _tmp49
+    wt[17] = -_tmp44
+    wt[18] = _tmp51
+    wt[19] = _tmp51
+    wt[20] = _tmp51
+    wt[21] = _tmp50
+    wt[22] = _tmp55
     wt[23] = (
-        2 * _tmp57
-        - 2 * _tmp68
-        - 2 * _tmp70
-        - 2 * _tmp76 * _tmp77
-        - 2 * _tmp77 * _tmp78
-        + 2 * _tmp79
-        + 2 * _tmp80
+        -2 * _tmp33 * (3 * _tmp42 + _tmp53)
+        - 2 * _tmp41 * (-_tmp40 + _tmp42)
+        + 2 * cp1 * d_dp1 * (-_tmp42 + _tmp47 + _tmp56)
     )
-    wt[24] = _tmp74 * dp1 * (_tmp56 + _tmp59 * _tmp76 + _tmp68 + _tmp79)
-    wt[25] = _tmp74 * ep1 * (_tmp54 + _tmp59 * _tmp78 + _tmp70 + _tmp80)
-    wt[26] = _tmp75
-    wt[27] = _tmp74 * (
-        _tmp43 * _tmp81
-        + _tmp46 * _tmp81
-        + 8 * _tmp61 * _tmp72
-        + _tmp68 * dp1
-        + 2 * _tmp69
-        + _tmp70 * ep1
-        + 2 * _tmp71
-        + _tmp73
+    wt[24] = (
+        _tmp34
+        * cp1
+        * (_tmp32 * _tmp41 + _tmp57 * (_tmp42 + _tmp56) + d_cp1 * dp1 * (_tmp43 + _tmp56))
     )
-    wt[28] = (
-        2 * _tmp58 * d_dp1 * ep1
-        + 2 * _tmp58 * d_ep1 * dp1
-        - 2 * _tmp82
-        - 2 * _tmp83
-        - 2 * _tmp84
-        + 4 * cp1 * d_cp1 * dp1 * ep1
+    wt[25] = (
+        _tmp38
+        * cp1
+        * (_tmp32 * _tmp57 + _tmp41 * (_tmp42 + _tmp58) + d_cp1 * ep1 * (_tmp43 + _tmp58))
     )
+    wt[26] = _tmp55
+    wt[27] = _tmp54 * (
+        _tmp41 * (-_tmp38 * _tmp58 + _tmp60)
+        + _tmp57 * (-_tmp34 * _tmp56 + _tmp59)
+        + 2 * d_cp1 * (_tmp42 * _tmp61 - _tmp56 * _tmp58)
+    )
+    wt[28] = 2 * (_tmp42 + _tmp53) * (_tmp36 + _tmp45 + _tmp63)
     wt[29] = (
-        -2 * _tmp43 * _tmp85
-        - 2 * _tmp46 * _tmp85
-        - 2 * _tmp58 * d_dp1 * dp1
-        - 2 * _tmp58 * d_ep1 * ep1
-        - 2 * _tmp59 * d_dp1 * ep1
-        - 2 * _tmp59 * d_ep1 * dp1
-        - 2 * _tmp62 * _tmp85
-        + 2 * _tmp82
-        + 2 * _tmp83
-        + 2 * _tmp84
+        -2 * cp1 * d_cp1 * (-_tmp43 + _tmp61)
+        - 2 * d_dp1 * (-_tmp56 * dp1 + _tmp59)
+        - 2 * d_ep1 * (-_tmp58 * ep1 + _tmp60)
     )
-    wt[30] = _tmp103
-    wt[31] = -_tmp105 * _tmp108
-    wt[32] = -_tmp103
-    wt[33] = _tmp110
-    wt[34] = _tmp110
-    wt[35] = _tmp110
-    wt[36] = _tmp109
-    wt[37] = _tmp118
+    wt[30] = _tmp76
+    wt[31] = -4 * _tmp64 * _tmp81
+    wt[32] = -_tmp76
+    wt[33] = _tmp83
+    wt[34] = _tmp83
+    wt[35] = _tmp83
+    wt[36] = _tmp82
+    wt[37] = _tmp87
     wt[38] = (
-        2 * _tmp100
-        - 2 * _tmp111
-        - 2 * _tmp113
-        - 2 * _tmp119 * _tmp120
-        - 2 * _tmp120 * _tmp121
-        + 2 * _tmp122
-        + 2 * _tmp123
+        -2 * _tmp65 * (3 * _tmp74 + _tmp85)
+        - 2 * _tmp73 * (-_tmp72 + _tmp74)
+        + 2 * cp2 * d_dp2 * (-_tmp74 + _tmp79 + _tmp88)
     )
-    wt[39] = _tmp117 * dp2 * (_tmp102 * _tmp119 + _tmp111 + _tmp122 + _tmp99)
-    wt[40] = _tmp117 * ep2 * (_tmp102 * _tmp121 + _tmp113 + _tmp123 + _tmp97)
-    wt[41] = _tmp118
-    wt[42] = _tmp117 * (
-        8 * _tmp104 * _tmp115
-        + _tmp111 * dp2
-        + 2 * _tmp112
-        + _tmp113 * ep2
-        + 2 * _tmp114
-        + _tmp116
-        + _tmp124 * _tmp86
-        + _tmp124 * _tmp89
+    wt[39] = (
+        _tmp66
+        * cp2
+        * (_tmp64 * _tmp73 + _tmp89 * (_tmp74 + _tmp88) + d_cp2 * dp2 * (_tmp75 + _tmp88))
     )
-    wt[43] = (
-        2 * _tmp101 * d_dp2 * ep2
-        + 2 * _tmp101 * d_ep2 * dp2
-        - 2 * _tmp125
-        - 2 * _tmp126
-        - 2 * _tmp127
-        + 4 * cp2 * d_cp2 * dp2 * ep2
+    wt[40] = (
+        _tmp70
+        * cp2
+        * (_tmp64 * _tmp89 + _tmp73 * (_tmp74 + _tmp90) + d_cp2 * ep2 * (_tmp75 + _tmp90))
     )
+    wt[41] = _tmp87
+    wt[42] = _tmp86 * (
+        _tmp73 * (-_tmp70 * _tmp90 + _tmp92)
+        + _tmp89 * (-_tmp66 * _tmp88 + _tmp91)
+        + 2 * d_cp2 * (_tmp74 * _tmp93 - _tmp88 * _tmp90)
+    )
+    wt[43] = 2 * (_tmp74 + _tmp85) * (_tmp68 + _tmp77 + _tmp95)
     wt[44] = (
-        -2 * _tmp101 * d_dp2 * dp2
-        - 2 * _tmp101 * d_ep2 * ep2
-        - 2 * _tmp102 * d_dp2 * ep2
-        - 2 * _tmp102 * d_ep2 * dp2
-        - 2 * _tmp105 * _tmp128
-        + 2 * _tmp125
-        + 2 * _tmp126
-        + 2 * _tmp127
-        - 2 * _tmp128 * _tmp86
-        - 2 * _tmp128 * _tmp89
+        -2 * cp2 * d_cp2 * (-_tmp75 + _tmp93)
+        - 2 * d_dp2 * (-_tmp88 * dp2 + _tmp91)
+        - 2 * d_ep2 * (-_tmp90 * ep2 + _tmp92)
     )
-    wt[45] = _tmp146
-    wt[46] = -_tmp148 * _tmp151
-    wt[47] = -_tmp146
-    wt[48] = _tmp153
-    wt[49] = _tmp153
-    wt[50] = _tmp153
-    wt[51] = _tmp152
-    wt[52] = _tmp161
+    wt[45] = _tmp108
+    wt[46] = -4 * _tmp113 * _tmp96
+    wt[47] = -_tmp108
+    wt[48] = _tmp115
+    wt[49] = _tmp115
+    wt[50] = _tmp115
+    wt[51] = _tmp114
+    wt[52] = _tmp119
     wt[53] = (
-        2 * _tmp143
-        - 2 * _tmp154
-        - 2 * _tmp156
-        - 2 * _tmp162 * _tmp163
-        - 2 * _tmp163 * _tmp164
-        + 2 * _tmp165
-        + 2 * _tmp166
+        -2 * _tmp105 * (-_tmp104 + _tmp106)
+        - 2 * _tmp97 * (3 * _tmp106 + _tmp117)
+        + 2 * cp3 * d_dp3 * (-_tmp106 + _tmp111 + _tmp120)
     )
-    wt[54] = _tmp160 * dp3 * (_tmp142 + _tmp145 * _tmp162 + _tmp154 + _tmp165)
-    wt[55] = _tmp160 * ep3 * (_tmp140 + _tmp145 * _tmp164 + _tmp156 + _tmp166)
-    wt[56] = _tmp161
-    wt[57] = _tmp160 * (
-        _tmp129 * _tmp167
-        + _tmp132 * _tmp167
-        + 8 * _tmp147 * _tmp158
-        + _tmp154 * dp3
-        + 2 * _tmp155
-        + _tmp156 * ep3
-        + 2 * _tmp157
-        + _tmp159
+    wt[54] = (
+        _tmp98
+        * cp3
+        * (_tmp105 * _tmp96 + _tmp121 * (_tmp106 + _tmp120) + d_cp3 * dp3 * (_tmp107 + _tmp120))
     )
-    wt[58] = (
-        2 * _tmp144 * d_dp3 * ep3
-        + 2 * _tmp144 * d_ep3 * dp3
-        - 2 * _tmp168
-        - 2 * _tmp169
-        - 2 * _tmp170
-        + 4 * cp3 * d_cp3 * dp3 * ep3
+    wt[55] = (
+        _tmp102
+        * cp3
+        * (_tmp105 * (_tmp106 + _tmp122) + _tmp121 * _tmp96 + d_cp3 * ep3 * (_tmp107 + _tmp122))
     )
+    wt[56] = _tmp119
+    wt[57] = _tmp118 * (
+        _tmp105 * (-_tmp102 * _tmp122 + _tmp124)
+        + _tmp121 * (-_tmp120 * _tmp98 + _tmp123)
+        + 2 * d_cp3 * (_tmp106 * _tmp125 - _tmp120 * _tmp122)
+    )
+    wt[58] = 2 * (_tmp106 + _tmp117) * (_tmp100 + _tmp109 + _tmp127)
     wt[59] = (
-        -2 * _tmp129 * _tmp171
-        - 2 * _tmp132 * _tmp171
-        - 2 * _tmp144 * d_dp3 * dp3
-        - 2 * _tmp144 * d_ep3 * ep3
-        - 2 * _tmp145 * d_dp3 * ep3
-        - 2 * _tmp145 * d_ep3 * dp3
-        - 2 * _tmp148 * _tmp171
-        + 2 * _tmp168
-        + 2 * _tmp169
-        + 2 * _tmp170
+        -2 * cp3 * d_cp3 * (-_tmp107 + _tmp125)
+        - 2 * d_dp3 * (-_tmp120 * dp3 + _tmp123)
+        - 2 * d_ep3 * (-_tmp122 * ep3 + _tmp124)
     )
     wt[60] = 0.0
-    wt[61] = _tmp172
-    wt[62] = -_tmp172
+    wt[61] = _tmp30
+    wt[62] = _tmp31
     wt[63] = 0.0
     wt[64] = 0.0
     wt[65] = 0.0
-    wt[66] = _tmp173
-    wt[67] = -_tmp173
+    wt[66] = _tmp62
+    wt[67] = _tmp63
     wt[68] = 0.0
     wt[69] = 0.0
     wt[70] = 0.0
-    wt[71] = _tmp174
-    wt[72] = -_tmp174
+    wt[71] = _tmp94
+    wt[72] = _tmp95
     wt[73] = 0.0
     wt[74] = 0.0
     wt[75] = 0.0
-    wt[76] = _tmp175
-    wt[77] = -_tmp175
+    wt[76] = _tmp126
+    wt[77] = _tmp127
     wt[78] = 0.0
     wt[79] = 0.0
     wt[80] = 0.0
@@ -2136,3 +1948,746 @@ def residual_jacobian_t(
     ft[6] = _tmp43 * (P * wt72 + wt71)
     ft[7] = _tmp43 * (P * wt77 + wt76)
     ft[8] = 0.0
+
+
+#: The linear solves' elimination plan ``solve_pair`` is written for: n, the number of pairs,
+#: (unknown, row, row) of each pair, the dense unknowns, the rows in no pair
+#: (``curverecon.solvers.homotopy.PolynomialSystem.elimination``).
+ELIMINATION = (9, 4, 5, 0, 4, 6, 1, 5, 7, 2, 6, 8, 3, 7, 4, 0, 1, 2, 3, 8)
+
+# Without "reassoc", as the tracker's own linear solve (the same arithmetic, in the same order).
+_JIT_SOLVE = {"cache": True, "nogil": True, "fastmath": {"contract", "arcp", "nsz"}}
+
+
+@numba.njit(**_JIT_SOLVE)
+def solve_one(a, b, out):  # type: ignore[no-untyped-def]
+    """out = a^-1 b (``out`` not ``b``): ``solve_pair`` for one right-hand side."""
+    m0_0 = a[8, 4]
+    m0_1 = a[8, 0]
+    m0_2 = a[8, 1]
+    m0_3 = a[8, 2]
+    m0_4 = a[8, 3]
+    g0 = b[8]
+    va = a[0, 5]
+    vb = a[4, 5]
+    mag_a = abs(va.real) + abs(va.imag)
+    mag_b = abs(vb.real) + abs(vb.imag)
+    if mag_b > mag_a:
+        ip, io = 4, 0
+        va, vb, mag_a = vb, va, mag_b
+    else:
+        ip, io = 0, 4
+    if mag_a == 0.0 or not np.isfinite(mag_a):
+        return False
+    dd = 1.0 / (va.real * va.real + va.imag * va.imag)
+    v0 = complex(va.real * dd, -va.imag * dd)
+    fac = vb * v0
+    p0_0 = a[ip, 4]
+    m1_0 = a[io, 4] - fac * p0_0
+    p0_1 = a[ip, 0]
+    m1_1 = a[io, 0] - fac * p0_1
+    p0_2 = a[ip, 1]
+    m1_2 = a[io, 1] - fac * p0_2
+    p0_3 = a[ip, 2]
+    m1_3 = a[io, 2] - fac * p0_3
+    p0_4 = a[ip, 3]
+    m1_4 = a[io, 3] - fac * p0_4
+    pr0 = b[ip]
+    g1 = b[io] - fac * pr0
+    va = a[1, 6]
+    vb = a[5, 6]
+    mag_a = abs(va.real) + abs(va.imag)
+    mag_b = abs(vb.real) + abs(vb.imag)
+    if mag_b > mag_a:
+        ip, io = 5, 1
+        va, vb, mag_a = vb, va, mag_b
+    else:
+        ip, io = 1, 5
+    if mag_a == 0.0 or not np.isfinite(mag_a):
+        return False
+    dd = 1.0 / (va.real * va.real + va.imag * va.imag)
+    v1 = complex(va.real * dd, -va.imag * dd)
+    fac = vb * v1
+    p1_0 = a[ip, 4]
+    m2_0 = a[io, 4] - fac * p1_0
+    p1_1 = a[ip, 0]
+    m2_1 = a[io, 0] - fac * p1_1
+    p1_2 = a[ip, 1]
+    m2_2 = a[io, 1] - fac * p1_2
+    p1_3 = a[ip, 2]
+    m2_3 = a[io, 2] - fac * p1_3
+    p1_4 = a[ip, 3]
+    m2_4 = a[io, 3] - fac * p1_4
+    pr1 = b[ip]
+    g2 = b[io] - fac * pr1
+    va = a[2, 7]
+    vb = a[6, 7]
+    mag_a = abs(va.real) + abs(va.imag)
+    mag_b = abs(vb.real) + abs(vb.imag)
+    if mag_b > mag_a:
+        ip, io = 6, 2
+        va, vb, mag_a = vb, va, mag_b
+    else:
+        ip, io = 2, 6
+    if mag_a == 0.0 or not np.isfinite(mag_a):
+        return False
+    dd = 1.0 / (va.real * va.real + va.imag * va.imag)
+    v2 = complex(va.real * dd, -va.imag * dd)
+    fac = vb * v2
+    p2_0 = a[ip, 4]
+    m3_0 = a[io, 4] - fac * p2_0
+    p2_1 = a[ip, 0]
+    m3_1 = a[io, 0] - fac * p2_1
+    p2_2 = a[ip, 1]
+    m3_2 = a[io, 1] - fac * p2_2
+    p2_3 = a[ip, 2]
+    m3_3 = a[io, 2] - fac * p2_3
+    p2_4 = a[ip, 3]
+    m3_4 = a[io, 3] - fac * p2_4
+    pr2 = b[ip]
+    g3 = b[io] - fac * pr2
+    va = a[3, 8]
+    vb = a[7, 8]
+    mag_a = abs(va.real) + abs(va.imag)
+    mag_b = abs(vb.real) + abs(vb.imag)
+    if mag_b > mag_a:
+        ip, io = 7, 3
+        va, vb, mag_a = vb, va, mag_b
+    else:
+        ip, io = 3, 7
+    if mag_a == 0.0 or not np.isfinite(mag_a):
+        return False
+    dd = 1.0 / (va.real * va.real + va.imag * va.imag)
+    v3 = complex(va.real * dd, -va.imag * dd)
+    fac = vb * v3
+    p3_0 = a[ip, 4]
+    m4_0 = a[io, 4] - fac * p3_0
+    p3_1 = a[ip, 0]
+    m4_1 = a[io, 0] - fac * p3_1
+    p3_2 = a[ip, 1]
+    m4_2 = a[io, 1] - fac * p3_2
+    p3_3 = a[ip, 2]
+    m4_3 = a[io, 2] - fac * p3_3
+    p3_4 = a[ip, 3]
+    m4_4 = a[io, 3] - fac * p3_4
+    pr3 = b[ip]
+    g4 = b[io] - fac * pr3
+    best = abs(m0_0.real) + abs(m0_0.imag)
+    mag = abs(m1_0.real) + abs(m1_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, g0, m1_0, m1_1, m1_2, m1_3, m1_4, g1 = (
+            m1_0,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            g1,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            g0,
+        )
+    mag = abs(m2_0.real) + abs(m2_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, g0, m2_0, m2_1, m2_2, m2_3, m2_4, g2 = (
+            m2_0,
+            m2_1,
+            m2_2,
+            m2_3,
+            m2_4,
+            g2,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            g0,
+        )
+    mag = abs(m3_0.real) + abs(m3_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, g0, m3_0, m3_1, m3_2, m3_3, m3_4, g3 = (
+            m3_0,
+            m3_1,
+            m3_2,
+            m3_3,
+            m3_4,
+            g3,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            g0,
+        )
+    mag = abs(m4_0.real) + abs(m4_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, g0, m4_0, m4_1, m4_2, m4_3, m4_4, g4 = (
+            m4_0,
+            m4_1,
+            m4_2,
+            m4_3,
+            m4_4,
+            g4,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            g0,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m0_0.real * m0_0.real + m0_0.imag * m0_0.imag)
+    u0 = complex(m0_0.real * dd, -m0_0.imag * dd)
+    fac = m1_0 * u0
+    m1_1 = m1_1 - fac * m0_1
+    m1_2 = m1_2 - fac * m0_2
+    m1_3 = m1_3 - fac * m0_3
+    m1_4 = m1_4 - fac * m0_4
+    g1 = g1 - fac * g0
+    fac = m2_0 * u0
+    m2_1 = m2_1 - fac * m0_1
+    m2_2 = m2_2 - fac * m0_2
+    m2_3 = m2_3 - fac * m0_3
+    m2_4 = m2_4 - fac * m0_4
+    g2 = g2 - fac * g0
+    fac = m3_0 * u0
+    m3_1 = m3_1 - fac * m0_1
+    m3_2 = m3_2 - fac * m0_2
+    m3_3 = m3_3 - fac * m0_3
+    m3_4 = m3_4 - fac * m0_4
+    g3 = g3 - fac * g0
+    fac = m4_0 * u0
+    m4_1 = m4_1 - fac * m0_1
+    m4_2 = m4_2 - fac * m0_2
+    m4_3 = m4_3 - fac * m0_3
+    m4_4 = m4_4 - fac * m0_4
+    g4 = g4 - fac * g0
+    best = abs(m1_1.real) + abs(m1_1.imag)
+    mag = abs(m2_1.real) + abs(m2_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, g1, m2_1, m2_2, m2_3, m2_4, g2 = (
+            m2_1,
+            m2_2,
+            m2_3,
+            m2_4,
+            g2,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            g1,
+        )
+    mag = abs(m3_1.real) + abs(m3_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, g1, m3_1, m3_2, m3_3, m3_4, g3 = (
+            m3_1,
+            m3_2,
+            m3_3,
+            m3_4,
+            g3,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            g1,
+        )
+    mag = abs(m4_1.real) + abs(m4_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, g1, m4_1, m4_2, m4_3, m4_4, g4 = (
+            m4_1,
+            m4_2,
+            m4_3,
+            m4_4,
+            g4,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            g1,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m1_1.real * m1_1.real + m1_1.imag * m1_1.imag)
+    u1 = complex(m1_1.real * dd, -m1_1.imag * dd)
+    fac = m2_1 * u1
+    m2_2 = m2_2 - fac * m1_2
+    m2_3 = m2_3 - fac * m1_3
+    m2_4 = m2_4 - fac * m1_4
+    g2 = g2 - fac * g1
+    fac = m3_1 * u1
+    m3_2 = m3_2 - fac * m1_2
+    m3_3 = m3_3 - fac * m1_3
+    m3_4 = m3_4 - fac * m1_4
+    g3 = g3 - fac * g1
+    fac = m4_1 * u1
+    m4_2 = m4_2 - fac * m1_2
+    m4_3 = m4_3 - fac * m1_3
+    m4_4 = m4_4 - fac * m1_4
+    g4 = g4 - fac * g1
+    best = abs(m2_2.real) + abs(m2_2.imag)
+    mag = abs(m3_2.real) + abs(m3_2.imag)
+    if mag > best:
+        best = mag
+        m2_2, m2_3, m2_4, g2, m3_2, m3_3, m3_4, g3 = m3_2, m3_3, m3_4, g3, m2_2, m2_3, m2_4, g2
+    mag = abs(m4_2.real) + abs(m4_2.imag)
+    if mag > best:
+        best = mag
+        m2_2, m2_3, m2_4, g2, m4_2, m4_3, m4_4, g4 = m4_2, m4_3, m4_4, g4, m2_2, m2_3, m2_4, g2
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m2_2.real * m2_2.real + m2_2.imag * m2_2.imag)
+    u2 = complex(m2_2.real * dd, -m2_2.imag * dd)
+    fac = m3_2 * u2
+    m3_3 = m3_3 - fac * m2_3
+    m3_4 = m3_4 - fac * m2_4
+    g3 = g3 - fac * g2
+    fac = m4_2 * u2
+    m4_3 = m4_3 - fac * m2_3
+    m4_4 = m4_4 - fac * m2_4
+    g4 = g4 - fac * g2
+    best = abs(m3_3.real) + abs(m3_3.imag)
+    mag = abs(m4_3.real) + abs(m4_3.imag)
+    if mag > best:
+        best = mag
+        m3_3, m3_4, g3, m4_3, m4_4, g4 = m4_3, m4_4, g4, m3_3, m3_4, g3
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m3_3.real * m3_3.real + m3_3.imag * m3_3.imag)
+    u3 = complex(m3_3.real * dd, -m3_3.imag * dd)
+    fac = m4_3 * u3
+    m4_4 = m4_4 - fac * m3_4
+    g4 = g4 - fac * g3
+    best = abs(m4_4.real) + abs(m4_4.imag)
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m4_4.real * m4_4.real + m4_4.imag * m4_4.imag)
+    u4 = complex(m4_4.real * dd, -m4_4.imag * dd)
+    x4 = (g4) * u4
+    x3 = (g3 - m3_4 * x4) * u3
+    x2 = (g2 - m2_3 * x3 - m2_4 * x4) * u2
+    x1 = (g1 - m1_2 * x2 - m1_3 * x3 - m1_4 * x4) * u1
+    x0 = (g0 - m0_1 * x1 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4) * u0
+    out[5] = (pr0 - p0_0 * x0 - p0_1 * x1 - p0_2 * x2 - p0_3 * x3 - p0_4 * x4) * v0
+    out[6] = (pr1 - p1_0 * x0 - p1_1 * x1 - p1_2 * x2 - p1_3 * x3 - p1_4 * x4) * v1
+    out[7] = (pr2 - p2_0 * x0 - p2_1 * x1 - p2_2 * x2 - p2_3 * x3 - p2_4 * x4) * v2
+    out[8] = (pr3 - p3_0 * x0 - p3_1 * x1 - p3_2 * x2 - p3_3 * x3 - p3_4 * x4) * v3
+    out[4] = x0
+    out[0] = x1
+    out[1] = x2
+    out[2] = x3
+    out[3] = x4
+    return True
+
+
+@numba.njit(**_JIT_SOLVE)
+def solve_pair(a, b, c, out, out2, m, r, r2, plan, two):  # type: ignore[no-untyped-def]
+    """out = a^-1 b and, if ``two``, out2 = a^-1 c (``out``, ``out2`` not ``b``, ``c``): the
+    arithmetic of ``curverecon.solvers.homotopy._solve_pair`` with ELIMINATION's loops
+    unrolled and every entry a local variable.  ``m``, ``r``, ``r2`` and ``plan`` are not read
+    (that function's signature).  False if a pivot is zero or not finite."""
+    if not two:
+        return solve_one(a, b, out)
+    m0_0 = a[8, 4]
+    m0_1 = a[8, 0]
+    m0_2 = a[8, 1]
+    m0_3 = a[8, 2]
+    m0_4 = a[8, 3]
+    g0 = b[8]
+    e0 = c[8]
+    va = a[0, 5]
+    vb = a[4, 5]
+    mag_a = abs(va.real) + abs(va.imag)
+    mag_b = abs(vb.real) + abs(vb.imag)
+    if mag_b > mag_a:
+        ip, io = 4, 0
+        va, vb, mag_a = vb, va, mag_b
+    else:
+        ip, io = 0, 4
+    if mag_a == 0.0 or not np.isfinite(mag_a):
+        return False
+    dd = 1.0 / (va.real * va.real + va.imag * va.imag)
+    v0 = complex(va.real * dd, -va.imag * dd)
+    fac = vb * v0
+    p0_0 = a[ip, 4]
+    m1_0 = a[io, 4] - fac * p0_0
+    p0_1 = a[ip, 0]
+    m1_1 = a[io, 0] - fac * p0_1
+    p0_2 = a[ip, 1]
+    m1_2 = a[io, 1] - fac * p0_2
+    p0_3 = a[ip, 2]
+    m1_3 = a[io, 2] - fac * p0_3
+    p0_4 = a[ip, 3]
+    m1_4 = a[io, 3] - fac * p0_4
+    pr0 = b[ip]
+    g1 = b[io] - fac * pr0
+    pt0 = c[ip]
+    e1 = c[io] - fac * pt0
+    va = a[1, 6]
+    vb = a[5, 6]
+    mag_a = abs(va.real) + abs(va.imag)
+    mag_b = abs(vb.real) + abs(vb.imag)
+    if mag_b > mag_a:
+        ip, io = 5, 1
+        va, vb, mag_a = vb, va, mag_b
+    else:
+        ip, io = 1, 5
+    if mag_a == 0.0 or not np.isfinite(mag_a):
+        return False
+    dd = 1.0 / (va.real * va.real + va.imag * va.imag)
+    v1 = complex(va.real * dd, -va.imag * dd)
+    fac = vb * v1
+    p1_0 = a[ip, 4]
+    m2_0 = a[io, 4] - fac * p1_0
+    p1_1 = a[ip, 0]
+    m2_1 = a[io, 0] - fac * p1_1
+    p1_2 = a[ip, 1]
+    m2_2 = a[io, 1] - fac * p1_2
+    p1_3 = a[ip, 2]
+    m2_3 = a[io, 2] - fac * p1_3
+    p1_4 = a[ip, 3]
+    m2_4 = a[io, 3] - fac * p1_4
+    pr1 = b[ip]
+    g2 = b[io] - fac * pr1
+    pt1 = c[ip]
+    e2 = c[io] - fac * pt1
+    va = a[2, 7]
+    vb = a[6, 7]
+    mag_a = abs(va.real) + abs(va.imag)
+    mag_b = abs(vb.real) + abs(vb.imag)
+    if mag_b > mag_a:
+        ip, io = 6, 2
+        va, vb, mag_a = vb, va, mag_b
+    else:
+        ip, io = 2, 6
+    if mag_a == 0.0 or not np.isfinite(mag_a):
+        return False
+    dd = 1.0 / (va.real * va.real + va.imag * va.imag)
+    v2 = complex(va.real * dd, -va.imag * dd)
+    fac = vb * v2
+    p2_0 = a[ip, 4]
+    m3_0 = a[io, 4] - fac * p2_0
+    p2_1 = a[ip, 0]
+    m3_1 = a[io, 0] - fac * p2_1
+    p2_2 = a[ip, 1]
+    m3_2 = a[io, 1] - fac * p2_2
+    p2_3 = a[ip, 2]
+    m3_3 = a[io, 2] - fac * p2_3
+    p2_4 = a[ip, 3]
+    m3_4 = a[io, 3] - fac * p2_4
+    pr2 = b[ip]
+    g3 = b[io] - fac * pr2
+    pt2 = c[ip]
+    e3 = c[io] - fac * pt2
+    va = a[3, 8]
+    vb = a[7, 8]
+    mag_a = abs(va.real) + abs(va.imag)
+    mag_b = abs(vb.real) + abs(vb.imag)
+    if mag_b > mag_a:
+        ip, io = 7, 3
+        va, vb, mag_a = vb, va, mag_b
+    else:
+        ip, io = 3, 7
+    if mag_a == 0.0 or not np.isfinite(mag_a):
+        return False
+    dd = 1.0 / (va.real * va.real + va.imag * va.imag)
+    v3 = complex(va.real * dd, -va.imag * dd)
+    fac = vb * v3
+    p3_0 = a[ip, 4]
+    m4_0 = a[io, 4] - fac * p3_0
+    p3_1 = a[ip, 0]
+    m4_1 = a[io, 0] - fac * p3_1
+    p3_2 = a[ip, 1]
+    m4_2 = a[io, 1] - fac * p3_2
+    p3_3 = a[ip, 2]
+    m4_3 = a[io, 2] - fac * p3_3
+    p3_4 = a[ip, 3]
+    m4_4 = a[io, 3] - fac * p3_4
+    pr3 = b[ip]
+    g4 = b[io] - fac * pr3
+    pt3 = c[ip]
+    e4 = c[io] - fac * pt3
+    best = abs(m0_0.real) + abs(m0_0.imag)
+    mag = abs(m1_0.real) + abs(m1_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, g0, e0, m1_0, m1_1, m1_2, m1_3, m1_4, g1, e1 = (
+            m1_0,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            g1,
+            e1,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            g0,
+            e0,
+        )
+    mag = abs(m2_0.real) + abs(m2_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, g0, e0, m2_0, m2_1, m2_2, m2_3, m2_4, g2, e2 = (
+            m2_0,
+            m2_1,
+            m2_2,
+            m2_3,
+            m2_4,
+            g2,
+            e2,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            g0,
+            e0,
+        )
+    mag = abs(m3_0.real) + abs(m3_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, g0, e0, m3_0, m3_1, m3_2, m3_3, m3_4, g3, e3 = (
+            m3_0,
+            m3_1,
+            m3_2,
+            m3_3,
+            m3_4,
+            g3,
+            e3,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            g0,
+            e0,
+        )
+    mag = abs(m4_0.real) + abs(m4_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, g0, e0, m4_0, m4_1, m4_2, m4_3, m4_4, g4, e4 = (
+            m4_0,
+            m4_1,
+            m4_2,
+            m4_3,
+            m4_4,
+            g4,
+            e4,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            g0,
+            e0,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m0_0.real * m0_0.real + m0_0.imag * m0_0.imag)
+    u0 = complex(m0_0.real * dd, -m0_0.imag * dd)
+    fac = m1_0 * u0
+    m1_1 = m1_1 - fac * m0_1
+    m1_2 = m1_2 - fac * m0_2
+    m1_3 = m1_3 - fac * m0_3
+    m1_4 = m1_4 - fac * m0_4
+    g1 = g1 - fac * g0
+    e1 = e1 - fac * e0
+    fac = m2_0 * u0
+    m2_1 = m2_1 - fac * m0_1
+    m2_2 = m2_2 - fac * m0_2
+    m2_3 = m2_3 - fac * m0_3
+    m2_4 = m2_4 - fac * m0_4
+    g2 = g2 - fac * g0
+    e2 = e2 - fac * e0
+    fac = m3_0 * u0
+    m3_1 = m3_1 - fac * m0_1
+    m3_2 = m3_2 - fac * m0_2
+    m3_3 = m3_3 - fac * m0_3
+    m3_4 = m3_4 - fac * m0_4
+    g3 = g3 - fac * g0
+    e3 = e3 - fac * e0
+    fac = m4_0 * u0
+    m4_1 = m4_1 - fac * m0_1
+    m4_2 = m4_2 - fac * m0_2
+    m4_3 = m4_3 - fac * m0_3
+    m4_4 = m4_4 - fac * m0_4
+    g4 = g4 - fac * g0
+    e4 = e4 - fac * e0
+    best = abs(m1_1.real) + abs(m1_1.imag)
+    mag = abs(m2_1.real) + abs(m2_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, g1, e1, m2_1, m2_2, m2_3, m2_4, g2, e2 = (
+            m2_1,
+            m2_2,
+            m2_3,
+            m2_4,
+            g2,
+            e2,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            g1,
+            e1,
+        )
+    mag = abs(m3_1.real) + abs(m3_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, g1, e1, m3_1, m3_2, m3_3, m3_4, g3, e3 = (
+            m3_1,
+            m3_2,
+            m3_3,
+            m3_4,
+            g3,
+            e3,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            g1,
+            e1,
+        )
+    mag = abs(m4_1.real) + abs(m4_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, g1, e1, m4_1, m4_2, m4_3, m4_4, g4, e4 = (
+            m4_1,
+            m4_2,
+            m4_3,
+            m4_4,
+            g4,
+            e4,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            g1,
+            e1,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m1_1.real * m1_1.real + m1_1.imag * m1_1.imag)
+    u1 = complex(m1_1.real * dd, -m1_1.imag * dd)
+    fac = m2_1 * u1
+    m2_2 = m2_2 - fac * m1_2
+    m2_3 = m2_3 - fac * m1_3
+    m2_4 = m2_4 - fac * m1_4
+    g2 = g2 - fac * g1
+    e2 = e2 - fac * e1
+    fac = m3_1 * u1
+    m3_2 = m3_2 - fac * m1_2
+    m3_3 = m3_3 - fac * m1_3
+    m3_4 = m3_4 - fac * m1_4
+    g3 = g3 - fac * g1
+    e3 = e3 - fac * e1
+    fac = m4_1 * u1
+    m4_2 = m4_2 - fac * m1_2
+    m4_3 = m4_3 - fac * m1_3
+    m4_4 = m4_4 - fac * m1_4
+    g4 = g4 - fac * g1
+    e4 = e4 - fac * e1
+    best = abs(m2_2.real) + abs(m2_2.imag)
+    mag = abs(m3_2.real) + abs(m3_2.imag)
+    if mag > best:
+        best = mag
+        m2_2, m2_3, m2_4, g2, e2, m3_2, m3_3, m3_4, g3, e3 = (
+            m3_2,
+            m3_3,
+            m3_4,
+            g3,
+            e3,
+            m2_2,
+            m2_3,
+            m2_4,
+            g2,
+            e2,
+        )
+    mag = abs(m4_2.real) + abs(m4_2.imag)
+    if mag > best:
+        best = mag
+        m2_2, m2_3, m2_4, g2, e2, m4_2, m4_3, m4_4, g4, e4 = (
+            m4_2,
+            m4_3,
+            m4_4,
+            g4,
+            e4,
+            m2_2,
+            m2_3,
+            m2_4,
+            g2,
+            e2,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m2_2.real * m2_2.real + m2_2.imag * m2_2.imag)
+    u2 = complex(m2_2.real * dd, -m2_2.imag * dd)
+    fac = m3_2 * u2
+    m3_3 = m3_3 - fac * m2_3
+    m3_4 = m3_4 - fac * m2_4
+    g3 = g3 - fac * g2
+    e3 = e3 - fac * e2
+    fac = m4_2 * u2
+    m4_3 = m4_3 - fac * m2_3
+    m4_4 = m4_4 - fac * m2_4
+    g4 = g4 - fac * g2
+    e4 = e4 - fac * e2
+    best = abs(m3_3.real) + abs(m3_3.imag)
+    mag = abs(m4_3.real) + abs(m4_3.imag)
+    if mag > best:
+        best = mag
+        m3_3, m3_4, g3, e3, m4_3, m4_4, g4, e4 = m4_3, m4_4, g4, e4, m3_3, m3_4, g3, e3
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m3_3.real * m3_3.real + m3_3.imag * m3_3.imag)
+    u3 = complex(m3_3.real * dd, -m3_3.imag * dd)
+    fac = m4_3 * u3
+    m4_4 = m4_4 - fac * m3_4
+    g4 = g4 - fac * g3
+    e4 = e4 - fac * e3
+    best = abs(m4_4.real) + abs(m4_4.imag)
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m4_4.real * m4_4.real + m4_4.imag * m4_4.imag)
+    u4 = complex(m4_4.real * dd, -m4_4.imag * dd)
+    x4 = (g4) * u4
+    y4 = (e4) * u4
+    x3 = (g3 - m3_4 * x4) * u3
+    y3 = (e3 - m3_4 * y4) * u3
+    x2 = (g2 - m2_3 * x3 - m2_4 * x4) * u2
+    y2 = (e2 - m2_3 * y3 - m2_4 * y4) * u2
+    x1 = (g1 - m1_2 * x2 - m1_3 * x3 - m1_4 * x4) * u1
+    y1 = (e1 - m1_2 * y2 - m1_3 * y3 - m1_4 * y4) * u1
+    x0 = (g0 - m0_1 * x1 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4) * u0
+    y0 = (e0 - m0_1 * y1 - m0_2 * y2 - m0_3 * y3 - m0_4 * y4) * u0
+    out[5] = (pr0 - p0_0 * x0 - p0_1 * x1 - p0_2 * x2 - p0_3 * x3 - p0_4 * x4) * v0
+    out[6] = (pr1 - p1_0 * x0 - p1_1 * x1 - p1_2 * x2 - p1_3 * x3 - p1_4 * x4) * v1
+    out[7] = (pr2 - p2_0 * x0 - p2_1 * x1 - p2_2 * x2 - p2_3 * x3 - p2_4 * x4) * v2
+    out[8] = (pr3 - p3_0 * x0 - p3_1 * x1 - p3_2 * x2 - p3_3 * x3 - p3_4 * x4) * v3
+    out[4] = x0
+    out[0] = x1
+    out[1] = x2
+    out[2] = x3
+    out[3] = x4
+    out2[5] = (pt0 - p0_0 * y0 - p0_1 * y1 - p0_2 * y2 - p0_3 * y3 - p0_4 * y4) * v0
+    out2[6] = (pt1 - p1_0 * y0 - p1_1 * y1 - p1_2 * y2 - p1_3 * y3 - p1_4 * y4) * v1
+    out2[7] = (pt2 - p2_0 * y0 - p2_1 * y1 - p2_2 * y2 - p2_3 * y3 - p2_4 * y4) * v2
+    out2[8] = (pt3 - p3_0 * y0 - p3_1 * y1 - p3_2 * y2 - p3_3 * y3 - p3_4 * y4) * v3
+    out2[4] = y0
+    out2[0] = y1
+    out2[1] = y2
+    out2[2] = y3
+    out2[3] = y4
+    return True

@@ -233,6 +233,73 @@ def test_the_hermite_weights_reproduce_a_quintic() -> None:
     assert abs(got - cubic(0.5)) < 1e-11 * np.abs(coef).sum()
 
 
+def test_the_hermite_table_gives_the_same_weights() -> None:
+    """The tracker's split of the weights (``_hermite_table`` once a history, ``_hermite_at``
+    each try) gives ``_hermite_weights``' numbers exactly, for two and three points."""
+    th = np.array([0.1, 0.17, 0.3])
+    for npts in (2, 3):
+        z1, z2 = np.empty(homotopy.hermite_scratch(3)), np.empty(homotopy.hermite_scratch(3))
+        w1, w2, col, table = np.empty(6), np.empty(6), np.empty(6), np.empty((6, 6))
+        homotopy._hermite_table(th, npts, z2, table)
+        for tt in (0.12, 0.3, 0.45, 0.6):
+            homotopy._hermite_weights(th, npts, tt, w1, z1, col)
+            homotopy._hermite_at(npts, tt, z2, table, w2)
+            assert np.array_equal(w1[: 2 * npts], w2[: 2 * npts])
+
+
+def _solve_both(a: np.ndarray, b: np.ndarray, c: np.ndarray, plan: np.ndarray):  # type: ignore[no-untyped-def]
+    n = b.shape[0]
+    out = []
+    for solve in (kernel.solve_pair, homotopy._solve_pair):
+        x, y = np.empty(n, complex), np.empty(n, complex)
+        scratch = (np.empty((n, n), complex), np.empty(n, complex), np.empty(n, complex))
+        ok = solve(a, b, c, x, y, *scratch, plan, True)
+        x1 = np.empty(n, complex)
+        ok1 = solve(a, b, b, x1, x1, *scratch, plan, False)
+        out.append((ok, x, y, ok1, x1))
+    return out
+
+
+def test_the_generated_linear_solve_agrees_with_numpy() -> None:
+    """The generated straight-line ``solve_pair`` (the elimination plan written out) on the
+    system's Jacobians at random complex points, with rows scaled over six decades so that
+    the pivoting branches are taken (a pair's second row larger or not): both right-hand
+    sides equal numpy's solve (LAPACK) to 1e-10 relative and the tracker's loop solve to
+    1e-12; a singular matrix (a zero column, a zero pair column) is refused."""
+    system = minimal._system()
+    plan = system.elimination
+    assert tuple(kernel.ELIMINATION) == tuple(plan)
+    assert system.tracker is not None  # the kernels are used
+    rng = np.random.default_rng(11)
+    q = np.asarray(minimal.minimal_unsquared.START_PARAMETERS, complex)
+    n = len(kernel.UNKNOWNS)
+    w = np.empty(kernel.N_COEFFICIENTS, complex)
+    kernel.coefficients(q, w)
+    swapped = []
+    for _ in range(40):
+        x = _crandn(rng, n)
+        f, jac = np.empty(n, complex), np.empty((n, n), complex)
+        kernel.residual_jacobian(x, w, f, jac)
+        jac = jac * (10.0 ** rng.uniform(-3, 3, size=n))[:, None]  # rows of any size
+        col, piv, oth = plan[2:5]
+        swapped.append(abs(jac[oth, col]) > abs(jac[piv, col]))  # pair 0 pivots on its 2nd row
+        b, c = _crandn(rng, n), _crandn(rng, n)
+        (ok, x_gen, y_gen, ok1, x1_gen), (okl, x_loop, y_loop, _, _) = _solve_both(jac, b, c, plan)
+        assert ok and ok1 and okl
+        want_x, want_y = np.linalg.solve(jac, b), np.linalg.solve(jac, c)
+        for got, want in ((x_gen, want_x), (y_gen, want_y), (x1_gen, want_x)):
+            assert np.abs(got - want).max() <= 1e-10 * np.abs(want).max()
+        cond = np.linalg.cond(jac)
+        for got, loop in ((x_gen, x_loop), (y_gen, y_loop)):
+            assert np.abs(got - loop).max() <= 1e-15 * cond * np.abs(loop).max()
+    assert 0 < sum(swapped) < len(swapped)  # both of a pair's branches were taken
+    for column in (0, int(plan[2])):  # C (dense) and s0 (a pair's unknown)
+        singular = jac.copy()
+        singular[:, column] = 0.0
+        assert not _solve_both(singular, b, c, plan)[0][0]
+        assert not _solve_both(singular, b, c, plan)[0][3]
+
+
 @pytest.mark.parametrize("seed", [600_003, 700_011])
 def test_the_hermite_predictor_follows_the_same_paths_as_rk4(seed) -> None:
     """The default Hermite predictor (``HomotopyOptions.predictor``) against the RK4 one on the

@@ -80,7 +80,8 @@ def _track_kernels(q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end):
     linear solves' elimination plan, ``PolynomialSystem.elimination``, in place of the column
     order: an old cache would read the plan as a column order; dW/dt only from a try's second
     Newton iteration on; the Hermite weights' scratch holds the nodes' reciprocal differences
-    too)."""
+    too; the generated straight-line ``solve_pair`` in place of the tracker's loop solve, the
+    quadratic corrector estimate up to t = 0.9 and the Hermite table kept between tries)."""
     k = minimal_unsquared_kernel
     homotopy.track_generated(
         k.coefficients,
@@ -88,6 +89,7 @@ def _track_kernels(q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end):
         k.coefficient_rates,
         k.residual_jacobian,
         k.residual_jacobian_t,
+        k.solve_pair,
         k.N_COEFFICIENTS,
         q0,
         q1,
@@ -124,8 +126,10 @@ def _system() -> homotopy.PolynomialSystem:
     # the 104 solutions are counted with C tan(alpha) tan(beta) != 0 (docs/derivation.md: the
     # unsaturated set adds the surfaces C = 0 and tan(alpha) = tan(beta) = 0)
     nonzero = ("C", "A", "B")
-    if not same:
-        return homotopy.PolynomialSystem.from_module(minimal_unsquared, nonzero=nonzero)
+    tables = homotopy.PolynomialSystem.from_module(minimal_unsquared, nonzero=nonzero)
+    # the kernels' linear solve is written out for one elimination plan: the tables' own
+    if not same or tuple(getattr(k, "ELIMINATION", ())) != tuple(tables.elimination):
+        return tables
     return homotopy.PolynomialSystem.from_module(
         minimal_unsquared, tracker=_track_kernels, newton=_newton_kernels, nonzero=nonzero
     )
