@@ -22,6 +22,8 @@ import math
 import numba
 import numpy as np
 
+from curverecon import jit_cache
+from curverecon.generated import measurement_kernel
 from curverecon.generated.measurement_kernel import (
     predict_frame,
     predict_frame_with_pose_jacobian,
@@ -173,3 +175,10 @@ def optimise_frames(
             r[:] = rt
         p_out[i] = pose
         r_out[i] = r
+
+
+# numba caches these on this file's source alone; the measurement model they call is generated
+# elsewhere (curverecon.jit_cache)
+jit_cache.drop_stale(
+    (_wrap_line, _residual, _gauss_newton_step, optimise_frames), (measurement_kernel,)
+)

@@ -26,6 +26,7 @@ from functools import cache
 import numba
 import numpy as np
 
+from curverecon import jit_cache
 from curverecon.errors import CurveReconError
 from curverecon.generated import minimal_unsquared
 from curverecon.model.observations import Observations, wrap_line_angle
@@ -75,13 +76,8 @@ def _track_kernels(q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end):
     """The homotopy tracker on the generated straight-line kernels of the system
     (``generated/minimal_unsquared_kernel.py``): compiled and cached here, where the kernels
     are known by name (``homotopy.track_generated``).  numba's cache of this function is keyed
-    on this file only: after a change to the tracker in ``homotopy.py``, change this file too
-    (or delete its cache) or the old tracker runs (2026-11-27: the Hermite predictor; the
-    linear solves' elimination plan, ``PolynomialSystem.elimination``, in place of the column
-    order: an old cache would read the plan as a column order; dW/dt only from a try's second
-    Newton iteration on; the Hermite weights' scratch holds the nodes' reciprocal differences
-    too; the generated straight-line ``solve_pair`` in place of the tracker's loop solve, the
-    quadratic corrector estimate up to t = 0.9 and the Hermite table kept between tries)."""
+    on this file only; ``jit_cache.drop_stale`` below flushes it when ``homotopy.py`` or the
+    kernels change (before, a stale cache kept running the old tracker)."""
     k = minimal_unsquared_kernel
     homotopy.track_generated(
         k.coefficients,
@@ -111,6 +107,12 @@ def _newton_kernels(xs, q, plan, iterations):  # type: ignore[no-untyped-def]
     homotopy.newton_generated(
         k.coefficients, k.residual_jacobian, k.N_COEFFICIENTS, xs, q, plan, iterations
     )
+
+
+# numba caches the two above on this file's source alone; the tracker and the kernels they
+# compile in live elsewhere (curverecon.jit_cache)
+if minimal_unsquared_kernel is not None:
+    jit_cache.drop_stale((_track_kernels, _newton_kernels), (homotopy, minimal_unsquared_kernel))
 
 
 @cache
