@@ -255,9 +255,9 @@ _UNARY_MAX = 50_000
 def _poly_key(poly: np.ndarray) -> bytes:
     """A polyline's content as a cache key.  The read-only arrays :func:`_valid_polyline` hands
     out are keyed once, by identity (the entry holds the array: its id is not reused while
-    there; read-only: its content does not change): the branch search asks for the keys of the
-    same polylines thousands of times (copying each out was a tenth of section 4's time)."""
-    memo = isinstance(poly, np.ndarray) and not poly.flags.writeable
+    there; read-only and owning its data, not a view of another array: its content does not
+    change): the branch search asks for the keys of the same polylines thousands of times."""
+    memo = isinstance(poly, np.ndarray) and not poly.flags.writeable and poly.base is None
     if memo:
         hit = _KEYS.get(id(poly))
         if hit is not None and hit[0] is poly:
