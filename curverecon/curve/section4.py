@@ -48,7 +48,8 @@ class CurveResult:
     interpolated: (K,) True where no frame gave a usable crossing and the depth was interpolated.
     coplanarity: |det| of the unit vectors AB, t_A, t_B (0 = coplanar); NaN when unavailable.
     frame_residual: (N,) median distance (pixels) from the reprojected curve to each frame's
-        polyline; large values flag frames whose pose disagrees with the others.
+        polyline; large values flag frames whose pose disagrees with the others; inf for the
+        frames a search's ``residual_limit`` left unmeasured.
     """
 
     points: np.ndarray
