@@ -204,43 +204,6 @@ def test_polyline_keys_by_identity_are_the_content_keys():
     assert s4._length(cached) == float(pl.arc_length(poly)[-1])
 
 
-def _smooth_loop(z: np.ndarray, std: np.ndarray) -> np.ndarray:
-    """The local quadratic regression one window at a time (np.linalg.lstsq per sample)."""
-    k_total = len(z)
-    half = max(2, int(round(0.015 * k_total)))
-    if k_total < 2 * half + 3:
-        return z
-    w_all = np.where(np.isfinite(std) & (std > 0), 1.0 / np.maximum(std, 1e-6) ** 2, 0.0)
-    w_all[~np.isfinite(std)] = 1e-6
-    w_all[0] = w_all[-1] = 1e6
-    out = z.copy()
-    for k in range(1, k_total - 1):
-        lo, hi = max(0, k - half), min(k_total, k + half + 1)
-        u = np.arange(lo, hi) - k
-        v = np.vander(u.astype(float), 3, increasing=True)
-        w = w_all[lo:hi] * (1 - (np.abs(u) / (half + 1)) ** 3) ** 3
-        a = v * w[:, None]
-        coef, *_ = np.linalg.lstsq(a.T @ v, a.T @ z[lo:hi], rcond=None)
-        out[k] = coef[0]
-    return out
-
-
-@pytest.mark.parametrize("seed", range(8))
-def test_stacked_smoothing_equals_the_loop_of_fits(seed):
-    """The windows solved as one stack give the loop's values to the last bit, for a column of
-    an (K, 2) array (strided, as section 4 smooths x and y) and a depth column with unknown
-    (inf) and weighted samples."""
-    rng = np.random.default_rng(seed)
-    k = int(rng.integers(9, 201))
-    xy = np.cumsum(rng.normal(size=(k, 2)), axis=0) * 10.0
-    std = rng.uniform(0.3, 3.0, k)
-    std[rng.random(k) < 0.2] = np.inf
-    std[3 : 3 + k // 4] = np.inf
-    flat = np.ones(k)
-    for col, s in ((xy[:, 0], flat), (xy[:, 1], std), (np.ascontiguousarray(xy[:, 1]), std)):
-        np.testing.assert_array_equal(s4._smooth_column(col, s), _smooth_loop(col, s))
-
-
 def test_read_only_views_are_keyed_by_content():
     """A read-only view of a writable array can change: keyed by content every time."""
     base = np.cumsum(np.random.default_rng(6).normal(size=(30, 2)), axis=0)

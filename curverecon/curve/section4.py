@@ -610,11 +610,7 @@ def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:
     """Local weighted quadratic regression of one coordinate against sample index.
 
     Window: +-max(2, 1.5 % of the samples); tricube weights times inverse variances; the two end
-    samples (A, B) are kept.  The samples whose window lies inside the curve share its offsets:
-    their normal equations are formed and solved as one stack (``_stacked_lstsq``: the same
-    BLAS products and LAPACK least-squares solve per window as the loop of the others, so the
-    same values to the last bit; the loop was most of the full section-4 reconstruction that
-    starts the curve bundle).
+    samples (A, B) are kept.
     """
     k_total = len(z)
     half = max(2, int(round(0.015 * k_total)))
@@ -624,10 +620,7 @@ def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:
     w_all[~np.isfinite(std)] = 1e-6
     w_all[0] = w_all[-1] = 1e6
     out = z.copy()
-    stacked = _LSTSQ is not None
     for k in range(1, k_total - 1):
-        if stacked and half <= k < k_total - half:
-            continue  # a whole window: solved in the stack below
         lo, hi = max(0, k - half), min(k_total, k + half + 1)
         u = np.arange(lo, hi) - k
         v = np.vander(u.astype(float), 3, increasing=True)
@@ -635,35 +628,4 @@ def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:
         a = v * w[:, None]
         coef, *_ = np.linalg.lstsq(a.T @ v, a.T @ z[lo:hi], rcond=None)
         out[k] = coef[0]
-    if stacked:
-        inner = np.arange(half, k_total - half)
-        u = np.arange(-half, half + 1)
-        v = np.vander(u.astype(float), 3, increasing=True)
-        w = w_all[inner[:, None] + u[None, :]] * (1 - (np.abs(u) / (half + 1)) ** 3) ** 3
-        at = (v[None] * w[:, :, None]).transpose(0, 2, 1)  # each window's a.T, as in the loop
-        # each window of z a view with z's own stride (the loop's vector: the same BLAS call)
-        zw = np.lib.stride_tricks.sliding_window_view(z, 2 * half + 1)
-        out[inner] = _stacked_lstsq(at @ v, at @ zw[:, :, None])[:, 0, 0]
     return out
-
-
-def _lstsq_failed(err, flag):
-    raise np.linalg.LinAlgError("SVD did not converge in Linear Least Squares")
-
-
-try:  # numpy's own least-squares gufunc (what np.linalg.lstsq calls, one matrix at a time)
-    from numpy.linalg import _umath_linalg
-
-    _LSTSQ = _umath_linalg.lstsq
-except (ImportError, AttributeError):  # pragma: no cover - another numpy: the loop
-    _LSTSQ = None
-
-
-def _stacked_lstsq(lhs: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """``np.linalg.lstsq(lhs[i], rhs[i], rcond=None)[0]`` for every i of (B, n, n) and (B, n, 1)
-    stacks: the same LAPACK call per matrix, with lstsq's default rcond."""
-    rcond = np.finfo(float).eps * lhs.shape[-1]
-    with np.errstate(
-        call=_lstsq_failed, invalid="call", over="ignore", divide="ignore", under="ignore"
-    ):
-        return _LSTSQ(lhs, rhs, rcond, signature="ddd->ddid")[0]
