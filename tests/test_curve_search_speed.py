@@ -98,3 +98,117 @@ def test_duplicate_refits_scored_once():
     assert _distinct_optima([0, 1, 2, 3, 4, 5], shapes, poses, 1e-4) == [0, 1, 3, 5]
     assert _distinct_optima([2, 0, 4], shapes, poses, 1e-4) == [2]
     assert _distinct_optima([0, 1, 2, 3, 4, 5], shapes, poses, 0.0) == [0, 1, 2, 3, 4, 5]
+
+
+def _scene_20(seed: int, family: str = "bezier"):
+    from curverecon.simulate import make_scene
+
+    sc = make_scene(np.random.default_rng(seed), 20, 1.0, 1.0, with_curve=True, curve_family=family)
+    return sc
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_residual_limit_stops_only_beyond_the_limit(seed):
+    """``residual_limit``: the frame residuals measured are the full reconstruction's, in frame
+    order, until their sum over the counted frames exceeds the limit; the rest are inf; at or
+    above the full sum nothing changes (the end-point answer's poses of a 1 px 20-frame scene,
+    frame 7 turned off)."""
+    from curverecon.options import ReconstructOptions
+    from curverecon.pipeline import reconstruct_end_points
+
+    sc = _scene_20(seed)
+    rec = reconstruct_end_points(sc.observations, ReconstructOptions())
+    rot, tra = rec.rotations().copy(), rec.translations()
+    rot[7] = rot[7] @ np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])  # frame 7 off
+    curves = sc.observations.curves
+    kw = {"n_samples": 60, "smooth": False}
+    full = s4.reconstruct_curve(curves, rot, tra, **kw)
+    f = full.frame_residual
+    counted = np.ones(20, bool)
+    counted[[0, 7]] = False
+    for frames, total in ((None, f.sum()), (counted, f[counted].sum())):
+        same = s4.reconstruct_curve(
+            curves, rot, tra, residual_limit=total, residual_frames=frames, **kw
+        )
+        np.testing.assert_array_equal(same.frame_residual, f)
+        np.testing.assert_array_equal(same.points, full.points)
+        for limit in (0.3 * total, 0.7 * total, 0.999 * total):
+            cut = s4.reconstruct_curve(
+                curves, rot, tra, residual_limit=limit, residual_frames=frames, **kw
+            )
+            np.testing.assert_array_equal(cut.points, full.points)
+            got = cut.frame_residual
+            done = np.isfinite(got)
+            stop = int(done.sum())
+            assert not done[stop:].any()  # measured frames first, then inf
+            np.testing.assert_array_equal(got[:stop], f[:stop])
+            mask = np.ones(20, bool) if frames is None else frames
+            if stop < 20:  # stopped only beyond the limit
+                assert f[:stop][mask[:stop]].sum() > limit * (1 + 1e-9)
+            assert f[: stop - 1][mask[: stop - 1]].sum() <= limit * (1 + 1e-9)
+            assert not any("reprojects up to inf" in w for w in cut.warnings)
+
+
+def _without_limit(
+    polylines, rotations, translations, *, n_samples=None, tangents=None, smooth=True
+):
+    """``reconstruct_curve`` without its ``residual_limit``: the search measures every frame."""
+    return s4.reconstruct_curve(
+        polylines, rotations, translations, n_samples=n_samples, tangents=tangents, smooth=smooth
+    )
+
+
+@pytest.mark.parametrize(
+    ("seed", "family"), [(1400, "random"), (1400, "fourier"), (2001, "sharp-ends")]
+)
+def test_branch_search_with_residual_limit_chooses_the_same(seed, family):
+    """The branch search with the residuals cut at its bounds (``branches._limited``) makes the
+    same switches and refits as with every residual measured (bench time_20 scenes)."""
+    from curverecon.curve.branches import (
+        refit_branches_with_curves,
+        resolve_branches_with_curves,
+    )
+    from curverecon.options import ReconstructOptions
+    from curverecon.pipeline import reconstruct_end_points
+
+    sc = _scene_20(seed, family)
+    obs = sc.observations
+    opts = ReconstructOptions()
+    rec = reconstruct_end_points(obs, opts)
+    assert rec.branch_alternatives is not None
+    out = []
+    for rc in (s4.reconstruct_curve, _without_limit):
+        r1, c1 = resolve_branches_with_curves(rec, obs.curves, rc, opts.curve)
+        r2, c2 = refit_branches_with_curves(r1, obs, rc, curve=c1, o=opts.curve)
+        out.append((r1, c1, r2, c2))
+    (a1, ac1, a2, ac2), (b1, bc1, b2, bc2) = out
+    for x, y in ((a1, b1), (a2, b2)):
+        np.testing.assert_array_equal(x.poses, y.poses)
+        np.testing.assert_array_equal(x.shape, y.shape)
+    for x, y in ((ac1, bc1), (ac2, bc2)):
+        np.testing.assert_array_equal(x.points, y.points)
+        np.testing.assert_array_equal(x.frame_residual, y.frame_residual)
+
+
+def test_polyline_keys_by_identity_are_the_content_keys():
+    rng = np.random.default_rng(5)
+    poly = np.cumsum(rng.normal(size=(40, 2)), axis=0)
+    cached = s4._valid_polyline(poly, "frame 0 curve")  # read-only: keyed by identity
+    key = s4._poly_key(cached)
+    assert s4._poly_key(cached) is key
+    assert s4._poly_key(poly.copy()) == key  # a writable copy: by content, the same key
+    other = poly.copy()
+    other[3, 1] += 1e-9
+    assert s4._poly_key(other) != key
+    assert s4._poly_key(poly[::-1].copy()) != key
+    assert s4._length(cached) == float(pl.arc_length(poly)[-1])
+
+
+def test_read_only_views_are_keyed_by_content():
+    """A read-only view of a writable array can change: keyed by content every time."""
+    base = np.cumsum(np.random.default_rng(6).normal(size=(30, 2)), axis=0)
+    view = base.view()
+    view.flags.writeable = False
+    key = s4._poly_key(view)
+    base[4, 0] += 1.0
+    assert s4._poly_key(view) != key

@@ -56,6 +56,7 @@ def resolve_branches_with_curves(
     """
     o = o or CurveOptions()
     search = _coarse(reconstruct_curve, o)
+    limited = _limited(search)
     cand: list[int] = []
     if not (
         rec.branch_alternatives is None
@@ -88,7 +89,12 @@ def resolve_branches_with_curves(
             trial = switched.copy()
             trial[i] = ~trial[i]
             poses = np.where(trial[:, None], rec.branch_alternatives, rec.poses)
-            t = total(search(curves, *_rt(poses)))
+            # only a total below the round's best and below the gain's threshold matters: the
+            # residuals stop once they exceed both (inf; the same switches)
+            bound = (1.0 - o.flip_gain) * best_total
+            if round_best is not None:
+                bound = min(bound, round_best[0])
+            t = total(limited(curves, *_rt(poses), limit=bound, frames=inl))
             if round_best is None or t < round_best[0]:
                 round_best = (t, i)
         t, i = round_best
@@ -131,6 +137,29 @@ def resolve_branches_with_curves(
 
 def _rt(poses: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return rotations(poses), translations(poses)
+
+
+def _limited(search):
+    """``search(curves, rotations, translations, limit=, frames=)``: ``search`` with its
+    ``residual_limit`` and ``residual_frames`` when it takes them (``section4.reconstruct_curve``
+    stops measuring frame residuals once their sum over ``frames`` exceeds ``limit``: their
+    total is then inf, and a search that keeps only totals below ``limit`` decides the same);
+    otherwise ``search`` without them."""
+    try:
+        params = inspect.signature(search).parameters
+    except (TypeError, ValueError):
+        params = {}
+    if {"residual_limit", "residual_frames"} <= set(params):
+
+        def run(curves, rot, tra, *, limit: float = np.inf, frames=None):
+            return search(curves, rot, tra, residual_limit=limit, residual_frames=frames)
+
+        return run
+
+    def plain(curves, rot, tra, *, limit: float = np.inf, frames=None):
+        return search(curves, rot, tra)
+
+    return plain
 
 
 def _coarse(reconstruct_curve, o: CurveOptions):
@@ -206,11 +235,14 @@ def refit_branches_with_curves(
         return rec, res
     ps, ts = float(point_sigma), math.radians(tangent_sigma_deg)
     w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
-    search = _coarse(reconstruct_curve, o)
+    search = _limited(_coarse(reconstruct_curve, o))
     n = obs.n_frames
 
-    def total(poses: np.ndarray) -> float:
-        f = np.asarray(getattr(search(obs.curves, *_rt(poses)), "frame_residual", None), float)
+    def total(poses: np.ndarray, limit: float = np.inf) -> float:
+        """The total residual of the curve from ``poses``; inf once beyond ``limit`` (only
+        totals below it are kept: the same choices)."""
+        r = search(obs.curves, *_rt(poses), limit=limit)
+        f = np.asarray(getattr(r, "frame_residual", None), float)
         return float(np.sum(f)) if f.shape == (n,) else np.inf
 
     shape, poses = rec.shape, np.array(rec.poses)
@@ -219,12 +251,15 @@ def refit_branches_with_curves(
     alternatives = list(rec.alternatives)
     # The other shapes that fit about equally well (``rec.alternatives``, each with its own pose
     # branches in many frames at once - out of reach of single-frame switches): the curve picks.
-    scored_alts = [(total(a.poses), j) for j, a in enumerate(alternatives)]
+    scored_alts: list[tuple[float, int]] = []
+    for j, a in enumerate(alternatives):
+        gain_limit = (1.0 - o.refit_gain) * best_total
+        scored_alts.append((total(a.poses, min([gain_limit, *(t for t, _ in scored_alts)])), j))
     if scored_alts and min(scored_alts)[0] < (1.0 - o.refit_gain) * best_total:
         j = min(scored_alts)[1]
         trial = refine(obs, alternatives[j].shape, alternatives[j].poses, ps, ts, covariance=True)
         trial_shape, trial_poses = normalise(trial.shape, trial.poses)
-        t = total(trial_poses)
+        t = total(trial_poses, (1.0 - o.refit_gain) * best_total)
         if t < (1.0 - o.refit_gain) * best_total:
             alternatives[j] = Alternative(rec.shape, rec.poses, float(rec.chi2), rec.std)
             fit, shape, poses, best_total = trial, trial_shape, trial_poses, t
@@ -245,7 +280,10 @@ def refit_branches_with_curves(
         g, p, _, chi2, _, _ = refine_batch(obs, shapes, starts, ps, ts, max_iter=60)
         cands = [k for k in range(frames.size) if chi2[k] < rec.chi2 + o.refit_dchi2]
         cands = _distinct_optima(cands, g, p, o.refit_same_tol)
-        scored = [(total(p[k]), k) for k in cands]
+        scored: list[tuple[float, int]] = []
+        for k in cands:
+            gain_limit = (1.0 - o.refit_gain) * best_total
+            scored.append((total(p[k], min([gain_limit, *(t for t, _ in scored)])), k))
         if not scored:
             break
         t, k = min(scored)
@@ -253,7 +291,8 @@ def refit_branches_with_curves(
             break
         trial = refine(obs, g[k], p[k], ps, ts, covariance=True)
         trial_shape, trial_poses = normalise(trial.shape, trial.poses)
-        t = total(trial_poses)  # the full refinement may move on: check again
+        # the full refinement may move on: check again
+        t = total(trial_poses, (1.0 - o.refit_gain) * best_total)
         if not (t < (1.0 - o.refit_gain) * best_total and trial.chi2 < rec.chi2 + o.refit_dchi2):
             break
         fit, shape, poses, best_total = trial, trial_shape, trial_poses, t

@@ -48,7 +48,8 @@ class CurveResult:
     interpolated: (K,) True where no frame gave a usable crossing and the depth was interpolated.
     coplanarity: |det| of the unit vectors AB, t_A, t_B (0 = coplanar); NaN when unavailable.
     frame_residual: (N,) median distance (pixels) from the reprojected curve to each frame's
-        polyline; large values flag frames whose pose disagrees with the others.
+        polyline; large values flag frames whose pose disagrees with the others; inf for the
+        frames a search's ``residual_limit`` left unmeasured.
     """
 
     points: np.ndarray
@@ -151,7 +152,7 @@ _NOISE: dict[tuple, float] = {}
 
 def _noise_level(poly: np.ndarray) -> float:
     poly = np.ascontiguousarray(poly, dtype=float)
-    key = (poly.shape, poly.tobytes())
+    key = _poly_key(poly)
     level = _NOISE.get(key)
     if level is None:
         level = pl.noise_level(poly)
@@ -212,7 +213,7 @@ _GRIDS: dict[tuple, Grid] = {}
 
 def _dense_grid(poly: np.ndarray, spacing: float, bound: float) -> Grid:
     poly = np.ascontiguousarray(poly, dtype=float)
-    key = (poly.shape, poly.tobytes(), spacing, bound)
+    key = (_poly_key(poly), spacing, bound)
     grid = _GRIDS.get(key)
     if grid is None:
         grid = Grid(_dense_tree(poly, spacing).data, bound)
@@ -233,7 +234,7 @@ def _dense_tree(poly: np.ndarray, spacing: float):
     from scipy.spatial import cKDTree
 
     poly = np.ascontiguousarray(poly, dtype=float)
-    key = (poly.shape, poly.tobytes(), spacing)
+    key = (_poly_key(poly), spacing)
     tree = _TREES.get(key)
     if tree is None:
         s = pl.arc_length(poly)
@@ -253,7 +254,39 @@ _UNARY_MAX = 50_000
 
 
 def _poly_key(poly: np.ndarray) -> bytes:
-    return np.ascontiguousarray(poly, dtype=float).tobytes() + repr(np.shape(poly)).encode()
+    """A polyline's content as a cache key.  The read-only arrays :func:`_valid_polyline` hands
+    out are keyed once, by identity (the entry holds the array: its id is not reused while
+    there; read-only and owning its data, not a view of another array: its content does not
+    change): the branch search asks for the keys of the same polylines thousands of times."""
+    memo = isinstance(poly, np.ndarray) and not poly.flags.writeable and poly.base is None
+    if memo:
+        hit = _KEYS.get(id(poly))
+        if hit is not None and hit[0] is poly:
+            return hit[1]
+    key = np.ascontiguousarray(poly, dtype=float).tobytes() + repr(np.shape(poly)).encode()
+    if memo:
+        if len(_KEYS) >= _TREES_MAX:
+            _KEYS.clear()
+        _KEYS[id(poly)] = (poly, key)
+    return key
+
+
+#: :func:`_poly_key` of read-only polylines by identity (the array, its key)
+_KEYS: dict[int, tuple[np.ndarray, bytes]] = {}
+#: arc length of polylines by content
+_LENGTHS: dict[bytes, float] = {}
+
+
+def _length(poly: np.ndarray) -> float:
+    """``pl.arc_length(poly)[-1]`` by content."""
+    key = _poly_key(poly)
+    length = _LENGTHS.get(key)
+    if length is None:
+        length = float(pl.arc_length(poly)[-1])
+        if len(_LENGTHS) >= _TREES_MAX:
+            _LENGTHS.clear()
+        _LENGTHS[key] = length
+    return length
 
 
 #: Crossing candidates of one frame (:func:`_frame_candidates`) by content.
@@ -304,6 +337,8 @@ def reconstruct_curve(
     n_samples: int | None = None,
     tangents: tuple[np.ndarray, np.ndarray] | None = None,
     smooth: bool = True,
+    residual_limit: float = np.inf,
+    residual_frames: np.ndarray | None = None,
 ) -> CurveResult:
     """Recover the 3-D curve from every frame's polyline and the (known) poses (paper, section 4).
 
@@ -316,6 +351,11 @@ def reconstruct_curve(
     smooth: apply a light local-quadratic smoothing along the curve (window ~3 % of the samples,
         at least 5) to the depth and, when frame 0's polyline is noisy, to x and y; it averages
         per-sample noise without visible bias on smooth curves.
+    residual_limit, residual_frames: for a search that only needs to know whether the sum of
+        ``frame_residual`` over ``residual_frames`` (bool (N,); default every frame) is at most
+        ``residual_limit``: once the frames measured so far (in frame order) sum to more, the
+        other frames' residuals are not measured and are inf (the sum is then inf; it would
+        have exceeded the limit anyway).  The default measures every frame.
 
     Returns a :class:`CurveResult` with points (K, 3) in frame 0's camera coordinates.
     Raises ``CurveReconError`` for inconsistent shapes, non-finite values, or bad polylines.
@@ -356,7 +396,7 @@ def reconstruct_curve(
         raise _error("no frame views the curve from a different direction than frame 0")
 
     # Per-frame crossing candidates for every sample: depth, standard error.
-    lengths = [float(pl.arc_length(p)[-1]) for p in polys]
+    lengths = [_length(p) for p in polys]
     # per frame (in frame order) its candidates' sample, depth, standard error
     parts: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
     xy_key = xy.tobytes()
@@ -505,11 +545,23 @@ def reconstruct_curve(
     # Consistency of every frame with the recovered curve: median reprojection distance.
     frame_residual = np.zeros(n_frames)
     grid_w = np.sqrt(trunc) * 1.0001  # the unary cost's grids (built already)
+    counted = np.ones(n_frames, bool) if residual_frames is None else residual_frames
+    # a running sum beyond the limit by more than its rounding (n eps relative; the residuals
+    # are >= 0): the search's own sum exceeds the limit too
+    stop = residual_limit * (1.0 + 1e-9)
+    running = 0.0
     for i in range(n_frames):
+        if running > stop:
+            frame_residual[i:] = np.inf
+            break
         proj_i = points @ m[i].T + b[i]
         frame_residual[i] = _median_distance(proj_i[:, :2], polys[i], grid_w)
+        if counted[i]:
+            running += frame_residual[i]
     limit = 3.0 * sigma + 1.0
-    bad_frames = [i for i in range(n_frames) if frame_residual[i] > limit]
+    bad_frames = [
+        i for i in range(n_frames) if limit < frame_residual[i] < np.inf
+    ]  # (inf: not measured, ``residual_limit``)
     if bad_frames:
         worst = max(frame_residual[i] for i in bad_frames)
         warnings.append(
