@@ -50,3 +50,27 @@ def test_curve_within_3_percent_when_frame_zero_starts_on_the_wrong_branch(tmp_p
     assert main(["reconstruct", s, "-o", o]) == 0
     out = json.load(open(o))
     assert curve_error(np.array(out["curve3d"]), np.array(truth["curve3d"])) < 0.03
+
+
+def test_bundle_off_on_an_undetermined_end_point_answer_says_why_in_one_line(tmp_path, capsys):
+    """Helix seed 2104 (alpha = beta = 78.9, phi = 177.5 degrees, 1 px): the end points alone do
+    not determine the shape (c comes out tens of times too long, every pose looking along frame
+    0's line of sight), so section 4 cannot place the curve.  With ``--curve-bundle off`` the
+    command exits 2 with one line that names section 4 and the end-point answer (it named the
+    frames only); by default the bundle fits the polylines themselves and gets the shape."""
+    s, t, o = (str(tmp_path / n) for n in ("s.json", "t.json", "o.json"))
+    args = ["--frames", "12", "--point-noise", "1", "--tangent-noise", "1", "--seed", "2104"]
+    assert (
+        main(["simulate", "-o", s, "--truth", t, *args, "--with-curve", "--curve-family", "helix"])
+        == 0
+    )
+    capsys.readouterr()
+    assert main(["reconstruct", s, "-o", o, "--curve-bundle", "off", "--quiet"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err
+    assert "section 4 cannot place the curve on the end-point answer's poses" in err
+    assert "--curve-bundle on" in err
+    assert main(["reconstruct", s, "-o", o, "--quiet"]) == 0
+    truth, out = json.load(open(t)), json.load(open(o))
+    worst = max(abs(out[k] - truth[k]) for k in ("alpha_deg", "beta_deg", "phi_deg"))
+    assert worst < 2.0, worst

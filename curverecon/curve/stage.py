@@ -77,7 +77,13 @@ def fit_curve(
             res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
     except CurveReconError as exc:
         if not bundle:
-            raise
+            # section 4 works on the end-point answer's poses alone: say that it is the answer
+            # (often a shape the end points do not determine) that cannot carry the curve
+            hint = "; the curve bundle (--curve-bundle on) fits the polylines themselves"
+            raise CurveReconError(
+                f"section 4 cannot place the curve on the end-point answer's poses ({exc})"
+                + (hint if not o.bundle else "")
+            ) from exc
         # e.g. a degenerate shape whose poses all look along one direction: the bundle
         # starts from frame 0's polyline and searches every frame's pose again
         res = None
