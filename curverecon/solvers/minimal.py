@@ -20,7 +20,7 @@ the mirror image has the same cos(phi) up to that sign; CONTRACT.md).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cache
 
 import numba
@@ -130,11 +130,9 @@ def _system() -> homotopy.PolynomialSystem:
     nonzero = ("C", "A", "B")
     tables = homotopy.PolynomialSystem.from_module(minimal_unsquared, nonzero=nonzero)
     # the kernels' linear solve is written out for one elimination plan: the tables' own
-    if not same or tuple(getattr(k, "ELIMINATION", ())) != tuple(tables.elimination):
+    if not same or not np.array_equal(getattr(k, "ELIMINATION", ()), tables.elimination):
         return tables
-    return homotopy.PolynomialSystem.from_module(
-        minimal_unsquared, tracker=_track_kernels, newton=_newton_kernels, nonzero=nonzero
-    )
+    return replace(tables, tracker=_track_kernels, newton=_newton_kernels)
 
 
 def check_four_frames(obs: Observations, options: MinimalOptions | None = None) -> None:
