@@ -74,6 +74,26 @@ def test_chi2_choice_note_holds_the_default_to_the_lower_chi2_basin():
     assert issue_targets.chi2_choice_note({"accuracy": [_cell(1.0, 6, 0.6, 0.8)]}) is None
 
 
+def test_truth_start_note_sets_the_oracle_beside_the_curve_targets():
+    doc = {
+        "bundle_curve_within_half_percent_rate_by_family": {"helix": 1.0, "fourier": 0.5},
+        "bundle_curve_within_half_percent_rate_by_family_truth_start": {
+            "helix": 1.0,
+            "fourier": 0.625,
+        },
+        "bundle_curve_scenes_per_family": 8,
+        "polylines_only_angles_within_1deg_rate_truth_start": 0.25,
+    }
+    note = issue_targets.truth_start_note(doc)
+    assert "(8 scenes each): helix 1, fourier 0.625" in note
+    assert "angles within 1 deg from the truth start: 0.25" in note
+    assert note in issue_targets.markdown(doc)
+    # the target itself is still judged on the default's answer
+    family = next(k for k in _verdicts(doc) if k.startswith("curve3d within 0.5 %"))
+    assert _verdicts(doc)[family] == ("lowest fourier 0.5 (2 families)", "MISS")
+    assert issue_targets.truth_start_note({}) is None
+
+
 def test_merge_section_rewrites_one_targets_table_and_fences_long_values(tmp_path):
     (tmp_path / "report.json").write_text(json.dumps({"minimal_solve_seconds_median": 0.5}))
     (tmp_path / "REPORT.md").write_text("# report\n\nbody\n")
