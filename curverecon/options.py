@@ -237,6 +237,23 @@ class CurveOptions:
     bound it, not the number of frames).  At 100 frames the joint fit's shape was still taken
     in 2 of 3 scenes (seeds 1400-1402, 9 s each)."""
 
+    refit_with_bundle: bool = False
+    """With the curve bundle (``bundle``, method "auto"), also run the joint refits and the
+    alternative shapes (``refit_*``, ``curve.branches.refit_branches_with_curves``) before
+    it.  Off: the bundle fits the shape and every pose to the polylines itself, searches every
+    frame's pose against its curve (frame 0's other branch included) and gates its shape on
+    the end points' confidence region about the answer and every equally good alternative
+    (``never_worse_alternatives``), so the refits mostly fed it a start (a refused shape
+    falls back to the end-point answer without them).  2026-11-27, 20 frames,
+    1 px, seeds 1400-1403 and 2000, every family (the refit was taken in 2 of these 30
+    scenes) and 12 frames, 0.5 px (seeds 0, 103, 222, 1200-1202: the test scenes of the
+    refits): every curve error the same to 1e-4 with and without, and the refits were about
+    40 % of the branch choice's CPU time at 20 frames (1.22 of 2.5 s over 12 scenes); held
+    out (20 frames seeds 2001-2003, 12 frames 0.5 px seeds 1203-1205) the same to 1e-4.  On
+    sharp-ends 6001 (12 frames, 1 px) the refit took an optimum 10-18 degrees off and the gate
+    then refused the bundle (curve 8.3 % off); without it the bundle is accepted (1.1 %).  The
+    refits stay without the bundle (``--curve-bundle off``, section 4's answer)."""
+
     refit_dchi2: float = 4.0
     """A joint refit with one frame on its mirrored branch is a candidate if its chi2 is within
     this of the answer's."""

@@ -13,6 +13,8 @@ the disagreement (``CurveOptions.never_worse_dchi2``).
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -94,8 +96,13 @@ def test_refused_bundle_widens_the_end_point_std():
     assert np.all(default.std >= rec.std * (1 - 1e-12))
 
 
-@pytest.mark.parametrize(("family", "seed"), [("helix", 6007), ("sharp-ends", 6001)])
-def test_refused_bundle_std_includes_the_answers_disagreement(family, seed):
+# sharp-ends 6001: refused with the joint refits before the bundle (its end-point answer is
+# then a nearby optimum 10-18 degrees off); by default (CurveOptions.refit_with_bundle off)
+# the bundle's shape is accepted there (test_curve_search_speed)
+@pytest.mark.parametrize(
+    ("family", "seed", "refit"), [("helix", 6007, False), ("sharp-ends", 6001, True)]
+)
+def test_refused_bundle_std_includes_the_answers_disagreement(family, seed, refit):
     """Scenes (1 px, 1 degree, 12 frames) whose end-point answer is itself off (by 2-3 and by
     10-18 degrees) and whose bundle shape, nearer the truth, is refused just past the limit:
     the Birge scaling alone leaves errors of more than 3 std; with the two answers' difference
@@ -104,15 +111,16 @@ def test_refused_bundle_std_includes_the_answers_disagreement(family, seed):
         np.random.default_rng(seed), 12, 1.0, 1.0, with_curve=True, curve_family=family
     )
     truth = scene.truth.shape
+    base = CurveOptions(refit_with_bundle=refit)
     birge = reconstruct(
         scene.observations,
-        options=ReconstructOptions(curve=CurveOptions(refused_std_disagreement=False)),
+        options=ReconstructOptions(curve=replace(base, refused_std_disagreement=False)),
     )
-    rec = reconstruct(scene.observations)
+    rec = reconstruct(scene.observations, options=ReconstructOptions(curve=base))
     assert rec.curve_bundle["accepted"] is False
     accepted = reconstruct(
         scene.observations,
-        options=ReconstructOptions(curve=CurveOptions(never_worse_dchi2=1e12)),
+        options=ReconstructOptions(curve=replace(base, never_worse_dchi2=1e12)),
     )
     # the bundle's answer is the nearer one (independent: the simulator's truth)
     assert (
@@ -165,21 +173,24 @@ def test_curve3d_normal_std_matches_the_distances_over_noise_draws():
 
 
 @pytest.mark.parametrize(
-    ("family", "seed"), [("clothoid", 5212), ("helix", 6007), ("sharp-ends", 6001)]
+    ("family", "seed", "refit"),
+    [("clothoid", 5212, False), ("helix", 6007, False), ("sharp-ends", 6001, True)],
 )
-def test_refused_bundle_curve3d_std_includes_the_curves_disagreement(family, seed):
+def test_refused_bundle_curve3d_std_includes_the_curves_disagreement(family, seed, refit):
     """Where the bundle is refused, ``curve3d`` is fitted with the end-point answer's poses
     fixed and its std alone is the curve's given those poses; the refusal says they are off,
     so each point's std adds its distance from the bundle's curve: then the true curve is
-    within 3 std across the curve of 97-100 % of the points, without that term of 10-84 %."""
+    within 3 std across the curve of 97-100 % of the points, without that term of 10-84 %.
+    (sharp-ends 6001 is refused with the joint refits before the bundle only.)"""
     scene = make_scene(
         np.random.default_rng(seed), 12, 1.0, 1.0, with_curve=True, curve_family=family
     )
-    rec = reconstruct(scene.observations)
+    base = CurveOptions(refit_with_bundle=refit)
+    rec = reconstruct(scene.observations, options=ReconstructOptions(curve=base))
     assert rec.curve_bundle["accepted"] is False
     plain = reconstruct(
         scene.observations,
-        options=ReconstructOptions(curve=CurveOptions(refused_std_disagreement=False)),
+        options=ReconstructOptions(curve=replace(base, refused_std_disagreement=False)),
     )
     d = _distances(rec, seed, family, 1.0)
     np.testing.assert_allclose(rec.curve3d, plain.curve3d)

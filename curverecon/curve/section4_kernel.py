@@ -58,6 +58,84 @@ class Grid:
             float(bound),
         )
 
+    def nearest(self, q: np.ndarray) -> np.ndarray:
+        """Distance of each point of q (M, 2) to the nearest point, however far (rings of
+        cells outwards until the next ring cannot hold a nearer point): the distances of
+        :meth:`query` where those are finite, and the k-d tree's beyond."""
+        return _nearest(
+            self.sorted,
+            self.start,
+            self.x0,
+            self.y0,
+            self.cell,
+            self.nx,
+            self.ny,
+            np.ascontiguousarray(q, dtype=float),
+        )
+
+
+@numba.njit(**_JIT)
+def _scan_cell(pts, start, x0, y0, cell, nx, cx, cy, qx, qy, margin, best):
+    """``best`` lowered to the least squared distance from (qx, qy) to cell (cx, cy)'s points,
+    unless the cell's rectangle (less ``margin``) is no nearer than ``best``."""
+    gx = max(x0 + cx * cell - qx, qx - (x0 + (cx + 1) * cell), 0.0)
+    gy = max(y0 + cy * cell - qy, qy - (y0 + (cy + 1) * cell), 0.0)
+    gx = max(gx - margin, 0.0)
+    gy = max(gy - margin, 0.0)
+    if gx * gx + gy * gy > best:
+        return best
+    c = cy * nx + cx
+    for j in range(start[c], start[c + 1]):
+        dx = pts[j, 0] - qx
+        dy = pts[j, 1] - qy
+        d = dx * dx + dy * dy
+        if d < best:
+            best = d
+    return best
+
+
+@numba.njit(**_JIT)
+def _nearest(pts, start, x0, y0, cell, nx, ny, q):
+    # ring r: the cells at Chebyshev distance r from the query's cell (clipped to the grid),
+    # from the first ring that meets the grid; any point of ring r is at least (r - 1) cells
+    # away, so the search stops once that exceeds the best (less a margin for the rounding of
+    # a point's cell) or once the rings cover the grid
+    out = np.empty(q.shape[0])
+    margin = 1e-9 * cell
+    for p in range(q.shape[0]):
+        qx, qy = q[p, 0], q[p, 1]
+        best = np.inf
+        if math.isfinite(qx) and math.isfinite(qy):
+            fx = int(math.floor((qx - x0) / cell))
+            fy = int(math.floor((qy - y0) / cell))
+            r = max(0, -fx, fx - (nx - 1), -fy, fy - (ny - 1))
+            while True:
+                lb = max((r - 1) * cell - margin, 0.0)
+                if lb * lb > best:
+                    break
+                y_lo, y_hi = max(fy - r, 0), min(fy + r, ny - 1)
+                x_lo, x_hi = max(fx - r, 0), min(fx + r, nx - 1)
+                for cy in range(y_lo, y_hi + 1):
+                    if cy == fy - r or cy == fy + r:
+                        for cx in range(x_lo, x_hi + 1):
+                            best = _scan_cell(
+                                pts, start, x0, y0, cell, nx, cx, cy, qx, qy, margin, best
+                            )
+                    else:
+                        if fx - r >= 0:
+                            best = _scan_cell(
+                                pts, start, x0, y0, cell, nx, fx - r, cy, qx, qy, margin, best
+                            )
+                        if r > 0 and fx + r <= nx - 1:
+                            best = _scan_cell(
+                                pts, start, x0, y0, cell, nx, fx + r, cy, qx, qy, margin, best
+                            )
+                if fx - r <= 0 and fx + r >= nx - 1 and fy - r <= 0 and fy + r >= ny - 1:
+                    break
+                r += 1
+        out[p] = math.sqrt(best)
+    return out
+
 
 @numba.njit(**_JIT)
 def _query(pts, start, x0, y0, cell, nx, ny, q, bound):

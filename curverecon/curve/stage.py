@@ -60,19 +60,22 @@ def fit_curve(
             # frame); the bundle then fits every frame and searches every pose itself
             rec, res = _search_on_subset(rec, obs.curves, reconstruct_curve, o)
         elif rec.branch_alternatives is not None:
-            # fixed-shape branch switches first, then the other equally good optima
-            # (alternative shapes, joint refits from the other sign of tau); each change is
-            # kept only if the recovered curve reprojects clearly better
+            # fixed-shape branch switches first, then (without the bundle) the other equally
+            # good optima (alternative shapes, joint refits from the other sign of tau); each
+            # change is kept only if the recovered curve reprojects clearly better
             rec, res = resolve_branches_with_curves(rec, obs.curves, reconstruct_curve, o)
-            rec, res = refit_branches_with_curves(
-                rec,
-                obs,
-                reconstruct_curve,
-                options.point_sigma,
-                options.tangent_sigma_deg,
-                curve=res,
-                o=o,
-            )
+            if not bundle or o.refit_with_bundle:
+                # the joint refits (the bundle refits the shape and every pose itself:
+                # CurveOptions.refit_with_bundle)
+                rec, res = refit_branches_with_curves(
+                    rec,
+                    obs,
+                    reconstruct_curve,
+                    options.point_sigma,
+                    options.tangent_sigma_deg,
+                    curve=res,
+                    o=o,
+                )
         else:
             res = reconstruct_curve(obs.curves, rec.rotations(), rec.translations())
     except CurveReconError as exc:
