@@ -93,10 +93,12 @@ from scipy.interpolate import BSpline
 
 from curverecon.curve import polyline as pl
 from curverecon.curve.bundle_kernel import (
+    basis_rows,
     foot_parameters,
     forward_rows,
     nearest_distances,
     polyline_normal_blocks,
+    polyline_rows,
     segment_offsets,
 )
 from curverecon.model.pose import rotations as pose_rotations
@@ -171,6 +173,9 @@ MISFIT_BINS = 4
 #: and at least sigma) fits clearly worse than the others: the coarse stage down-weights it
 #: before the pose search, and :func:`refine_reconstruction` tries the second start.
 UNEVEN_RATIO = 1.5
+
+_EMPTY2 = np.empty((0, 2))
+_EMPTY3 = np.empty((0, 3))
 
 
 @dataclass
@@ -611,6 +616,8 @@ class _Problem:
         self.v_hi = self.v_lo + vcnt - 1  # index of each polyline's last vertex
         self._last = None  # (state, foot points, reverse-term search) of the last evaluation
         self.n_rev = len(self.rev_basis)
+        self.rev_fid = np.repeat(np.arange(n), self.n_rev)
+        self.rows_f = np.concatenate([self.q_fid, self.rev_fid])  # frame of each polyline row
 
     def _to_polylines(self, pts: np.ndarray, fid: np.ndarray):
         """:meth:`_to_polyline` for points of many frames (``fid``: each point's frame): the
@@ -770,35 +777,49 @@ class _Problem:
         # reverse term
         xs = self.rev_basis @ ctrl
         ps = (xs @ np.transpose(m[:, :2], (0, 2, 1)) + b[:, None, :2]).reshape(-1, 2)
-        rfid = np.repeat(np.arange(n), self.n_rev)
+        rfid = self.rev_fid
         rev_dir, rev_r = cached[2] if cached else self._to_polylines(ps, rfid)
         self._last = (key, u, (rev_dir, rev_r))
-        r = np.concatenate([r_fw, rev_r])
-        rows_f = np.concatenate([fid, rfid])
-        wt = np.concatenate([np.ones(len(u)), np.asarray(self.rev_weight)[rfid]])
-        a = np.abs(r) / s
-        big = a > HUBER_K
-        fa = np.where(big, np.sqrt(np.maximum(2.0 * HUBER_K * a - HUBER_K**2, 0.0)), a)
-        w = np.where(big, fa / np.maximum(a, 1e-300), 1.0) * wt
-        res = [w * r / s]
-        frames = [rows_f]
-        jcs, jps = [], []
+        rows_f = self.rows_f
+        pw = np.asarray(self.poly_w, float)
+        fw = np.sqrt(np.asarray(self.frame_w, float))
+        nus = None
+        dm = yy = _EMPTY3
+        dirs = _EMPTY2
         if jac:
-            nu = basis.values(u)
-            x = nu @ ctrl
-            nus = np.vstack([nu, np.tile(self.rev_basis, (n, 1))])
+            # the Jacobian's products as before (NumPy's matrix products: the same rounding)
+            nus = basis_rows(basis.coef, u, self.rev_basis, n)
+            x = nus[: len(u)] @ ctrl
             xx = np.vstack([x, np.tile(xs, (n, 1))])
             dirs = np.vstack([direc, rev_dir])
             mr = m[rows_f]
             dm = (dirs[:, None, :] @ mr[:, :2])[:, 0]
             yy = (mr @ xx[:, :, None])[:, :, 0]
-            wj = np.where(big, HUBER_K / np.maximum(fa, 1e-300), 1.0) * wt
-            scale = (wj / s)[:, None]
+        # Huber, the weights and the Jacobian rows of every polyline row in one loop
+        # (bundle_kernel.polyline_rows; the weights as the NumPy code applied them)
+        res_p, dmw, jp_p = polyline_rows(
+            r_fw,
+            rev_r,
+            rows_f,
+            np.asarray(self.rev_weight, float),
+            pw,
+            fw,
+            float(s),
+            HUBER_K,
+            bool(jac),
+            dm,
+            dirs,
+            yy,
+        )
+        res = [res_p]
+        frames = [rows_f]
+        jcs, jps = [], []
+        if jac:
             if compact:
-                jcs.append((nus, dm * scale))
+                jcs.append((nus, dmw))
             else:
-                jcs.append(self._jc_rows(nus, dm) * scale if curve_jac else None)
-            jps.append(self._jp_rows(dirs, yy) * scale)
+                jcs.append(self._jc_rows(nus, dmw) if curve_jac else None)
+            jps.append(jp_p)
         # the polyline's end points are the images of A and B
         er, ejc, ejp = self._end_rows(ctrl, m, b, self.end_img, s, jac)
         if self.robust_ends:
@@ -832,16 +853,9 @@ class _Problem:
                 op = self._jp_rows(od, yp).reshape(n, 2, 5)
                 ejc = np.concatenate([ejc, oc / s], axis=1)
                 ejp = np.concatenate([ejp, op / s], axis=1)
-        pw = np.asarray(self.poly_w, float)
         if np.any(pw != 1.0):
-            res[0] = res[0] * pw[rows_f]
             er = er * pw[:, None]
             if jac:
-                if compact:
-                    jcs[0] = (jcs[0][0], jcs[0][1] * pw[rows_f][:, None])
-                elif curve_jac:
-                    jcs[0] = jcs[0] * pw[rows_f][:, None]
-                jps[0] = jps[0] * pw[rows_f][:, None]
                 ejc = ejc * pw[:, None, None]
                 ejp = ejp * pw[:, None, None]
         blocks_r, blocks_c, blocks_p = [er], [ejc], [ejp]
@@ -881,14 +895,17 @@ class _Problem:
             blocks_c.append(jt)
             blocks_p.append(jtp)
         per = np.concatenate(blocks_r, axis=1)  # (N, rows per frame)
-        res.append(per.reshape(-1))
+        # the frame weights (the polyline rows have theirs from polyline_rows)
+        fwe = fw[:, None]
+        res.append((per * fwe).reshape(-1))
         frames.append(np.repeat(np.arange(n), per.shape[1]))
         if jac:
-            jcs.append(np.concatenate(blocks_c, axis=1).reshape(-1, self.n_curve))
-            jps.append(np.concatenate(blocks_p, axis=1).reshape(-1, 5))
-        fw = np.sqrt(np.asarray(self.frame_w, float))
+            jcs.append(
+                (np.concatenate(blocks_c, axis=1) * fwe[:, :, None]).reshape(-1, self.n_curve)
+            )
+            jps.append((np.concatenate(blocks_p, axis=1) * fwe[:, :, None]).reshape(-1, 5))
         rows = np.concatenate(frames)
-        rr = np.concatenate(res) * fw[rows]
+        rr = np.concatenate(res)
         # difference regulariser on the control points (see the module docstring)
         wreg = self.smooth_weight / self.sigma
         reg = ((self.dreg @ ctrl) * wreg).reshape(-1)
@@ -896,8 +913,7 @@ class _Problem:
         rows = np.concatenate([rows, np.full(len(reg), -1)])
         if not jac:
             return rr, None, None, rows, rms
-        jp = np.vstack(jps) * fw[rows[: len(rows) - len(reg)]][:, None]
-        jp = np.vstack([jp, np.zeros((len(reg), 5))])
+        jp = np.vstack([*jps, np.zeros((len(reg), 5))])
         if not curve_jac:
             return rr, None, jp, rows, rms
         jreg = np.zeros((len(reg), self.n_curve))
@@ -907,12 +923,8 @@ class _Problem:
             jreg[cc::3][:, col[ok]] = self.dreg[:, ok] * wreg
         if compact:
             nus, dmw = jcs[0]
-            n_poly = len(nus)
-            rest = jcs[1] * fw[rows[n_poly : len(rows) - len(reg)]][:, None]
-            factored = (nus, dmw * fw[rows[:n_poly]][:, None], np.vstack([rest, jreg]))
-            return rr, factored, jp, rows, rms
-        jc = np.vstack(jcs) * fw[rows[: len(rows) - len(reg)]][:, None]
-        jc = np.vstack([jc, jreg])
+            return rr, (nus, dmw, np.vstack([jcs[1], jreg])), jp, rows, rms
+        jc = np.vstack([*jcs, jreg])
         return rr, jc, jp, rows, rms
 
     def residuals(
