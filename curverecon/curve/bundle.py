@@ -200,6 +200,10 @@ class BundleResult:
     iterations: int
     converged: bool
     warnings: list[str] = field(default_factory=list)
+    #: (N, 3, 3) the poses m at the end of the coarse stage (before the full curve);
+    #: ``stopped``: the run ended there (``twin_m`` of :func:`bundle_adjust`), cost infinite.
+    coarse_m: np.ndarray | None = None
+    stopped: bool = False
 
     def curve_points(self, n: int = 200) -> np.ndarray:
         """(n, 3) points of the fitted curve in frame 0's camera coordinates, A first."""
@@ -1391,6 +1395,8 @@ def bundle_adjust(
     smooth_weight: float = SMOOTH_WEIGHT,
     misfit_z: float = CurveOptions.bundle_misfit_z,
     order_tol: float = 0.0,
+    twin_m: np.ndarray | None = None,
+    twin_deg: float = 0.0,
 ) -> BundleResult:
     """Refine the poses and the 3-D curve jointly against every frame's polyline.
 
@@ -1411,6 +1417,10 @@ def bundle_adjust(
     order_tol: above 0, a curve folded over itself (:func:`_folded` with this tolerance, in
         sigma) is refitted from its points in a polyline's order with every foot in the
         polylines' order (``CurveOptions.bundle_order_tol``); 0 never.
+    twin_m: another run's coarse-stage poses (``BundleResult.coarse_m``): when every frame's
+        pose m at the end of this run's coarse stage is within ``twin_deg`` degrees of it,
+        the run stops there (``stopped``, cost infinite): it would retrace the other run
+        (``CurveOptions.frame0_branch_same_deg``).
 
     Stages: a coarse curve (``K_COARSE`` control points) with the start poses; every frame's
     pose searched again against that curve (``_resect_all``: the wrong-branch poses the end
@@ -1510,6 +1520,12 @@ def bundle_adjust(
         total_it += it
         if not changed:
             break
+    coarse_m = m.copy()
+    if twin_m is not None and _max_angle_deg(m, twin_m) < twin_deg:
+        rms = prob.residuals(ctrl, m, b, jac=False)[2]
+        return BundleResult(
+            ctrl, m, b, sigma, rms, cost_start, np.inf, total_it, False, [], coarse_m, True
+        )
     converged = True
     if k > k_coarse:
         ctrl = fit_spline(prob.basis.values(np.linspace(0.0, 1.0, 200)) @ ctrl, k)
@@ -1567,7 +1583,15 @@ def bundle_adjust(
             rms2,
             crit2,
         )
-    return BundleResult(ctrl, m, b, sigma, rms, cost_start, cost, total_it, converged)
+    return BundleResult(
+        ctrl, m, b, sigma, rms, cost_start, cost, total_it, converged, coarse_m=coarse_m
+    )
+
+
+def _max_angle_deg(m1: np.ndarray, m2: np.ndarray) -> float:
+    """The largest rotation angle (degrees) between the frames' rotations m1[i] and m2[i]."""
+    c = (np.einsum("nij,nij->n", m1, m2) - 1.0) / 2.0  # (trace(m1 m2^T) - 1) / 2
+    return float(np.degrees(np.arccos(np.clip(c, -1.0, 1.0))).max())
 
 
 def select_control_points(
@@ -2350,8 +2374,17 @@ def refine_reconstruction(
             flipped = frame0_other_branch()
             if flipped is not None:
                 # frame 0's other branch (CurveOptions.frame0_branch_dchi2): the lower cost wins
-                other = bundle_adjust(curves, *flipped, polyline_mask=mask, **kw)
-                if other.cost < br.cost:
+                # it stops after its coarse stage when that is the first start's again
+                # (CurveOptions.frame0_branch_same_deg)
+                other = bundle_adjust(
+                    curves,
+                    *flipped,
+                    polyline_mask=mask,
+                    twin_m=br.coarse_m,
+                    twin_deg=o.frame0_branch_same_deg,
+                    **kw,
+                )
+                if not other.stopped and other.cost < br.cost:
                     br = other
         if _restart(br.rms if mask is None else br.rms[mask], br.sigma) and not flat:
             # some frame does not fit: a second start from frame 0's polyline at depth 0 (every
