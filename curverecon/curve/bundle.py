@@ -85,6 +85,7 @@ std from the fit's covariance (:func:`curve_point_std`).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -234,16 +235,7 @@ class _Basis:
     def __init__(self, k: int) -> None:
         self.k = k
         self.spans = k - 3
-        inner = np.linspace(0.0, 1.0, k - 2)
-        self.knots = np.concatenate([[0.0] * 3, inner, [1.0] * 3])
-        spl = BSpline(self.knots, np.eye(k), 3)
-        x = np.array([0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0])
-        v = np.vander(x, 4, increasing=True)
-        coef = np.empty((self.spans, 4, k))
-        for j in range(self.spans):
-            vals = spl((j + x) / self.spans)  # (4, K)
-            coef[j] = np.linalg.solve(v, vals)
-        self.coef = coef
+        self.knots, self.coef = _span_coefficients(k)
 
     def _local(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         t = np.clip(np.asarray(u, float), 0.0, 1.0) * self.spans
@@ -261,6 +253,39 @@ class _Basis:
     def d2(self, u: np.ndarray) -> np.ndarray:
         c, x = self._local(u)
         return (6.0 * c[:, 3] * x[:, None] + 2.0 * c[:, 2]) * self.spans**2
+
+
+@functools.lru_cache(maxsize=64)
+def _span_coefficients(k: int) -> tuple[np.ndarray, np.ndarray]:
+    """(knots, per-span power-series coefficients (spans, 4, K)) of :class:`_Basis` with K
+    control points: from scipy's ``BSpline`` once per K (read-only arrays, shared)."""
+    spans = k - 3
+    inner = np.linspace(0.0, 1.0, k - 2)
+    knots = np.concatenate([[0.0] * 3, inner, [1.0] * 3])
+    spl = BSpline(knots, np.eye(k), 3)
+    x = np.array([0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0])
+    v = np.vander(x, 4, increasing=True)
+    coef = np.empty((spans, 4, k))
+    for j in range(spans):
+        vals = spl((j + x) / spans)  # (4, K)
+        coef[j] = np.linalg.solve(v, vals)
+    knots.flags.writeable = False
+    coef.flags.writeable = False
+    return knots, coef
+
+
+@functools.lru_cache(maxsize=64)
+def _problem_tables(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:class:`_Problem`'s tables that depend on K alone, once per K (read-only, shared): the
+    dense grid u and its basis values (foot-point search), the reverse samples' basis rows."""
+    basis = _Basis(k)
+    u_grid = np.linspace(0.0, 1.0, SAMPLES_PER_SPAN * (k - 3) + 1)
+    n_grid = basis.values(u_grid)
+    n_rev = REVERSE_SAMPLES_PER_SPAN * (k - 3) + 1
+    rev_basis = basis.values(np.linspace(0.0, 1.0, n_rev)[1:-1])
+    for a in (u_grid, n_grid, rev_basis):
+        a.flags.writeable = False
+    return u_grid, n_grid, rev_basis
 
 
 def _skew(v: np.ndarray) -> np.ndarray:
@@ -365,9 +390,7 @@ class _Problem:
         self.tangents = tangents
         self.point_sigma = point_sigma
         self.tangent_sigma = tangent_sigma
-        g = SAMPLES_PER_SPAN * (k - 3) + 1
-        self.u_grid = np.linspace(0.0, 1.0, g)
-        self.n_grid = self.basis.values(self.u_grid)
+        self.u_grid, self.n_grid, self.rev_basis = _problem_tables(k)
         # differences over the control points whose knot triples are uniform (P_2 .. P_{K-3}):
         # zero for every cubic polynomial curve, so no bias; the two control points at each end
         # (clamped knots) are left free, or the penalty would bend the end tangents
@@ -395,8 +418,6 @@ class _Problem:
         # feet that leave their polyline neighbours' stretch of the curve searched again there
         # (:meth:`_ordered_feet`; the exact path of :func:`fit_curve_fixed_poses`)
         self.ordered_feet = False
-        n_rev = REVERSE_SAMPLES_PER_SPAN * (k - 3) + 1
-        self.rev_basis = self.basis.values(np.linspace(0.0, 1.0, n_rev)[1:-1])
         # the reverse term carries REVERSE_WEIGHT of the forward term's total weight per frame
         self.rev_weight = [
             np.sqrt(REVERSE_WEIGHT * max(len(p) - 2, 1) / len(self.rev_basis)) for p in polys
