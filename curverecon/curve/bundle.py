@@ -95,12 +95,14 @@ from scipy.interpolate import BSpline
 from curverecon.curve import polyline as pl
 from curverecon.curve.bundle_kernel import (
     basis_rows,
+    end_rows,
     foot_parameters,
     forward_rows,
     nearest_distances,
     polyline_normal_blocks,
     polyline_rows,
     segment_offsets,
+    tangent_rows,
 )
 from curverecon.model.pose import rotations as pose_rotations
 from curverecon.model.pose import translations as pose_translations
@@ -393,6 +395,8 @@ class _Problem:
         self.k = k
         self.ends = ends
         self.tangents = tangents
+        self._tangent_angles: list[np.ndarray] | None = None  # of the given tangents (evaluate)
+        self._tangent_ok: np.ndarray | None = None
         self.point_sigma = point_sigma
         self.tangent_sigma = tangent_sigma
         self.u_grid, self.n_grid, self.rev_basis = _problem_tables(k)
@@ -851,7 +855,7 @@ class _Problem:
                 jcs.append(self._jc_rows(nus, dmw) if curve_jac else None)
             jps.append(jp_p)
         # the polyline's end points are the images of A and B
-        er, ejc, ejp = self._end_rows(ctrl, m, b, self.end_img, s, jac)
+        er, ejc, ejp = end_rows(ctrl, m, b, self.end_img, float(s), self.cidx, self.n_curve, jac)
         if self.robust_ends:
             # Huber on each 2-D offset by its length (see _huber_points)
             v = er.reshape(n, 2, 2)
@@ -890,37 +894,36 @@ class _Problem:
                 ejp = ejp * pw[:, None, None]
         blocks_r, blocks_c, blocks_p = [er], [ejc], [ejp]
         if self.ends is not None:  # given A', B'
-            gr, gjc, gjp = self._end_rows(ctrl, m, b, self.ends, self.point_sigma, jac)
+            gr, gjc, gjp = end_rows(
+                ctrl, m, b, self.ends, float(self.point_sigma), self.cidx, self.n_curve, jac
+            )
             blocks_r.append(gr)
             blocks_c.append(gjc)
             blocks_p.append(gjp)
         if self.tangents is not None:  # given tangent directions (lines)
-            ts = self.tangent_sigma
-            out = np.zeros((n, 2))
-            jt = np.zeros((n, 2, self.n_curve))
-            jtp = np.zeros((n, 2, 5))
-            for row, (lo, hi) in enumerate(((0, 1), (-1, -2))):
-                v3 = np.einsum("nij,j->ni", m, ctrl[hi] - ctrl[lo])
-                v = v3[:, :2]
-                ob = self.tangents[:, row]
-                ok = np.all(np.isfinite(ob), axis=1)
+            if self._tangent_angles is None:
+                ob = np.asarray(self.tangents, float)
                 with np.errstate(invalid="ignore"):
-                    ang = np.arctan2(v[:, 1], v[:, 0]) - np.arctan2(ob[:, 1], ob[:, 0])
-                    val = ((ang + np.pi / 2) % np.pi - np.pi / 2) / ts
-                out[:, row] = np.where(ok, val, 0.0)
-                if jac:
-                    vv = np.maximum(np.einsum("ij,ij->i", v, v), 1e-300)
-                    g = np.column_stack([-v[:, 1], v[:, 0]]) / vv[:, None] / ts
-                    g = np.where(ok[:, None], g, 0.0)
-                    gm = np.einsum("nj,njc->nc", g, m[:, :2])
-                    for cc in range(3):
-                        if self.cidx[hi, cc] >= 0:
-                            jt[:, row, self.cidx[hi, cc]] += gm[:, cc]
-                        if self.cidx[lo, cc] >= 0:
-                            jt[:, row, self.cidx[lo, cc]] -= gm[:, cc]
-                    jtp[:, row, 0] = -g[:, 1] * v3[:, 2]
-                    jtp[:, row, 1] = g[:, 0] * v3[:, 2]
-                    jtp[:, row, 2] = -g[:, 0] * v3[:, 1] + g[:, 1] * v3[:, 0]
+                    self._tangent_angles = [np.arctan2(ob[:, r, 1], ob[:, r, 0]) for r in (0, 1)]
+                self._tangent_ok = np.all(np.isfinite(ob), axis=2)
+            v3 = np.empty((n, 2, 3))
+            ang = np.empty((n, 2))
+            for row, (lo, hi) in enumerate(((0, 1), (-1, -2))):
+                vr = np.einsum("nij,j->ni", m, ctrl[hi] - ctrl[lo])
+                v3[:, row] = vr
+                with np.errstate(invalid="ignore"):
+                    ang[:, row] = np.arctan2(vr[:, 1], vr[:, 0]) - self._tangent_angles[row]
+            # the rest in one loop (bundle_kernel.tangent_rows: the same arithmetic)
+            out, jt, jtp = tangent_rows(
+                v3,
+                ang,
+                self._tangent_ok,
+                m,
+                float(self.tangent_sigma),
+                self.cidx,
+                self.n_curve,
+                jac,
+            )
             blocks_r.append(out)
             blocks_c.append(jt)
             blocks_p.append(jtp)

@@ -393,3 +393,83 @@ def polyline_rows(r_fw, rev_r, rows, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
         jp[i, 3] = d0 * sc * pf * ff
         jp[i, 4] = d1 * sc * pf * ff
     return res, dmw, jp
+
+
+@numba.njit(**_JIT)
+def end_rows(ctrl, m, b, pts, scale, cidx, n_curve, jac):
+    """``bundle._Problem._end_rows``: the 2-D offsets of every frame's projected A, B
+    (ctrl[0], ctrl[-1]; poses m (N, 3, 3), b (N, 3)) from pts (N, 2, 2) in units of ``scale``:
+    rows (N, 4) [A x, A y, B x, B y] and with ``jac`` their Jacobians (N, 4, n_curve) at the free
+    columns ``cidx`` (K, 3; -1: none), (N, 4, 5).  The same arithmetic as the NumPy code (its
+    einsum over 3 terms adds the first and third product, then the second)."""
+    n = m.shape[0]
+    kk = ctrl.shape[0]
+    r = np.empty((n, 4))
+    nj = n if jac else 0
+    jc = np.zeros((nj, 4, n_curve))
+    jp = np.zeros((nj, 4, 5))
+    for f in range(n):
+        for e in range(2):
+            w = 0 if e == 0 else kk - 1
+            c0, c1, c2 = ctrl[w, 0], ctrl[w, 1], ctrl[w, 2]
+            y0 = (m[f, 0, 0] * c0 + m[f, 0, 2] * c2) + m[f, 0, 1] * c1
+            y1 = (m[f, 1, 0] * c0 + m[f, 1, 2] * c2) + m[f, 1, 1] * c1
+            y2 = (m[f, 2, 0] * c0 + m[f, 2, 2] * c2) + m[f, 2, 1] * c1
+            r[f, 2 * e] = ((y0 + b[f, 0]) - pts[f, e, 0]) / scale
+            r[f, 2 * e + 1] = ((y1 + b[f, 1]) - pts[f, e, 1]) / scale
+            if not jac:
+                continue
+            for c in range(3):
+                col = cidx[w, c]
+                if col >= 0:
+                    jc[f, 2 * e, col] = m[f, 0, c] / scale
+                    jc[f, 2 * e + 1, col] = m[f, 1, c] / scale
+            jp[f, 2 * e, 1] = y2 / scale
+            jp[f, 2 * e, 2] = -y1 / scale
+            jp[f, 2 * e, 3] = 1.0 / scale
+            jp[f, 2 * e + 1, 0] = -y2 / scale
+            jp[f, 2 * e + 1, 2] = y0 / scale
+            jp[f, 2 * e + 1, 4] = 1.0 / scale
+    return r, jc, jp
+
+
+@numba.njit(**_JIT)
+def tangent_rows(v3, ang, ok, m, ts, cidx, n_curve, jac):
+    """``bundle._Problem.evaluate``'s rows of the given tangent directions from the projected
+    end tangents v3 (N, 2, 3: frame i's m (ctrl[1] - ctrl[0]) at A, m (ctrl[-2] - ctrl[-1]) at
+    B) and their angles from the given directions ``ang`` (N, 2; NumPy's arctan2), ``ok``
+    where given: the angle folded into [-pi/2, pi/2) (lines, any sign) in units of ``ts``
+    (0 where not given), rows (N, 2), and with ``jac`` their Jacobians (N, 2, n_curve),
+    (N, 2, 5).  The same arithmetic as the NumPy code."""
+    n = m.shape[0]
+    kk = cidx.shape[0]
+    out = np.zeros((n, 2))
+    nj = n if jac else 0
+    jt = np.zeros((nj, 2, n_curve))
+    jtp = np.zeros((nj, 2, 5))
+    half = np.pi / 2
+    for f in range(n):
+        for row in range(2):
+            lo = 0 if row == 0 else kk - 1
+            hi = 1 if row == 0 else kk - 2
+            v0, v1, v2 = v3[f, row, 0], v3[f, row, 1], v3[f, row, 2]
+            if ok[f, row]:
+                out[f, row] = ((ang[f, row] + half) % np.pi - half) / ts
+            if not jac:
+                continue
+            vv = max(v0 * v0 + v1 * v1, 1e-300)
+            g0 = 0.0
+            g1 = 0.0
+            if ok[f, row]:
+                g0 = -v1 / vv / ts
+                g1 = v0 / vv / ts
+            for c in range(3):
+                gm = g0 * m[f, 0, c] + g1 * m[f, 1, c]
+                if cidx[hi, c] >= 0:
+                    jt[f, row, cidx[hi, c]] += gm
+                if cidx[lo, c] >= 0:
+                    jt[f, row, cidx[lo, c]] -= gm
+            jtp[f, row, 0] = -g1 * v2
+            jtp[f, row, 1] = g0 * v2
+            jtp[f, row, 2] = -g0 * v1 + g1 * v0
+    return out, jt, jtp
