@@ -285,8 +285,10 @@ def polyline_normal_blocks(nus, dmw, jp, res, rows, cidx, u, gc, v, w, gp):
             gp[f, p] += jpp * ri
             for q2 in range(p, 5):
                 v[f, p, q2] += jpp * jp[i, q2]
-            for a in range(m):
-                w[f, cols[a], p] += vals[a] * jpp
+        for a in range(m):
+            ca, va = cols[a], vals[a]
+            for p in range(5):
+                w[f, ca, p] += va * jp[i, p]
     # the lower triangles: the same products (x y = y x), the same sums
     nc = u.shape[0]
     for a in range(nc):
