@@ -652,21 +652,33 @@ class _Problem:
         self.n_rev = len(self.rev_basis)
         self.rev_fid = np.repeat(np.arange(n), self.n_rev)
         self.rows_f = np.concatenate([self.q_fid, self.rev_fid])  # frame of each polyline row
+        self.rows_f.flags.writeable = False
+        self._rows: dict[int, np.ndarray] = {}  # evaluate's row frames by end rows per frame
+        # the reverse samples' runs per frame (_to_polylines: frame-major, fixed)
+        frames = np.arange(n)
+        self._rev_runs = (
+            np.searchsorted(self.rev_fid, frames),
+            np.searchsorted(self.rev_fid, frames, side="right"),
+        )
 
-    def _to_polylines(self, pts: np.ndarray, fid: np.ndarray):
+    def _to_polylines(self, pts: np.ndarray, fid: np.ndarray, runs=None):
         """:meth:`_to_polyline` for points of many frames (``fid``: each point's frame): the
         nearest vertex of the point's own polyline by an exact scan, then
-        :func:`_segment_offsets` (both in ``bundle_kernel.segment_offsets``)."""
+        :func:`_segment_offsets` (both in ``bundle_kernel.segment_offsets``).  ``runs``: the
+        (first, end) index of each frame's points when fid is known sorted."""
         if not np.all(np.isfinite(pts)):
             pts = np.nan_to_num(pts, nan=0.0, posinf=0.0, neginf=0.0)
-        fid = np.asarray(fid, np.int64)
         order = None
-        if np.any(np.diff(fid) < 0):  # the kernel takes each frame's points as one run
-            order = np.argsort(fid, kind="stable")
-            fid, pts = fid[order], pts[order]
-        frames = np.arange(self.n)
-        qlo = np.searchsorted(fid, frames)
-        qhi = np.searchsorted(fid, frames, side="right")
+        if runs is not None:
+            qlo, qhi = runs
+        else:
+            fid = np.asarray(fid, np.int64)
+            if np.any(np.diff(fid) < 0):  # the kernel takes each frame's points as one run
+                order = np.argsort(fid, kind="stable")
+                fid, pts = fid[order], pts[order]
+            frames = np.arange(self.n)
+            qlo = np.searchsorted(fid, frames)
+            qhi = np.searchsorted(fid, frames, side="right")
         dirn, r = segment_offsets(
             self.v_all, self.v_lo, self.v_hi, np.ascontiguousarray(pts, float), qlo, qhi
         )
@@ -812,7 +824,7 @@ class _Problem:
         xs = self.rev_basis @ ctrl
         ps = (xs @ np.transpose(m[:, :2], (0, 2, 1)) + b[:, None, :2]).reshape(-1, 2)
         rfid = self.rev_fid
-        rev_dir, rev_r = cached[2] if cached else self._to_polylines(ps, rfid)
+        rev_dir, rev_r = cached[2] if cached else self._to_polylines(ps, rfid, self._rev_runs)
         self._last = (key, u, (rev_dir, rev_r))
         rows_f = self.rows_f
         pw = np.asarray(self.poly_w, float)
@@ -931,19 +943,22 @@ class _Problem:
         # the frame weights (the polyline rows have theirs from polyline_rows)
         fwe = fw[:, None]
         res.append((per * fwe).reshape(-1))
-        frames.append(np.repeat(np.arange(n), per.shape[1]))
         if jac:
             jcs.append(
                 (np.concatenate(blocks_c, axis=1) * fwe[:, :, None]).reshape(-1, self.n_curve)
             )
             jps.append((np.concatenate(blocks_p, axis=1) * fwe[:, :, None]).reshape(-1, 5))
-        rows = np.concatenate(frames)
-        rr = np.concatenate(res)
         # difference regulariser on the control points (see the module docstring)
         wreg = self.smooth_weight / self.sigma
         reg = ((self.dreg @ ctrl) * wreg).reshape(-1)
-        rr = np.concatenate([rr, reg])
-        rows = np.concatenate([rows, np.full(len(reg), -1)])
+        rr = np.concatenate([*res, reg])
+        rows = self._rows.get(per.shape[1])
+        if rows is None:  # each row's frame (-1: the regulariser), by the rows per frame
+            rows = np.concatenate(
+                [*frames, np.repeat(np.arange(n), per.shape[1]), np.full(len(reg), -1)]
+            )
+            rows.flags.writeable = False
+            self._rows[per.shape[1]] = rows
         if not jac:
             return rr, None, None, rows, rms
         jp = np.vstack([*jps, np.zeros((len(reg), 5))])
