@@ -316,6 +316,18 @@ class CurveOptions:
     curve); the bundle from the other branch reached a lower cost (end-point chi2 46.7 against
     59.1, polylines 11.62 against 11.96) and 0.19 %."""
 
+    frame0_branch_same_deg: float = 5.0
+    """The bundle from frame 0's other branch (``frame0_branch_dchi2``) stops after its coarse
+    stage when that stage ended within this angle (degrees, every frame's rotation relative to
+    frame 0) of the first start's coarse stage: the pose search of the coarse stage brought
+    frame 0 back to the first start's branch, and the rest of the run retraced the first
+    start's to the same minimum, give or take the cost's rough floor (1 px, 20 frames, seeds
+    1400, 2000, 1401, 1402, 2001: 6 of the 7 second starts within 1.3 degrees, their final
+    costs 2.0 below to 146 above the first start's; the seventh at 144 degrees, another basin;
+    held out, seeds 1403-1407, 2002-2005: 17 of 20 within 1.7 degrees, final costs 3.8 below
+    to 0.7 above, the other 3 at 18.6-121 degrees, each run to its end); 0 never stops.  The
+    rest of a second start took about a third of the curve bundle's time where it ran."""
+
     bundle_extra_starts: int = 3
     """When the curve bundle still leaves some frame fitting clearly worse than the others
     (``bundle.UNEVEN_RATIO``) after its start from the end-point answer and from frame 0's

@@ -164,3 +164,47 @@ def test_pose_sweep_distances_equal_the_k_d_tree(family):
         expected = cKDTree(dense).query(q)[0]
         got = bk.nearest_distances(dense, q)
         assert np.array_equal(got, expected)
+
+
+def test_end_and_tangent_rows_equal_the_numpy_construction():
+    """``bundle_kernel.end_rows`` / ``tangent_rows`` (the bundle's rows of the polylines' end
+    points and of the given end tangents) against NumPy: the reference ``_Problem._end_rows``,
+    and the tangent angles and their derivatives written out (angle of m (P1 - P0) against
+    the given direction folded to a line, d angle / d v = (-v_y, v_x) / |v|^2), on a
+    simulated scene's true state, every pose, with one tangent not given."""
+    prob, (ctrl, m, b), _ = _truth_problem(5, 8, "clothoid", False)
+    prob.tangents = np.array(prob.tangents, float)
+    prob.tangents[2, 1] = np.nan
+    r, jc, jp = bk.end_rows(ctrl, m, b, prob.end_img, 0.7, prob.cidx, prob.n_curve, True)
+    r0, jc0, jp0 = prob._end_rows(ctrl, m, b, prob.end_img, 0.7, True)
+    assert np.allclose(r, r0, rtol=1e-13, atol=1e-12)
+    assert np.allclose(jc, jc0, rtol=1e-13, atol=1e-12)
+    assert np.allclose(jp, jp0, rtol=1e-13, atol=1e-12)
+    ts = np.radians(1.0)
+    v3 = np.stack([m @ (ctrl[1] - ctrl[0]), m @ (ctrl[-2] - ctrl[-1])], axis=1)
+    ob = prob.tangents
+    ok = np.all(np.isfinite(ob), axis=2)
+    with np.errstate(invalid="ignore"):
+        ang = np.arctan2(v3[..., 1], v3[..., 0]) - np.arctan2(ob[..., 1], ob[..., 0])
+    out, jt, jtp = bk.tangent_rows(v3, ang, ok, m, ts, prob.cidx, prob.n_curve, True)
+    # the residual: the smallest angle between the two lines, in units of ts
+    d = np.where(ok, np.remainder(ang + np.pi / 2, np.pi) - np.pi / 2, 0.0) / ts
+    assert np.allclose(out, d, rtol=0, atol=1e-9) and not out[2, 1] and np.all(np.abs(d) <= 90)
+    assert not jt[2, 1].any() and not jtp[2, 1].any()
+    for f in range(len(m)):
+        for row, (hi, lo) in enumerate(((1, 0), (len(ctrl) - 2, len(ctrl) - 1))):
+            if not ok[f, row]:
+                continue
+            v = v3[f, row]
+            g = np.array([-v[1], v[0]]) / (v[:2] @ v[:2]) / ts  # d out / d v[:2]
+            want = np.zeros(prob.n_curve)
+            for c in range(3):
+                if prob.cidx[hi, c] >= 0:
+                    want[prob.cidx[hi, c]] += g @ m[f, :2, c]
+                if prob.cidx[lo, c] >= 0:
+                    want[prob.cidx[lo, c]] -= g @ m[f, :2, c]
+            assert np.allclose(jt[f, row], want, rtol=1e-12, atol=1e-12 * np.abs(want).max())
+            # rotation increment: d v / d w = -[v]x
+            dvdw = -np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+            assert np.allclose(jtp[f, row, :3], g @ dvdw[:2], rtol=1e-12, atol=1e-9)
+            assert not jtp[f, row, 3:].any()

@@ -40,3 +40,47 @@ def test_the_bundle_tries_frame_0s_other_branch():
     assert np.sum(np.square(rec.curve_bundle["frame_rms_px"])) < np.sum(
         np.square(off.curve_bundle["frame_rms_px"])
     )
+
+
+def test_a_second_start_back_on_the_first_branch_stops_after_its_coarse_stage(monkeypatch):
+    """Fourier seed 1400, 20 frames, 1 px: frame 0's other branch is within
+    ``frame0_branch_dchi2``, but the coarse stage's pose search brings frame 0 back to the first
+    start's branch (every frame's pose within a degree of the first start's coarse poses).  By
+    default that second start stops there and the first start's answer stays; run to its end
+    (``frame0_branch_same_deg`` 0) it reaches the same minimum, give or take the cost's rough
+    floor: the same poses to a fraction of a degree, both curves near the simulated one."""
+    from curverecon.curve import bundle as bd
+
+    scene = make_scene(
+        np.random.default_rng(1400), 20, 1.0, 1.0, with_curve=True, curve_family="fourier"
+    )
+    results = []
+    orig = bd.bundle_adjust
+
+    def spy(*args, **kwargs):
+        out = orig(*args, **kwargs)
+        results.append(out)
+        return out
+
+    monkeypatch.setattr(bd, "bundle_adjust", spy)
+    rec = reconstruct(scene.observations)
+    assert [r.stopped for r in results] == [False, True]
+    first, second = results
+    assert not np.isfinite(second.cost) and np.isfinite(first.cost)
+    angles = np.degrees(
+        np.arccos(
+            np.clip((np.einsum("nij,nij->n", first.coarse_m, second.coarse_m) - 1) / 2, -1, 1)
+        )
+    )
+    assert angles.max() < 1.0
+    results.clear()
+    full = reconstruct(
+        scene.observations,
+        options=ReconstructOptions(curve=CurveOptions(frame0_branch_same_deg=0.0)),
+    )
+    assert [r.stopped for r in results] == [False, False]
+    # the full second run: the same minimum to the rough floor's chi2 (a few units of ~3,100)
+    assert abs(results[1].cost - results[0].cost) < 5.0
+    assert np.abs(rec.poses[:, :3] - full.poses[:, :3]).max() < np.radians(0.5)
+    for r in (rec, full):
+        assert curve_error(r.curve3d, scene.curve_3d) < 0.005

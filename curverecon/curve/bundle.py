@@ -85,6 +85,7 @@ std from the fit's covariance (:func:`curve_point_std`).
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -93,11 +94,15 @@ from scipy.interpolate import BSpline
 
 from curverecon.curve import polyline as pl
 from curverecon.curve.bundle_kernel import (
+    basis_rows,
+    end_rows,
     foot_parameters,
     forward_rows,
     nearest_distances,
     polyline_normal_blocks,
+    polyline_rows,
     segment_offsets,
+    tangent_rows,
 )
 from curverecon.model.pose import rotations as pose_rotations
 from curverecon.model.pose import translations as pose_translations
@@ -138,7 +143,7 @@ COARSE_REL_TOL = 1e-4
 COARSE_MAX_ITER = 30
 #: LM (:func:`_lm_bundle`): a Gauss-Newton step (damping at most LM_GN_LAMBDA) that does not
 #: lower the cost while the linearisation predicts less than LM_STOP_DCHI2 (chi2 units) ends the
-#: run (not the final runs with robust ends, ``END_POLISH``).  Before, such a step started a tail
+#: run.  Before, such a step started a tail
 #: of 3-10 steps at damping raised up to 1e9-fold, each lowering the cost by 0.001-0.02 and
 #: moving the shape by under 0.004 of its std (bench seed 1400, 20 frames, fourier: the GN
 #: prediction there 0.2-0.5, the cost rough at that scale); a fifth of the LM's evaluations.
@@ -146,7 +151,12 @@ COARSE_MAX_ITER = 30
 #: 30 scenes (1 px, 20 frames, seeds 1400, 2000-2003, every family; with the matrix products'
 #: rounding) the shapes moved by a median 0.002 and at most 0.12 of their std, the curve errors
 #: of 14 both ways (-0.11 to +0.07 % of the length); seed 1400 fourier's curve 0.22 of its std
-#: across the curve (median point) from the tight solve's.
+#: across the curve (median point) from the tight solve's.  Also in the final polish with robust
+#: ends (``END_POLISH``; it was left out there at first): its runs spent 9-21 trial steps of
+#: predicted decreases 0.00-0.1 on the floor (time_20 seeds 1400); on 84 scenes (1 px, 20
+#: frames, seeds 1400-1407, 2000-2005, every family) 21 answers moved, the shapes by a median
+#: 0.000 and at most 0.03 of their std, the curve errors by -0.004 to +0.12 % of the length
+#: (the +0.12 on fourier 1403, 2.4 % off either way), 5 % of the curve bundle's time saved.
 LM_GN_LAMBDA = 1e-6
 LM_STOP_DCHI2 = 0.5
 #: A swept pose is refined only if its grid score (mean squared distance) is below this multiple
@@ -172,6 +182,9 @@ MISFIT_BINS = 4
 #: before the pose search, and :func:`refine_reconstruction` tries the second start.
 UNEVEN_RATIO = 1.5
 
+_EMPTY2 = np.empty((0, 2))
+_EMPTY3 = np.empty((0, 3))
+
 
 @dataclass
 class BundleResult:
@@ -195,6 +208,10 @@ class BundleResult:
     iterations: int
     converged: bool
     warnings: list[str] = field(default_factory=list)
+    #: (N, 3, 3) the poses m at the end of the coarse stage (before the full curve);
+    #: ``stopped``: the run ended there (``twin_m`` of :func:`bundle_adjust`), cost infinite.
+    coarse_m: np.ndarray | None = None
+    stopped: bool = False
 
     def curve_points(self, n: int = 200) -> np.ndarray:
         """(n, 3) points of the fitted curve in frame 0's camera coordinates, A first."""
@@ -225,16 +242,7 @@ class _Basis:
     def __init__(self, k: int) -> None:
         self.k = k
         self.spans = k - 3
-        inner = np.linspace(0.0, 1.0, k - 2)
-        self.knots = np.concatenate([[0.0] * 3, inner, [1.0] * 3])
-        spl = BSpline(self.knots, np.eye(k), 3)
-        x = np.array([0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0])
-        v = np.vander(x, 4, increasing=True)
-        coef = np.empty((self.spans, 4, k))
-        for j in range(self.spans):
-            vals = spl((j + x) / self.spans)  # (4, K)
-            coef[j] = np.linalg.solve(v, vals)
-        self.coef = coef
+        self.knots, self.coef = _span_coefficients(k)
 
     def _local(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         t = np.clip(np.asarray(u, float), 0.0, 1.0) * self.spans
@@ -252,6 +260,39 @@ class _Basis:
     def d2(self, u: np.ndarray) -> np.ndarray:
         c, x = self._local(u)
         return (6.0 * c[:, 3] * x[:, None] + 2.0 * c[:, 2]) * self.spans**2
+
+
+@functools.lru_cache(maxsize=64)
+def _span_coefficients(k: int) -> tuple[np.ndarray, np.ndarray]:
+    """(knots, per-span power-series coefficients (spans, 4, K)) of :class:`_Basis` with K
+    control points: from scipy's ``BSpline`` once per K (read-only arrays, shared)."""
+    spans = k - 3
+    inner = np.linspace(0.0, 1.0, k - 2)
+    knots = np.concatenate([[0.0] * 3, inner, [1.0] * 3])
+    spl = BSpline(knots, np.eye(k), 3)
+    x = np.array([0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0])
+    v = np.vander(x, 4, increasing=True)
+    coef = np.empty((spans, 4, k))
+    for j in range(spans):
+        vals = spl((j + x) / spans)  # (4, K)
+        coef[j] = np.linalg.solve(v, vals)
+    knots.flags.writeable = False
+    coef.flags.writeable = False
+    return knots, coef
+
+
+@functools.lru_cache(maxsize=64)
+def _problem_tables(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:class:`_Problem`'s tables that depend on K alone, once per K (read-only, shared): the
+    dense grid u and its basis values (foot-point search), the reverse samples' basis rows."""
+    basis = _Basis(k)
+    u_grid = np.linspace(0.0, 1.0, SAMPLES_PER_SPAN * (k - 3) + 1)
+    n_grid = basis.values(u_grid)
+    n_rev = REVERSE_SAMPLES_PER_SPAN * (k - 3) + 1
+    rev_basis = basis.values(np.linspace(0.0, 1.0, n_rev)[1:-1])
+    for a in (u_grid, n_grid, rev_basis):
+        a.flags.writeable = False
+    return u_grid, n_grid, rev_basis
 
 
 def _skew(v: np.ndarray) -> np.ndarray:
@@ -354,11 +395,11 @@ class _Problem:
         self.k = k
         self.ends = ends
         self.tangents = tangents
+        self._tangent_angles: list[np.ndarray] | None = None  # of the given tangents (evaluate)
+        self._tangent_ok: np.ndarray | None = None
         self.point_sigma = point_sigma
         self.tangent_sigma = tangent_sigma
-        g = SAMPLES_PER_SPAN * (k - 3) + 1
-        self.u_grid = np.linspace(0.0, 1.0, g)
-        self.n_grid = self.basis.values(self.u_grid)
+        self.u_grid, self.n_grid, self.rev_basis = _problem_tables(k)
         # differences over the control points whose knot triples are uniform (P_2 .. P_{K-3}):
         # zero for every cubic polynomial curve, so no bias; the two control points at each end
         # (clamped knots) are left free, or the penalty would bend the end tangents
@@ -386,8 +427,6 @@ class _Problem:
         # feet that leave their polyline neighbours' stretch of the curve searched again there
         # (:meth:`_ordered_feet`; the exact path of :func:`fit_curve_fixed_poses`)
         self.ordered_feet = False
-        n_rev = REVERSE_SAMPLES_PER_SPAN * (k - 3) + 1
-        self.rev_basis = self.basis.values(np.linspace(0.0, 1.0, n_rev)[1:-1])
         # the reverse term carries REVERSE_WEIGHT of the forward term's total weight per frame
         self.rev_weight = [
             np.sqrt(REVERSE_WEIGHT * max(len(p) - 2, 1) / len(self.rev_basis)) for p in polys
@@ -611,21 +650,35 @@ class _Problem:
         self.v_hi = self.v_lo + vcnt - 1  # index of each polyline's last vertex
         self._last = None  # (state, foot points, reverse-term search) of the last evaluation
         self.n_rev = len(self.rev_basis)
+        self.rev_fid = np.repeat(np.arange(n), self.n_rev)
+        self.rows_f = np.concatenate([self.q_fid, self.rev_fid])  # frame of each polyline row
+        self.rows_f.flags.writeable = False
+        self._rows: dict[int, np.ndarray] = {}  # evaluate's row frames by end rows per frame
+        # the reverse samples' runs per frame (_to_polylines: frame-major, fixed)
+        frames = np.arange(n)
+        self._rev_runs = (
+            np.searchsorted(self.rev_fid, frames),
+            np.searchsorted(self.rev_fid, frames, side="right"),
+        )
 
-    def _to_polylines(self, pts: np.ndarray, fid: np.ndarray):
+    def _to_polylines(self, pts: np.ndarray, fid: np.ndarray, runs=None):
         """:meth:`_to_polyline` for points of many frames (``fid``: each point's frame): the
         nearest vertex of the point's own polyline by an exact scan, then
-        :func:`_segment_offsets` (both in ``bundle_kernel.segment_offsets``)."""
+        :func:`_segment_offsets` (both in ``bundle_kernel.segment_offsets``).  ``runs``: the
+        (first, end) index of each frame's points when fid is known sorted."""
         if not np.all(np.isfinite(pts)):
             pts = np.nan_to_num(pts, nan=0.0, posinf=0.0, neginf=0.0)
-        fid = np.asarray(fid, np.int64)
         order = None
-        if np.any(np.diff(fid) < 0):  # the kernel takes each frame's points as one run
-            order = np.argsort(fid, kind="stable")
-            fid, pts = fid[order], pts[order]
-        frames = np.arange(self.n)
-        qlo = np.searchsorted(fid, frames)
-        qhi = np.searchsorted(fid, frames, side="right")
+        if runs is not None:
+            qlo, qhi = runs
+        else:
+            fid = np.asarray(fid, np.int64)
+            if np.any(np.diff(fid) < 0):  # the kernel takes each frame's points as one run
+                order = np.argsort(fid, kind="stable")
+                fid, pts = fid[order], pts[order]
+            frames = np.arange(self.n)
+            qlo = np.searchsorted(fid, frames)
+            qhi = np.searchsorted(fid, frames, side="right")
         dirn, r = segment_offsets(
             self.v_all, self.v_lo, self.v_hi, np.ascontiguousarray(pts, float), qlo, qhi
         )
@@ -770,37 +823,51 @@ class _Problem:
         # reverse term
         xs = self.rev_basis @ ctrl
         ps = (xs @ np.transpose(m[:, :2], (0, 2, 1)) + b[:, None, :2]).reshape(-1, 2)
-        rfid = np.repeat(np.arange(n), self.n_rev)
-        rev_dir, rev_r = cached[2] if cached else self._to_polylines(ps, rfid)
+        rfid = self.rev_fid
+        rev_dir, rev_r = cached[2] if cached else self._to_polylines(ps, rfid, self._rev_runs)
         self._last = (key, u, (rev_dir, rev_r))
-        r = np.concatenate([r_fw, rev_r])
-        rows_f = np.concatenate([fid, rfid])
-        wt = np.concatenate([np.ones(len(u)), np.asarray(self.rev_weight)[rfid]])
-        a = np.abs(r) / s
-        big = a > HUBER_K
-        fa = np.where(big, np.sqrt(np.maximum(2.0 * HUBER_K * a - HUBER_K**2, 0.0)), a)
-        w = np.where(big, fa / np.maximum(a, 1e-300), 1.0) * wt
-        res = [w * r / s]
-        frames = [rows_f]
-        jcs, jps = [], []
+        rows_f = self.rows_f
+        pw = np.asarray(self.poly_w, float)
+        fw = np.sqrt(np.asarray(self.frame_w, float))
+        nus = None
+        dm = yy = _EMPTY3
+        dirs = _EMPTY2
         if jac:
-            nu = basis.values(u)
-            x = nu @ ctrl
-            nus = np.vstack([nu, np.tile(self.rev_basis, (n, 1))])
+            # the Jacobian's products as before (NumPy's matrix products: the same rounding)
+            nus = basis_rows(basis.coef, u, self.rev_basis, n)
+            x = nus[: len(u)] @ ctrl
             xx = np.vstack([x, np.tile(xs, (n, 1))])
             dirs = np.vstack([direc, rev_dir])
             mr = m[rows_f]
             dm = (dirs[:, None, :] @ mr[:, :2])[:, 0]
             yy = (mr @ xx[:, :, None])[:, :, 0]
-            wj = np.where(big, HUBER_K / np.maximum(fa, 1e-300), 1.0) * wt
-            scale = (wj / s)[:, None]
+        # Huber, the weights and the Jacobian rows of every polyline row in one loop
+        # (bundle_kernel.polyline_rows; the weights as the NumPy code applied them)
+        res_p, dmw, jp_p = polyline_rows(
+            r_fw,
+            rev_r,
+            rows_f,
+            np.asarray(self.rev_weight, float),
+            pw,
+            fw,
+            float(s),
+            HUBER_K,
+            bool(jac),
+            dm,
+            dirs,
+            yy,
+        )
+        res = [res_p]
+        frames = [rows_f]
+        jcs, jps = [], []
+        if jac:
             if compact:
-                jcs.append((nus, dm * scale))
+                jcs.append((nus, dmw))
             else:
-                jcs.append(self._jc_rows(nus, dm) * scale if curve_jac else None)
-            jps.append(self._jp_rows(dirs, yy) * scale)
+                jcs.append(self._jc_rows(nus, dmw) if curve_jac else None)
+            jps.append(jp_p)
         # the polyline's end points are the images of A and B
-        er, ejc, ejp = self._end_rows(ctrl, m, b, self.end_img, s, jac)
+        er, ejc, ejp = end_rows(ctrl, m, b, self.end_img, float(s), self.cidx, self.n_curve, jac)
         if self.robust_ends:
             # Huber on each 2-D offset by its length (see _huber_points)
             v = er.reshape(n, 2, 2)
@@ -832,72 +899,69 @@ class _Problem:
                 op = self._jp_rows(od, yp).reshape(n, 2, 5)
                 ejc = np.concatenate([ejc, oc / s], axis=1)
                 ejp = np.concatenate([ejp, op / s], axis=1)
-        pw = np.asarray(self.poly_w, float)
         if np.any(pw != 1.0):
-            res[0] = res[0] * pw[rows_f]
             er = er * pw[:, None]
             if jac:
-                if compact:
-                    jcs[0] = (jcs[0][0], jcs[0][1] * pw[rows_f][:, None])
-                elif curve_jac:
-                    jcs[0] = jcs[0] * pw[rows_f][:, None]
-                jps[0] = jps[0] * pw[rows_f][:, None]
                 ejc = ejc * pw[:, None, None]
                 ejp = ejp * pw[:, None, None]
         blocks_r, blocks_c, blocks_p = [er], [ejc], [ejp]
         if self.ends is not None:  # given A', B'
-            gr, gjc, gjp = self._end_rows(ctrl, m, b, self.ends, self.point_sigma, jac)
+            gr, gjc, gjp = end_rows(
+                ctrl, m, b, self.ends, float(self.point_sigma), self.cidx, self.n_curve, jac
+            )
             blocks_r.append(gr)
             blocks_c.append(gjc)
             blocks_p.append(gjp)
         if self.tangents is not None:  # given tangent directions (lines)
-            ts = self.tangent_sigma
-            out = np.zeros((n, 2))
-            jt = np.zeros((n, 2, self.n_curve))
-            jtp = np.zeros((n, 2, 5))
-            for row, (lo, hi) in enumerate(((0, 1), (-1, -2))):
-                v3 = np.einsum("nij,j->ni", m, ctrl[hi] - ctrl[lo])
-                v = v3[:, :2]
-                ob = self.tangents[:, row]
-                ok = np.all(np.isfinite(ob), axis=1)
+            if self._tangent_angles is None:
+                ob = np.asarray(self.tangents, float)
                 with np.errstate(invalid="ignore"):
-                    ang = np.arctan2(v[:, 1], v[:, 0]) - np.arctan2(ob[:, 1], ob[:, 0])
-                    val = ((ang + np.pi / 2) % np.pi - np.pi / 2) / ts
-                out[:, row] = np.where(ok, val, 0.0)
-                if jac:
-                    vv = np.maximum(np.einsum("ij,ij->i", v, v), 1e-300)
-                    g = np.column_stack([-v[:, 1], v[:, 0]]) / vv[:, None] / ts
-                    g = np.where(ok[:, None], g, 0.0)
-                    gm = np.einsum("nj,njc->nc", g, m[:, :2])
-                    for cc in range(3):
-                        if self.cidx[hi, cc] >= 0:
-                            jt[:, row, self.cidx[hi, cc]] += gm[:, cc]
-                        if self.cidx[lo, cc] >= 0:
-                            jt[:, row, self.cidx[lo, cc]] -= gm[:, cc]
-                    jtp[:, row, 0] = -g[:, 1] * v3[:, 2]
-                    jtp[:, row, 1] = g[:, 0] * v3[:, 2]
-                    jtp[:, row, 2] = -g[:, 0] * v3[:, 1] + g[:, 1] * v3[:, 0]
+                    self._tangent_angles = [np.arctan2(ob[:, r, 1], ob[:, r, 0]) for r in (0, 1)]
+                self._tangent_ok = np.all(np.isfinite(ob), axis=2)
+            v3 = np.empty((n, 2, 3))
+            ang = np.empty((n, 2))
+            for row, (lo, hi) in enumerate(((0, 1), (-1, -2))):
+                vr = np.einsum("nij,j->ni", m, ctrl[hi] - ctrl[lo])
+                v3[:, row] = vr
+                with np.errstate(invalid="ignore"):
+                    ang[:, row] = np.arctan2(vr[:, 1], vr[:, 0]) - self._tangent_angles[row]
+            # the rest in one loop (bundle_kernel.tangent_rows: the same arithmetic)
+            out, jt, jtp = tangent_rows(
+                v3,
+                ang,
+                self._tangent_ok,
+                m,
+                float(self.tangent_sigma),
+                self.cidx,
+                self.n_curve,
+                jac,
+            )
             blocks_r.append(out)
             blocks_c.append(jt)
             blocks_p.append(jtp)
         per = np.concatenate(blocks_r, axis=1)  # (N, rows per frame)
-        res.append(per.reshape(-1))
-        frames.append(np.repeat(np.arange(n), per.shape[1]))
+        # the frame weights (the polyline rows have theirs from polyline_rows)
+        fwe = fw[:, None]
+        res.append((per * fwe).reshape(-1))
         if jac:
-            jcs.append(np.concatenate(blocks_c, axis=1).reshape(-1, self.n_curve))
-            jps.append(np.concatenate(blocks_p, axis=1).reshape(-1, 5))
-        fw = np.sqrt(np.asarray(self.frame_w, float))
-        rows = np.concatenate(frames)
-        rr = np.concatenate(res) * fw[rows]
+            jcs.append(
+                (np.concatenate(blocks_c, axis=1) * fwe[:, :, None]).reshape(-1, self.n_curve)
+            )
+            jps.append((np.concatenate(blocks_p, axis=1) * fwe[:, :, None]).reshape(-1, 5))
         # difference regulariser on the control points (see the module docstring)
         wreg = self.smooth_weight / self.sigma
         reg = ((self.dreg @ ctrl) * wreg).reshape(-1)
-        rr = np.concatenate([rr, reg])
-        rows = np.concatenate([rows, np.full(len(reg), -1)])
+        rr = np.concatenate([*res, reg])
+        rows = self._rows.get(per.shape[1])
+        if rows is None:  # each row's frame (-1: the regulariser), by the rows per frame
+            rows = np.concatenate(
+                [*frames, np.repeat(np.arange(n), per.shape[1]), np.full(len(reg), -1)]
+            )
+            rows.flags.writeable = False
+            self._rows[per.shape[1]] = rows
         if not jac:
             return rr, None, None, rows, rms
-        jp = np.vstack(jps) * fw[rows[: len(rows) - len(reg)]][:, None]
-        jp = np.vstack([jp, np.zeros((len(reg), 5))])
+        jp = np.vstack([*jps, np.zeros((len(reg), 5))])
         if not curve_jac:
             return rr, None, jp, rows, rms
         jreg = np.zeros((len(reg), self.n_curve))
@@ -907,12 +971,8 @@ class _Problem:
             jreg[cc::3][:, col[ok]] = self.dreg[:, ok] * wreg
         if compact:
             nus, dmw = jcs[0]
-            n_poly = len(nus)
-            rest = jcs[1] * fw[rows[n_poly : len(rows) - len(reg)]][:, None]
-            factored = (nus, dmw * fw[rows[:n_poly]][:, None], np.vstack([rest, jreg]))
-            return rr, factored, jp, rows, rms
-        jc = np.vstack(jcs) * fw[rows[: len(rows) - len(reg)]][:, None]
-        jc = np.vstack([jc, jreg])
+            return rr, (nus, dmw, np.vstack([jcs[1], jreg])), jp, rows, rms
+        jc = np.vstack([*jcs, jreg])
         return rr, jc, jp, rows, rms
 
     def residuals(
@@ -1094,8 +1154,8 @@ def _lm_bundle(prob, state, max_iter: int, lam: float = 1e-3, rel_tol: float = R
     falls by less than ``rel_tol`` of itself, or when a step at the least damping (``lambda <=
     LM_GN_LAMBDA``: the Gauss-Newton step) does not lower the cost although the linearisation
     predicts a decrease below ``LM_STOP_DCHI2``: the cost is then at its floor (the foot points,
-    the reverse term's polyline segments and Huber make it rough at that scale; not in runs
-    with robust ends, the final polish).  Returns (state, cost, iterations, converged)."""
+    the reverse term's polyline segments and Huber make it rough at that scale).  Returns
+    (state, cost, iterations, converged)."""
     r, blocks, _ = prob.normal_equations(*state)
     cost = float(r @ r)
     it, converged = 0, False
@@ -1114,12 +1174,7 @@ def _lm_bundle(prob, state, max_iter: int, lam: float = 1e-3, rel_tol: float = R
             if np.isfinite(cost2) and cost2 < cost:
                 improved = True
                 break
-            if (
-                attempt == 0
-                and not prob.robust_ends
-                and lam <= LM_GN_LAMBDA
-                and _model_decrease(blocks, dx) < LM_STOP_DCHI2
-            ):
+            if attempt == 0 and lam <= LM_GN_LAMBDA and _model_decrease(blocks, dx) < LM_STOP_DCHI2:
                 floor = True
                 break
             lam *= 10.0
@@ -1379,6 +1434,8 @@ def bundle_adjust(
     smooth_weight: float = SMOOTH_WEIGHT,
     misfit_z: float = CurveOptions.bundle_misfit_z,
     order_tol: float = 0.0,
+    twin_m: np.ndarray | None = None,
+    twin_deg: float = 0.0,
 ) -> BundleResult:
     """Refine the poses and the 3-D curve jointly against every frame's polyline.
 
@@ -1399,6 +1456,10 @@ def bundle_adjust(
     order_tol: above 0, a curve folded over itself (:func:`_folded` with this tolerance, in
         sigma) is refitted from its points in a polyline's order with every foot in the
         polylines' order (``CurveOptions.bundle_order_tol``); 0 never.
+    twin_m: another run's coarse-stage poses (``BundleResult.coarse_m``): when every frame's
+        pose m at the end of this run's coarse stage is within ``twin_deg`` degrees of it,
+        the run stops there (``stopped``, cost infinite): it would retrace the other run
+        (``CurveOptions.frame0_branch_same_deg``).
 
     Stages: a coarse curve (``K_COARSE`` control points) with the start poses; every frame's
     pose searched again against that curve (``_resect_all``: the wrong-branch poses the end
@@ -1498,6 +1559,12 @@ def bundle_adjust(
         total_it += it
         if not changed:
             break
+    coarse_m = m.copy()
+    if twin_m is not None and _max_angle_deg(m, twin_m) < twin_deg:
+        rms = prob.residuals(ctrl, m, b, jac=False)[2]
+        return BundleResult(
+            ctrl, m, b, sigma, rms, cost_start, np.inf, total_it, False, [], coarse_m, True
+        )
     converged = True
     if k > k_coarse:
         ctrl = fit_spline(prob.basis.values(np.linspace(0.0, 1.0, 200)) @ ctrl, k)
@@ -1555,7 +1622,15 @@ def bundle_adjust(
             rms2,
             crit2,
         )
-    return BundleResult(ctrl, m, b, sigma, rms, cost_start, cost, total_it, converged)
+    return BundleResult(
+        ctrl, m, b, sigma, rms, cost_start, cost, total_it, converged, coarse_m=coarse_m
+    )
+
+
+def _max_angle_deg(m1: np.ndarray, m2: np.ndarray) -> float:
+    """The largest rotation angle (degrees) between the frames' rotations m1[i] and m2[i]."""
+    c = (np.einsum("nij,nij->n", m1, m2) - 1.0) / 2.0  # (trace(m1 m2^T) - 1) / 2
+    return float(np.degrees(np.arccos(np.clip(c, -1.0, 1.0))).max())
 
 
 def select_control_points(
@@ -2338,8 +2413,17 @@ def refine_reconstruction(
             flipped = frame0_other_branch()
             if flipped is not None:
                 # frame 0's other branch (CurveOptions.frame0_branch_dchi2): the lower cost wins
-                other = bundle_adjust(curves, *flipped, polyline_mask=mask, **kw)
-                if other.cost < br.cost:
+                # it stops after its coarse stage when that is the first start's again
+                # (CurveOptions.frame0_branch_same_deg)
+                other = bundle_adjust(
+                    curves,
+                    *flipped,
+                    polyline_mask=mask,
+                    twin_m=br.coarse_m,
+                    twin_deg=o.frame0_branch_same_deg,
+                    **kw,
+                )
+                if not other.stopped and other.cost < br.cost:
                     br = other
         if _restart(br.rms if mask is None else br.rms[mask], br.sigma) and not flat:
             # some frame does not fit: a second start from frame 0's polyline at depth 0 (every

@@ -254,7 +254,8 @@ def polyline_normal_blocks(nus, dmw, jp, res, rows, cidx, u, gc, v, w, gp):
     is ``nus[i, k] * dmw[i, c]`` at column ``cidx[k, c]`` (a cubic B-spline point depends on
     at most 4 control points: the zero basis values are skipped), its pose Jacobian jp[i]
     (frame rows[i]; frame 0's pose is the gauge, no block).  Accumulates U = Jc^T Jc and
-    gc = Jc^T r (u, gc) and per frame V = Jp^T Jp, W = Jc^T Jp, gp = Jp^T r in place."""
+    gc = Jc^T r (u, gc) and per frame V = Jp^T Jp, W = Jc^T Jp, gp = Jp^T r in place; u and v
+    must start at zero (their upper triangles are summed, then mirrored)."""
     kk = nus.shape[1]
     cols = np.empty(3 * kk, np.int64)
     vals = np.empty(3 * kk)
@@ -274,7 +275,7 @@ def polyline_normal_blocks(nus, dmw, jp, res, rows, cidx, u, gc, v, w, gp):
         for a in range(m):
             ca, va = cols[a], vals[a]
             gc[ca] += va * ri
-            for b2 in range(m):
+            for b2 in range(a, m):  # the upper triangle (cols increase along a row)
                 u[ca, cols[b2]] += va * vals[b2]
         f = rows[i]
         if f < 1:
@@ -282,10 +283,21 @@ def polyline_normal_blocks(nus, dmw, jp, res, rows, cidx, u, gc, v, w, gp):
         for p in range(5):
             jpp = jp[i, p]
             gp[f, p] += jpp * ri
-            for q2 in range(5):
+            for q2 in range(p, 5):
                 v[f, p, q2] += jpp * jp[i, q2]
-            for a in range(m):
-                w[f, cols[a], p] += vals[a] * jpp
+        for a in range(m):
+            ca, va = cols[a], vals[a]
+            for p in range(5):
+                w[f, ca, p] += va * jp[i, p]
+    # the lower triangles: the same products (x y = y x), the same sums
+    nc = u.shape[0]
+    for a in range(nc):
+        for b2 in range(a):
+            u[a, b2] = u[b2, a]
+    for f in range(v.shape[0]):
+        for p in range(5):
+            for q2 in range(p):
+                v[f, p, q2] = v[f, q2, p]
 
 
 @numba.njit(**_JIT)
@@ -306,3 +318,160 @@ def nearest_distances(pts, q):
         ey = pts[j, 1] - q[i, 1]
         out[i] = np.sqrt(ex * ex + ey * ey)
     return out
+
+
+@numba.njit(**_JIT)
+def basis_rows(coef, u, rev_basis, n):
+    """The spline's basis values (``bundle._Basis.values``, the same arithmetic) at the foot
+    parameters u, then ``n`` copies of the reverse samples' rows ``rev_basis``: the polyline
+    rows' nus of ``bundle._Problem.evaluate`` (len(u) + n * len(rev_basis), K).  coef: the
+    basis's per-span power-series coefficients (spans, 4, K)."""
+    nq = u.shape[0]
+    spans, kk = coef.shape[0], coef.shape[2]
+    n_rev = rev_basis.shape[0]
+    nus = np.empty((nq + n * n_rev, kk))
+    for i in range(nq):
+        tt = min(max(u[i], 0.0), 1.0) * spans
+        js = min(int(tt), spans - 1)
+        x = tt - js
+        for k in range(kk):
+            nus[i, k] = ((coef[js, 3, k] * x + coef[js, 2, k]) * x + coef[js, 1, k]) * x + coef[
+                js, 0, k
+            ]
+    for f in range(n):
+        for t in range(n_rev):
+            for k in range(kk):
+                nus[nq + f * n_rev + t, k] = rev_basis[t, k]
+    return nus
+
+
+@numba.njit(**_JIT)
+def polyline_rows(r_fw, rev_r, rows, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
+    """The polyline rows of ``bundle._Problem.evaluate`` (forward rows, then every frame's
+    reverse rows, frame-major; ``rows``: each row's frame) from their signed distances: Huber
+    (threshold ``hk``, units of sigma ``s``; reverse rows weighted by their frame's ``rev_w``),
+    the polyline weights ``pw`` and the square roots of the frame weights ``fw`` applied, in
+    the order the NumPy code applied them (the same values bit for bit).  With ``jac``: the
+    curve Jacobian's factor dmw (the offset direction through the pose, ``dm``, scaled) and the
+    pose Jacobian jp (d y / d w = -[Y]x, then b) from the offset directions ``dirs`` and the
+    rows' points ``yy`` in their frame's camera."""
+    nq = r_fw.shape[0]
+    nr = rows.shape[0]
+    res = np.empty(nr)
+    nj = nr if jac else 0
+    dmw = np.empty((nj, 3))
+    jp = np.empty((nj, 5))
+    for i in range(nr):
+        f = rows[i]
+        if i < nq:
+            r = r_fw[i]
+            wt = 1.0
+        else:
+            r = rev_r[i - nq]
+            wt = rev_w[f]
+        a = abs(r) / s
+        if a > hk:
+            fa = np.sqrt(max(2.0 * hk * a - hk * hk, 0.0))
+            w = fa / max(a, 1e-300)
+            wj = hk / max(fa, 1e-300)
+        else:
+            w = 1.0
+            wj = 1.0
+        w = w * wt
+        wj = wj * wt
+        pf = pw[f]
+        ff = fw[f]
+        res[i] = w * r / s * pf * ff
+        if not jac:
+            continue
+        sc = wj / s
+        for c in range(3):
+            dmw[i, c] = dm[i, c] * sc * pf * ff
+        d0 = dirs[i, 0]
+        d1 = dirs[i, 1]
+        jp[i, 0] = -d1 * yy[i, 2] * sc * pf * ff
+        jp[i, 1] = d0 * yy[i, 2] * sc * pf * ff
+        jp[i, 2] = (-d0 * yy[i, 1] + d1 * yy[i, 0]) * sc * pf * ff
+        jp[i, 3] = d0 * sc * pf * ff
+        jp[i, 4] = d1 * sc * pf * ff
+    return res, dmw, jp
+
+
+@numba.njit(**_JIT)
+def end_rows(ctrl, m, b, pts, scale, cidx, n_curve, jac):
+    """``bundle._Problem._end_rows``: the 2-D offsets of every frame's projected A, B
+    (ctrl[0], ctrl[-1]; poses m (N, 3, 3), b (N, 3)) from pts (N, 2, 2) in units of ``scale``:
+    rows (N, 4) [A x, A y, B x, B y] and with ``jac`` their Jacobians (N, 4, n_curve) at the free
+    columns ``cidx`` (K, 3; -1: none), (N, 4, 5).  The same arithmetic as the NumPy code (its
+    einsum over 3 terms adds the first and third product, then the second)."""
+    n = m.shape[0]
+    kk = ctrl.shape[0]
+    r = np.empty((n, 4))
+    nj = n if jac else 0
+    jc = np.zeros((nj, 4, n_curve))
+    jp = np.zeros((nj, 4, 5))
+    for f in range(n):
+        for e in range(2):
+            w = 0 if e == 0 else kk - 1
+            c0, c1, c2 = ctrl[w, 0], ctrl[w, 1], ctrl[w, 2]
+            y0 = (m[f, 0, 0] * c0 + m[f, 0, 2] * c2) + m[f, 0, 1] * c1
+            y1 = (m[f, 1, 0] * c0 + m[f, 1, 2] * c2) + m[f, 1, 1] * c1
+            y2 = (m[f, 2, 0] * c0 + m[f, 2, 2] * c2) + m[f, 2, 1] * c1
+            r[f, 2 * e] = ((y0 + b[f, 0]) - pts[f, e, 0]) / scale
+            r[f, 2 * e + 1] = ((y1 + b[f, 1]) - pts[f, e, 1]) / scale
+            if not jac:
+                continue
+            for c in range(3):
+                col = cidx[w, c]
+                if col >= 0:
+                    jc[f, 2 * e, col] = m[f, 0, c] / scale
+                    jc[f, 2 * e + 1, col] = m[f, 1, c] / scale
+            jp[f, 2 * e, 1] = y2 / scale
+            jp[f, 2 * e, 2] = -y1 / scale
+            jp[f, 2 * e, 3] = 1.0 / scale
+            jp[f, 2 * e + 1, 0] = -y2 / scale
+            jp[f, 2 * e + 1, 2] = y0 / scale
+            jp[f, 2 * e + 1, 4] = 1.0 / scale
+    return r, jc, jp
+
+
+@numba.njit(**_JIT)
+def tangent_rows(v3, ang, ok, m, ts, cidx, n_curve, jac):
+    """``bundle._Problem.evaluate``'s rows of the given tangent directions from the projected
+    end tangents v3 (N, 2, 3: frame i's m (ctrl[1] - ctrl[0]) at A, m (ctrl[-2] - ctrl[-1]) at
+    B) and their angles from the given directions ``ang`` (N, 2; NumPy's arctan2), ``ok``
+    where given: the angle folded into [-pi/2, pi/2) (lines, any sign) in units of ``ts``
+    (0 where not given), rows (N, 2), and with ``jac`` their Jacobians (N, 2, n_curve),
+    (N, 2, 5).  The same arithmetic as the NumPy code."""
+    n = m.shape[0]
+    kk = cidx.shape[0]
+    out = np.zeros((n, 2))
+    nj = n if jac else 0
+    jt = np.zeros((nj, 2, n_curve))
+    jtp = np.zeros((nj, 2, 5))
+    half = np.pi / 2
+    for f in range(n):
+        for row in range(2):
+            lo = 0 if row == 0 else kk - 1
+            hi = 1 if row == 0 else kk - 2
+            v0, v1, v2 = v3[f, row, 0], v3[f, row, 1], v3[f, row, 2]
+            if ok[f, row]:
+                out[f, row] = ((ang[f, row] + half) % np.pi - half) / ts
+            if not jac:
+                continue
+            vv = max(v0 * v0 + v1 * v1, 1e-300)
+            g0 = 0.0
+            g1 = 0.0
+            if ok[f, row]:
+                g0 = -v1 / vv / ts
+                g1 = v0 / vv / ts
+            for c in range(3):
+                gm = g0 * m[f, 0, c] + g1 * m[f, 1, c]
+                if cidx[hi, c] >= 0:
+                    jt[f, row, cidx[hi, c]] += gm
+                if cidx[lo, c] >= 0:
+                    jt[f, row, cidx[lo, c]] -= gm
+            jtp[f, row, 0] = -g1 * v2
+            jtp[f, row, 1] = g0 * v2
+            jtp[f, row, 2] = -g0 * v1 + g1 * v0
+    return out, jt, jtp
