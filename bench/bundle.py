@@ -345,5 +345,61 @@ def run(quick: bool = False) -> dict:
     }
 
 
+def _truth_start_case(task: tuple) -> dict:
+    """One scene of :func:`truth_start_survey` (runs in a worker)."""
+    warnings.filterwarnings("ignore")
+    from bench.curve_end_to_end import curve_error, curve_error_up_to_rotation
+    from curverecon.curve.bundle import shape_and_poses
+    from curverecon.simulate import make_scene
+
+    family, seed = task
+    sc = make_scene(np.random.default_rng(seed), 12, 0.5, 0.5, with_curve=True, curve_family=family)
+    pts = _truth_start_bundle(sc, True, 0.5).curve_points(200)
+    only = shape_and_poses(_truth_start_bundle(sc, False, 0.5))[0]
+    return {
+        "family": family,
+        "seed": seed,
+        "curve_error": curve_error(pts, sc.curve_3d),
+        "curve_error_up_to_rotation": curve_error_up_to_rotation(pts, sc.curve_3d),
+        "polylines_only_worst_angle_deg": _worst_angle_deg(only, sc.truth.shape),
+    }
+
+
+def truth_start_survey(seed0: int, count: int) -> dict:
+    """The oracle of the ``..._truth_start`` keys on more scenes: ``count`` scenes a family
+    from ``seed0`` (0.5 px, 0.5 degree, 12 frames): per family the fraction of ``curve3d``
+    within 0.5 % of the length, the largest error after the best rotation about A, and the
+    fraction of polylines-only fits with alpha, beta, phi all within 1 degree
+    (``python -m bench.bundle --truth-start SEED0 COUNT``)."""
+    from curverecon.curve_families import FAMILIES
+
+    tasks = [(f, seed0 + j) for f in FAMILIES for j in range(count)]
+    with get_context("fork").Pool(WORKERS) as pool:
+        got = pool.map(_truth_start_case, tasks, chunksize=1)
+    out = {}
+    for f in FAMILIES:
+        mine = [g for g in got if g["family"] == f]
+        out[f] = {
+            "curve_within_half_percent": round(
+                float(np.mean([g["curve_error"] < 0.005 for g in mine])), 3
+            ),
+            "max_curve_error_up_to_rotation": round(
+                max(g["curve_error_up_to_rotation"] for g in mine), 5
+            ),
+            "polylines_only_within_1deg": round(
+                float(np.mean([g["polylines_only_worst_angle_deg"] < 1.0 for g in mine])), 3
+            ),
+            "polylines_only_worst_angle_median_deg": round(
+                float(np.median([g["polylines_only_worst_angle_deg"] for g in mine])), 2
+            ),
+            "scenes": len(mine),
+        }
+    return out
+
+
 if __name__ == "__main__":
-    print(json.dumps(run("--quick" in sys.argv[1:]), indent=1))
+    args = sys.argv[1:]
+    if args[:1] == ["--truth-start"]:
+        print(json.dumps(truth_start_survey(int(args[1]), int(args[2])), indent=1))
+    else:
+        print(json.dumps(run("--quick" in args), indent=1))
