@@ -183,8 +183,18 @@ def _median_distance(pts_xy: np.ndarray, poly: np.ndarray, grid_w: float) -> flo
     """``np.median`` of :func:`_distances_for_frame` without a bound, on the grid of cells
     ``grid_w`` wide (``section4_kernel.Grid.nearest``: rings of cells outwards, the k-d tree's
     distances; its queries of wrong-branch trials' far points, and before them the bounded
-    grid's, were 14 % and then a quarter of the branch search's time)."""
-    return _median(_dense_grid(poly, 0.1, grid_w).nearest(pts_xy))
+    grid's, were 14 % and then a quarter of the branch search's time).
+
+    The distances within ``grid_w`` first (``Grid.query``: the same values where finite); the
+    far points' only when fewer than half the points are within it (otherwise the median is
+    among the near ones: the far points' rings of cells were most of the branch search's
+    median time)."""
+    grid = _dense_grid(poly, 0.1, grid_w)
+    dist = grid.query(pts_xy, grid_w)
+    far = ~np.isfinite(dist)
+    if len(dist) - np.count_nonzero(far) < len(dist) // 2 + 1:
+        dist[far] = grid.nearest(np.asarray(pts_xy)[far])
+    return _median(dist)
 
 
 def _median(values: np.ndarray) -> float:
