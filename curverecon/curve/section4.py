@@ -23,6 +23,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 
 from curverecon.curve import polyline as pl
 from curverecon.curve.section4_kernel import Grid, depth_path
@@ -613,7 +614,11 @@ def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:
     """Local weighted quadratic regression of one coordinate against sample index.
 
     Window: +-max(2, 1.5 % of the samples); tricube weights times inverse variances; the two end
-    samples (A, B) are kept.
+    samples (A, B) are kept.  The windows of finite standard errors away from the ends solve
+    their 3 x 3 normal equations all at once (the window's weighted moments of the offset; a
+    loop of ``lstsq`` per sample was a third of the final section-4 run of the branch search);
+    the others - the end samples' weight 1e6 or an unknown depth's 1e-6 in the window make
+    those equations ill-conditioned - one by one with ``lstsq`` as before.
     """
     k_total = len(z)
     half = max(2, int(round(0.015 * k_total)))
@@ -622,13 +627,28 @@ def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:
     w_all = np.where(np.isfinite(std) & (std > 0), 1.0 / np.maximum(std, 1e-6) ** 2, 0.0)
     w_all[~np.isfinite(std)] = 1e-6
     w_all[0] = w_all[-1] = 1e6
-    out = z.copy()
-    for k in range(1, k_total - 1):
+    out = np.array(z, dtype=float)
+    width = 2 * half + 1
+    u = np.arange(-half, half + 1, dtype=float)
+    tricube = (1 - (np.abs(u) / (half + 1)) ** 3) ** 3
+    # windows of samples half+1 .. K-half-2 (neither end sample in them), those of finite std
+    ok = np.isfinite(std) & (std > 0)
+    whole = sliding_window_view(ok, width)[1:-1].all(axis=1)
+    ks = np.arange(half + 1, k_total - half - 1)[whole]
+    if len(ks):
+        w = sliding_window_view(w_all, width)[ks - half] * tricube
+        zw = sliding_window_view(z, width)[ks - half] * w
+        mom = [w @ u**p for p in range(5)]
+        lhs = np.stack([np.stack(mom[j : j + 3], axis=-1) for j in range(3)], axis=-2)
+        rhs = np.stack([zw @ u**p for p in range(3)], axis=-1)
+        out[ks] = np.linalg.solve(lhs, rhs[..., None])[:, 0, 0]
+    rest = np.setdiff1d(np.arange(1, k_total - 1), ks)
+    for k in rest:
         lo, hi = max(0, k - half), min(k_total, k + half + 1)
-        u = np.arange(lo, hi) - k
-        v = np.vander(u.astype(float), 3, increasing=True)
-        w = w_all[lo:hi] * (1 - (np.abs(u) / (half + 1)) ** 3) ** 3
-        a = v * w[:, None]
+        uk = np.arange(lo, hi) - k
+        v = np.vander(uk.astype(float), 3, increasing=True)
+        wk = w_all[lo:hi] * (1 - (np.abs(uk) / (half + 1)) ** 3) ** 3
+        a = v * wk[:, None]
         coef, *_ = np.linalg.lstsq(a.T @ v, a.T @ z[lo:hi], rcond=None)
         out[k] = coef[0]
     return out
