@@ -404,3 +404,19 @@ def test_smoothing_solves_the_windows_at_once_as_one_by_one(unknown, k_total):
         got = s4._smooth_column(z, std)
         np.testing.assert_allclose(got, _smooth_loop(z, std), rtol=0, atol=1e-8)
         assert got[0] == z[0] and got[-1] == z[-1]
+
+
+def test_grids_are_built_on_the_densified_points_without_a_tree():
+    """The grids of section 4 take the densified polyline (``section4._dense_points``) - the
+    points of the k-d tree (``_dense_tree``), which is no longer built for them."""
+    rng = np.random.default_rng(11)
+    poly = np.cumsum(rng.normal(size=(80, 2)) * 3.0, axis=0)
+    s4._TREES.clear()
+    grid = s4._dense_grid(poly, 0.1, 4.0)
+    assert not s4._TREES
+    dense = s4._dense_points(poly, 0.1)
+    np.testing.assert_array_equal(dense, s4._dense_tree(poly, 0.1).data)
+    gaps = np.hypot(*np.diff(dense, axis=0).T)
+    # length / spacing points: gaps of spacing (1 + 1 / n)
+    assert gaps.max() <= 0.1 * 1.01 and len(dense) >= len(poly)
+    np.testing.assert_array_equal(np.sort(grid.sorted, axis=0), np.sort(dense, axis=0))

@@ -220,18 +220,40 @@ def _dense_grid(poly: np.ndarray, spacing: float, bound: float) -> Grid:
     key = (_poly_key(poly), spacing, bound)
     grid = _GRIDS.get(key)
     if grid is None:
-        grid = Grid(_dense_tree(poly, spacing).data, bound)
+        # the densified points only: the grids need no k-d tree (building one per polyline was
+        # a tenth of the branch search's time)
+        grid = Grid(_dense_points(poly, spacing), bound)
         if len(_GRIDS) >= _TREES_MAX:
             _GRIDS.clear()
         _GRIDS[key] = grid
     return grid
 
 
-#: KD-trees of densified polylines by content: the branch search calls :func:`reconstruct_curve`
-#: dozens of times on the same polylines (densifying and building the tree was 40 % of the
-#: curve stage's time at 20 frames).
+#: Densified polylines (length / spacing vertices, about ``spacing`` apart) by content: the
+#: branch search calls :func:`reconstruct_curve` dozens of times on the same polylines
+#: (densifying them was 40 % of the curve stage's time at 20 frames).
+_DENSE: dict[tuple, np.ndarray] = {}
+#: KD-trees of the densified polylines by content (:func:`_distances_for_frame` without a bound)
 _TREES: dict[tuple, object] = {}
 _TREES_MAX = 4096
+
+
+def _dense_points(poly: np.ndarray, spacing: float) -> np.ndarray:
+    """``poly`` resampled about ``spacing`` apart (length / spacing points, at least its own
+    number, at most 200,000; read-only)."""
+    poly = np.ascontiguousarray(poly, dtype=float)
+    key = (_poly_key(poly), spacing)
+    dense = _DENSE.get(key)
+    if dense is None:
+        s = pl.arc_length(poly)
+        n = int(min(max(len(poly), s[-1] / spacing), 200_000))
+        dense, _ = pl.resample(poly, n)
+        dense = np.ascontiguousarray(dense, dtype=float)
+        dense.setflags(write=False)
+        if len(_DENSE) >= _TREES_MAX:
+            _DENSE.clear()
+        _DENSE[key] = dense
+    return dense
 
 
 def _dense_tree(poly: np.ndarray, spacing: float):
@@ -241,10 +263,7 @@ def _dense_tree(poly: np.ndarray, spacing: float):
     key = (_poly_key(poly), spacing)
     tree = _TREES.get(key)
     if tree is None:
-        s = pl.arc_length(poly)
-        n = int(min(max(len(poly), s[-1] / spacing), 200_000))
-        dense, _ = pl.resample(poly, n)
-        tree = cKDTree(dense)
+        tree = cKDTree(_dense_points(poly, spacing))
         if len(_TREES) >= _TREES_MAX:
             _TREES.clear()
         _TREES[key] = tree
