@@ -16,6 +16,7 @@ from curverecon.curve import section4 as s4
 from curverecon.curve.branches import _distinct_optima
 from curverecon.curve.section4_kernel import Grid
 from curverecon.errors import CurveReconError
+from curverecon.model.pose import rotations, translations
 
 
 def _scan_all_cells(grid: Grid, q: np.ndarray, bound: float) -> np.ndarray:
@@ -301,3 +302,121 @@ def test_without_the_joint_refits_the_bundle_is_not_refused_for_a_worse_optimum(
     assert np.degrees(np.abs(rec.shape[1:] - truth[1:])).max() < 2.5
     assert np.degrees(np.abs(old.shape[1:] - truth[1:])).max() > 5.0
     assert curve_error(rec.curve3d, sc.curve_3d) < 0.015 < curve_error(old.curve3d, sc.curve_3d)
+
+
+def _greedy_reference(rec, curves, search, o):
+    """The greedy branch search of ``resolve_branches_with_curves`` written out plainly: every
+    candidate tried in every round, every residual measured; returns the switched frames."""
+    dchi2 = rec.branch_alternative_chi2 - rec.frame_chi2
+    cand = np.flatnonzero(np.isfinite(dchi2) & (dchi2 < o.flip_dchi2))
+    inl = np.asarray(rec.inliers, bool)
+
+    def total(switched):
+        poses = np.where(switched[:, None], rec.branch_alternatives, rec.poses)
+        r = search(curves, rotations(poses), translations(poses))
+        return float(np.sum(r.frame_residual[inl]))
+
+    switched = np.zeros(len(rec.poses), bool)
+    best = total(switched)
+    for _ in range(o.flip_max_switches):
+        scores = []
+        for i in cand:
+            trial = switched.copy()
+            trial[i] = ~trial[i]
+            scores.append((total(trial), i))
+        t, i = min(scores)
+        if not t < (1.0 - o.flip_gain) * best:
+            break
+        switched[i] = ~switched[i]
+        best = t
+    return sorted(int(i) for i in np.flatnonzero(switched))
+
+
+@pytest.mark.parametrize(("seed", "family"), [(1400, "random"), (1400, "sharp-ends")])
+def test_branch_search_scores_no_switch_state_twice_and_chooses_as_plain_greedy(seed, family):
+    """The branch search does not try switching back the frame it switched last (that state's
+    total is above the round's bound: one section-4 run saved per round) and makes the same
+    switches as the plain greedy search (bench time_20 scenes with several switches)."""
+    import functools
+
+    from curverecon.curve.branches import resolve_branches_with_curves
+    from curverecon.options import ReconstructOptions
+    from curverecon.pipeline import reconstruct_end_points
+
+    sc = _scene_20(seed, family)
+    obs = sc.observations
+    opts = ReconstructOptions()
+    rec = reconstruct_end_points(obs, opts)
+    seen: list[bytes] = []
+
+    @functools.wraps(s4.reconstruct_curve)
+    def recording(polylines, rot, tra, **kw):
+        if kw.get("n_samples") is not None:
+            seen.append(np.asarray(rot).tobytes())
+        return s4.reconstruct_curve(polylines, rot, tra, **kw)
+
+    new, _ = resolve_branches_with_curves(rec, obs.curves, recording, opts.curve)
+    assert len(seen) == len(set(seen))
+    taken = np.flatnonzero(np.any(np.asarray(new.poses) != np.asarray(rec.poses), axis=1))
+    coarse = functools.partial(
+        s4.reconstruct_curve,
+        n_samples=opts.curve.search_samples,
+        smooth=False,
+        tangents=(np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])),
+    )
+    expected = _greedy_reference(rec, obs.curves, coarse, opts.curve)
+    assert len(expected) >= 2
+    assert [int(i) for i in taken] == expected
+
+
+def _smooth_loop(z: np.ndarray, std: np.ndarray) -> np.ndarray:
+    """The local weighted quadratic regression of ``section4._smooth_column``, one ``lstsq`` per
+    sample (the construction the vectorised one replaces)."""
+    k_total = len(z)
+    half = max(2, int(round(0.015 * k_total)))
+    if k_total < 2 * half + 3:
+        return z
+    w_all = np.where(np.isfinite(std) & (std > 0), 1.0 / np.maximum(std, 1e-6) ** 2, 0.0)
+    w_all[~np.isfinite(std)] = 1e-6
+    w_all[0] = w_all[-1] = 1e6
+    out = z.copy()
+    for k in range(1, k_total - 1):
+        lo, hi = max(0, k - half), min(k_total, k + half + 1)
+        u = np.arange(lo, hi) - k
+        v = np.vander(u.astype(float), 3, increasing=True)
+        w = w_all[lo:hi] * (1 - (np.abs(u) / (half + 1)) ** 3) ** 3
+        a = v * w[:, None]
+        coef, *_ = np.linalg.lstsq(a.T @ v, a.T @ z[lo:hi], rcond=None)
+        out[k] = coef[0]
+    return out
+
+
+@pytest.mark.parametrize("unknown", [0.0, 0.1])
+@pytest.mark.parametrize("k_total", [7, 9, 20, 60, 200])
+def test_smoothing_solves_the_windows_at_once_as_one_by_one(unknown, k_total):
+    """``section4._smooth_column``: the same values as a least-squares fit per window, also with
+    unknown depths (std inf) and the end samples' weights in the windows."""
+    rng = np.random.default_rng(k_total)
+    for _ in range(20):
+        z = rng.normal(size=k_total) * 100.0
+        std = np.abs(rng.normal(size=k_total)) + 0.01
+        std[rng.random(k_total) < unknown] = np.inf
+        got = s4._smooth_column(z, std)
+        np.testing.assert_allclose(got, _smooth_loop(z, std), rtol=0, atol=1e-8)
+        assert got[0] == z[0] and got[-1] == z[-1]
+
+
+def test_grids_are_built_on_the_densified_points_without_a_tree():
+    """The grids of section 4 take the densified polyline (``section4._dense_points``) - the
+    points of the k-d tree (``_dense_tree``), which is no longer built for them."""
+    rng = np.random.default_rng(11)
+    poly = np.cumsum(rng.normal(size=(80, 2)) * 3.0, axis=0)
+    s4._TREES.clear()
+    grid = s4._dense_grid(poly, 0.1, 4.0)
+    assert not s4._TREES
+    dense = s4._dense_points(poly, 0.1)
+    np.testing.assert_array_equal(dense, s4._dense_tree(poly, 0.1).data)
+    gaps = np.hypot(*np.diff(dense, axis=0).T)
+    # length / spacing points: gaps of spacing (1 + 1 / n)
+    assert gaps.max() <= 0.1 * 1.01 and len(dense) >= len(poly)
+    np.testing.assert_array_equal(np.sort(grid.sorted, axis=0), np.sort(dense, axis=0))

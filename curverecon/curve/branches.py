@@ -83,18 +83,27 @@ def resolve_branches_with_curves(
     best_total = (
         total(res) if search is reconstruct_curve else total(search(curves, *_rt(rec.poses)))
     )
+    # the totals of the switch states scored so far (inf: beyond the bound then).  A state comes
+    # again two rounds on (switching back the frame switched last, or the last two switches in
+    # the other order): its total then decides the same - a finite total is exact, and an inf
+    # one exceeded a bound at least as high as any later round's
+    scored = {switched.tobytes(): best_total}
     for _ in range(o.flip_max_switches):
         round_best = None
         for i in cand:
             trial = switched.copy()
             trial[i] = ~trial[i]
-            poses = np.where(trial[:, None], rec.branch_alternatives, rec.poses)
-            # only a total below the round's best and below the gain's threshold matters: the
-            # residuals stop once they exceed both (inf; the same switches)
-            bound = (1.0 - o.flip_gain) * best_total
-            if round_best is not None:
-                bound = min(bound, round_best[0])
-            t = total(limited(curves, *_rt(poses), limit=bound, frames=inl))
+            key = trial.tobytes()
+            t = scored.get(key)
+            if t is None:
+                poses = np.where(trial[:, None], rec.branch_alternatives, rec.poses)
+                # only a total below the round's best and below the gain's threshold matters:
+                # the residuals stop once they exceed both (inf; the same switches)
+                bound = (1.0 - o.flip_gain) * best_total
+                if round_best is not None:
+                    bound = min(bound, round_best[0])
+                t = total(limited(curves, *_rt(poses), limit=bound, frames=inl))
+                scored[key] = t
             if round_best is None or t < round_best[0]:
                 round_best = (t, i)
         t, i = round_best

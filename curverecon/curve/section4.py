@@ -23,6 +23,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 
 from curverecon.curve import polyline as pl
 from curverecon.curve.section4_kernel import Grid, depth_path
@@ -183,8 +184,18 @@ def _median_distance(pts_xy: np.ndarray, poly: np.ndarray, grid_w: float) -> flo
     """``np.median`` of :func:`_distances_for_frame` without a bound, on the grid of cells
     ``grid_w`` wide (``section4_kernel.Grid.nearest``: rings of cells outwards, the k-d tree's
     distances; its queries of wrong-branch trials' far points, and before them the bounded
-    grid's, were 14 % and then a quarter of the branch search's time)."""
-    return _median(_dense_grid(poly, 0.1, grid_w).nearest(pts_xy))
+    grid's, were 14 % and then a quarter of the branch search's time).
+
+    The distances within ``grid_w`` first (``Grid.query``: the same values where finite); the
+    far points' only when fewer than half the points are within it (otherwise the median is
+    among the near ones: the far points' rings of cells were most of the branch search's
+    median time)."""
+    grid = _dense_grid(poly, 0.1, grid_w)
+    dist = grid.query(pts_xy, grid_w)
+    far = ~np.isfinite(dist)
+    if len(dist) - np.count_nonzero(far) < len(dist) // 2 + 1:
+        dist[far] = grid.nearest(np.asarray(pts_xy)[far])
+    return _median(dist)
 
 
 def _median(values: np.ndarray) -> float:
@@ -209,18 +220,40 @@ def _dense_grid(poly: np.ndarray, spacing: float, bound: float) -> Grid:
     key = (_poly_key(poly), spacing, bound)
     grid = _GRIDS.get(key)
     if grid is None:
-        grid = Grid(_dense_tree(poly, spacing).data, bound)
+        # the densified points only: the grids need no k-d tree (building one per polyline was
+        # a tenth of the branch search's time)
+        grid = Grid(_dense_points(poly, spacing), bound)
         if len(_GRIDS) >= _TREES_MAX:
             _GRIDS.clear()
         _GRIDS[key] = grid
     return grid
 
 
-#: KD-trees of densified polylines by content: the branch search calls :func:`reconstruct_curve`
-#: dozens of times on the same polylines (densifying and building the tree was 40 % of the
-#: curve stage's time at 20 frames).
+#: Densified polylines (length / spacing vertices, about ``spacing`` apart) by content: the
+#: branch search calls :func:`reconstruct_curve` dozens of times on the same polylines
+#: (densifying them was 40 % of the curve stage's time at 20 frames).
+_DENSE: dict[tuple, np.ndarray] = {}
+#: KD-trees of the densified polylines by content (:func:`_distances_for_frame` without a bound)
 _TREES: dict[tuple, object] = {}
 _TREES_MAX = 4096
+
+
+def _dense_points(poly: np.ndarray, spacing: float) -> np.ndarray:
+    """``poly`` resampled about ``spacing`` apart (length / spacing points, at least its own
+    number, at most 200,000; read-only)."""
+    poly = np.ascontiguousarray(poly, dtype=float)
+    key = (_poly_key(poly), spacing)
+    dense = _DENSE.get(key)
+    if dense is None:
+        s = pl.arc_length(poly)
+        n = int(min(max(len(poly), s[-1] / spacing), 200_000))
+        dense, _ = pl.resample(poly, n)
+        dense = np.ascontiguousarray(dense, dtype=float)
+        dense.setflags(write=False)
+        if len(_DENSE) >= _TREES_MAX:
+            _DENSE.clear()
+        _DENSE[key] = dense
+    return dense
 
 
 def _dense_tree(poly: np.ndarray, spacing: float):
@@ -230,10 +263,7 @@ def _dense_tree(poly: np.ndarray, spacing: float):
     key = (_poly_key(poly), spacing)
     tree = _TREES.get(key)
     if tree is None:
-        s = pl.arc_length(poly)
-        n = int(min(max(len(poly), s[-1] / spacing), 200_000))
-        dense, _ = pl.resample(poly, n)
-        tree = cKDTree(dense)
+        tree = cKDTree(_dense_points(poly, spacing))
         if len(_TREES) >= _TREES_MAX:
             _TREES.clear()
         _TREES[key] = tree
@@ -603,7 +633,11 @@ def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:
     """Local weighted quadratic regression of one coordinate against sample index.
 
     Window: +-max(2, 1.5 % of the samples); tricube weights times inverse variances; the two end
-    samples (A, B) are kept.
+    samples (A, B) are kept.  The windows of finite standard errors away from the ends solve
+    their 3 x 3 normal equations all at once (the window's weighted moments of the offset; a
+    loop of ``lstsq`` per sample was a third of the final section-4 run of the branch search);
+    the others - the end samples' weight 1e6 or an unknown depth's 1e-6 in the window make
+    those equations ill-conditioned - one by one with ``lstsq`` as before.
     """
     k_total = len(z)
     half = max(2, int(round(0.015 * k_total)))
@@ -612,13 +646,28 @@ def _smooth_column(z: np.ndarray, std: np.ndarray) -> np.ndarray:
     w_all = np.where(np.isfinite(std) & (std > 0), 1.0 / np.maximum(std, 1e-6) ** 2, 0.0)
     w_all[~np.isfinite(std)] = 1e-6
     w_all[0] = w_all[-1] = 1e6
-    out = z.copy()
-    for k in range(1, k_total - 1):
+    out = np.array(z, dtype=float)
+    width = 2 * half + 1
+    u = np.arange(-half, half + 1, dtype=float)
+    tricube = (1 - (np.abs(u) / (half + 1)) ** 3) ** 3
+    # windows of samples half+1 .. K-half-2 (neither end sample in them), those of finite std
+    ok = np.isfinite(std) & (std > 0)
+    whole = sliding_window_view(ok, width)[1:-1].all(axis=1)
+    ks = np.arange(half + 1, k_total - half - 1)[whole]
+    if len(ks):
+        w = sliding_window_view(w_all, width)[ks - half] * tricube
+        zw = sliding_window_view(z, width)[ks - half] * w
+        mom = [w @ u**p for p in range(5)]
+        lhs = np.stack([np.stack(mom[j : j + 3], axis=-1) for j in range(3)], axis=-2)
+        rhs = np.stack([zw @ u**p for p in range(3)], axis=-1)
+        out[ks] = np.linalg.solve(lhs, rhs[..., None])[:, 0, 0]
+    rest = np.setdiff1d(np.arange(1, k_total - 1), ks)
+    for k in rest:
         lo, hi = max(0, k - half), min(k_total, k + half + 1)
-        u = np.arange(lo, hi) - k
-        v = np.vander(u.astype(float), 3, increasing=True)
-        w = w_all[lo:hi] * (1 - (np.abs(u) / (half + 1)) ** 3) ** 3
-        a = v * w[:, None]
+        uk = np.arange(lo, hi) - k
+        v = np.vander(uk.astype(float), 3, increasing=True)
+        wk = w_all[lo:hi] * (1 - (np.abs(uk) / (half + 1)) ** 3) ** 3
+        a = v * wk[:, None]
         coef, *_ = np.linalg.lstsq(a.T @ v, a.T @ z[lo:hi], rcond=None)
         out[k] = coef[0]
     return out
