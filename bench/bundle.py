@@ -16,13 +16,13 @@ code), seeds from 1000 on (not the seeds the defaults were tuned on, 0-30).  Mea
   true curve (``bench.curve_end_to_end.curve_error_up_to_rotation``: frame 0's tilt, which
   only frame 0's own view measures, taken out; a diagnostic, not the issue's target);
   ``..._truth_start`` the same with the bundle started at the true curve and poses (an oracle:
-  the maximum-likelihood fit near the truth, :func:`_truth_start_bundle`; where it misses,
+  the maximum-likelihood fit near the truth, :func:`truth_start_bundle`; where it misses,
   the data do not determine the curve that well, whatever the start or search).
 - ``bundle_never_worse_rate``: 1 px, 1 degree, 12 frames, each scene with and without its
   polylines (``--curve-bundle off``).  Shape error E = max over (c, alpha, beta, phi) of
   |error| / std, std of the answer without polylines; never worse: E_with <= E_without + 1
   (one std of the answer without polylines: the noise of the comparison).  The paired
-  comparison: ``bundle_paired_worst_angle_deg`` (median worst-angle error with / without).
+  comparison: ``bundle_pairedworst_angle_deg`` (median worst-angle error with / without).
 - ``std_coverage_3sigma``: the same scenes with polylines, fraction of (scene, parameter) pairs
   with |error| / std < 3 (the std the answer reports); ``curve3d_std_coverage_3sigma``: fraction
   of ``curve3d`` points whose distance from the true curve is below 3 ``curve3d_std`` (that std
@@ -91,7 +91,7 @@ def _mean_distance(points: np.ndarray, curve: np.ndarray) -> float:
     return float(np.mean(out))
 
 
-def _truth_start_bundle(sc, ends: bool, sigma: float):
+def truth_start_bundle(sc, ends: bool, sigma: float):
     """The curve bundle started at the true curve and the true poses (an oracle: what the
     maximum-likelihood fit near the truth reaches, whatever any start or search finds), with
     the default ``CurveOptions``; ``ends``: with the given A', B' and tangents as measurements
@@ -115,7 +115,7 @@ def _truth_start_bundle(sc, ends: bool, sigma: float):
     return bundle_adjust(obs.curves, np.array(t.rotations), np.array(t.A3), sc.curve_3d, **kw)
 
 
-def _worst_angle_deg(shape: np.ndarray, truth: np.ndarray) -> float:
+def worst_angle_deg(shape: np.ndarray, truth: np.ndarray) -> float:
     """Largest error of alpha, beta, phi (degrees); phi up to the mirror image's sign."""
     d = np.abs(np.asarray(shape[1:3]) - truth[1:3])
     p = abs((abs(shape[3]) - truth[3] + np.pi) % (2.0 * np.pi) - np.pi)
@@ -153,7 +153,7 @@ def _case(task: tuple) -> dict:
             rec = reconstruct(sc.observations)
             out["curve_error"] = curve_error(rec.curve3d, sc.curve_3d)
             out["curve_error_up_to_rotation"] = curve_error_up_to_rotation(rec.curve3d, sc.curve_3d)
-            oracle = _truth_start_bundle(sc, True, 0.5).curve_points(200)
+            oracle = truth_start_bundle(sc, True, 0.5).curve_points(200)
             out["curve_error_truth_start"] = curve_error(oracle, sc.curve_3d)
         elif kind == "never_worse":
             sc = make_scene(rng(seed), 12, 1.0, 1.0, with_curve=True, curve_family=family)
@@ -195,8 +195,8 @@ def _case(task: tuple) -> dict:
             out["angle_deg"] = float(np.degrees(np.abs(rec.shape[1:] - sc.truth.shape[1:])).max())
             from curverecon.curve.bundle import shape_and_poses
 
-            oracle = shape_and_poses(_truth_start_bundle(sc, False, 0.5))[0]
-            out["angle_deg_truth_start"] = _worst_angle_deg(oracle, sc.truth.shape)
+            oracle = shape_and_poses(truth_start_bundle(sc, False, 0.5))[0]
+            out["angle_deg_truth_start"] = worst_angle_deg(oracle, sc.truth.shape)
         elif kind in ("time_20", "time_1000"):
             frames = 20 if kind == "time_20" else 1000
             # warm-up, untimed: numba compiles a kernel missing from its on-disk cache (a fresh
@@ -289,7 +289,7 @@ def run(quick: bool = False) -> dict:
         if nw
         else None,
         "bundle_never_worse_scenes": len(of("never_worse")),
-        "bundle_paired_worst_angle_deg": {
+        "bundle_pairedworst_angle_deg": {
             "with_polylines_median": round(float(np.median([r["angle_with"] for r in nw])), 3),
             "without_median": round(float(np.median([r["angle_without"] for r in nw])), 3),
             "bundle_accepted_rate": round(float(np.mean([r["accepted"] for r in nw])), 3),
@@ -354,14 +354,14 @@ def _truth_start_case(task: tuple) -> dict:
 
     family, seed = task
     sc = make_scene(np.random.default_rng(seed), 12, 0.5, 0.5, with_curve=True, curve_family=family)
-    pts = _truth_start_bundle(sc, True, 0.5).curve_points(200)
-    only = shape_and_poses(_truth_start_bundle(sc, False, 0.5))[0]
+    pts = truth_start_bundle(sc, True, 0.5).curve_points(200)
+    only = shape_and_poses(truth_start_bundle(sc, False, 0.5))[0]
     return {
         "family": family,
         "seed": seed,
         "curve_error": curve_error(pts, sc.curve_3d),
         "curve_error_up_to_rotation": curve_error_up_to_rotation(pts, sc.curve_3d),
-        "polylines_only_worst_angle_deg": _worst_angle_deg(only, sc.truth.shape),
+        "polylines_onlyworst_angle_deg": worst_angle_deg(only, sc.truth.shape),
     }
 
 
@@ -387,10 +387,10 @@ def truth_start_survey(seed0: int, count: int) -> dict:
                 max(g["curve_error_up_to_rotation"] for g in mine), 5
             ),
             "polylines_only_within_1deg": round(
-                float(np.mean([g["polylines_only_worst_angle_deg"] < 1.0 for g in mine])), 3
+                float(np.mean([g["polylines_onlyworst_angle_deg"] < 1.0 for g in mine])), 3
             ),
             "polylines_only_worst_angle_median_deg": round(
-                float(np.median([g["polylines_only_worst_angle_deg"] for g in mine])), 2
+                float(np.median([g["polylines_onlyworst_angle_deg"] for g in mine])), 2
             ),
             "scenes": len(mine),
         }

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from bench.bundle import _truth_start_bundle, _worst_angle_deg
+from bench.bundle import truth_start_bundle, worst_angle_deg
 from bench.curve_end_to_end import curve_error
 from curverecon.curve.bundle import shape_and_poses
 from curverecon.simulate import make_scene
@@ -13,15 +13,15 @@ from curverecon.simulate import make_scene
 
 def test_truth_start_stays_on_a_noise_free_curve():
     sc = make_scene(np.random.default_rng(5), 8, 0.0, 0.0, with_curve=True, curve_family="bezier")
-    with_ends = _truth_start_bundle(sc, True, 0.5)
+    with_ends = truth_start_bundle(sc, True, 0.5)
     assert curve_error(with_ends.curve_points(200), sc.curve_3d) < 1e-4
-    only = shape_and_poses(_truth_start_bundle(sc, False, 0.5))[0]
-    assert _worst_angle_deg(only, sc.truth.shape) < 0.2
+    only = shape_and_poses(truth_start_bundle(sc, False, 0.5))[0]
+    assert worst_angle_deg(only, sc.truth.shape) < 0.2
     assert abs(only[0] - sc.truth.c) / sc.truth.c < 1e-4
 
 
 def test_worst_angle_folds_phi_and_sees_each_angle():
     truth = np.array([100.0, 0.5, 0.6, 2.0])
-    assert _worst_angle_deg(np.array([99.0, 0.5, 0.6, -2.0]), truth) < 1e-12  # mirror image
+    assert worst_angle_deg(np.array([99.0, 0.5, 0.6, -2.0]), truth) < 1e-12  # mirror image
     off = truth + [0.0, 0.0, np.radians(3.0), 0.0]
-    assert abs(_worst_angle_deg(off, truth) - 3.0) < 1e-9
+    assert abs(worst_angle_deg(off, truth) - 3.0) < 1e-9
