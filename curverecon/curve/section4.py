@@ -19,8 +19,9 @@ with it. A is at z = 0 exactly; B is triangulated from the polylines' last point
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
@@ -89,6 +90,18 @@ def _check_inputs(
     return polys, rot, tr
 
 
+def _memo(cache: dict, key, make: Callable[[], Any]) -> Any:
+    """``cache[key]``, made by ``make()`` on a miss (the section's caches by content; a cache
+    is emptied when it holds ``_TREES_MAX`` entries)."""
+    value = cache.get(key)
+    if value is None:
+        value = make()
+        if len(cache) >= _TREES_MAX:
+            cache.clear()
+        cache[key] = value
+    return value
+
+
 #: validated polylines (``polyline.as_polyline``) by content: the branch search passes the same
 #: polylines to :func:`reconstruct_curve` dozens of times (validating them every time was 8 %
 #: of its time at 20 frames)
@@ -100,15 +113,13 @@ def _valid_polyline(points, name: str) -> np.ndarray:
     same array is handed out again)."""
     if not (isinstance(points, np.ndarray) and points.dtype == float):
         return pl.as_polyline(points, name=name)
-    key = _poly_key(points)
-    arr = _VALID.get(key)
-    if arr is None:
+
+    def make() -> np.ndarray:
         arr = pl.as_polyline(points, name=name)
         arr.setflags(write=False)
-        if len(_VALID) >= _TREES_MAX:
-            _VALID.clear()
-        _VALID[key] = arr
-    return arr
+        return arr
+
+    return _memo(_VALID, _poly_key(points), make)
 
 
 def triangulate_point(
@@ -153,14 +164,7 @@ _NOISE: dict[tuple, float] = {}
 
 def _noise_level(poly: np.ndarray) -> float:
     poly = np.ascontiguousarray(poly, dtype=float)
-    key = _poly_key(poly)
-    level = _NOISE.get(key)
-    if level is None:
-        level = pl.noise_level(poly)
-        if len(_NOISE) >= _TREES_MAX:
-            _NOISE.clear()
-        _NOISE[key] = level
-    return level
+    return _memo(_NOISE, _poly_key(poly), lambda: pl.noise_level(poly))
 
 
 def _distances_for_frame(
@@ -217,16 +221,10 @@ _GRIDS: dict[tuple, Grid] = {}
 
 def _dense_grid(poly: np.ndarray, spacing: float, bound: float) -> Grid:
     poly = np.ascontiguousarray(poly, dtype=float)
+    # the densified points only: the grids need no k-d tree (building one per polyline was a
+    # tenth of the branch search's time)
     key = (_poly_key(poly), spacing, bound)
-    grid = _GRIDS.get(key)
-    if grid is None:
-        # the densified points only: the grids need no k-d tree (building one per polyline was
-        # a tenth of the branch search's time)
-        grid = Grid(_dense_points(poly, spacing), bound)
-        if len(_GRIDS) >= _TREES_MAX:
-            _GRIDS.clear()
-        _GRIDS[key] = grid
-    return grid
+    return _memo(_GRIDS, key, lambda: Grid(_dense_points(poly, spacing), bound))
 
 
 #: Densified polylines (length / spacing vertices, about ``spacing`` apart) by content: the
@@ -243,17 +241,15 @@ def _dense_points(poly: np.ndarray, spacing: float) -> np.ndarray:
     number, at most 200,000; read-only)."""
     poly = np.ascontiguousarray(poly, dtype=float)
     key = (_poly_key(poly), spacing)
-    dense = _DENSE.get(key)
-    if dense is None:
+
+    def make() -> np.ndarray:
         s = pl.arc_length(poly)
         n = int(min(max(len(poly), s[-1] / spacing), 200_000))
-        dense, _ = pl.resample(poly, n)
-        dense = np.ascontiguousarray(dense, dtype=float)
+        dense = np.ascontiguousarray(pl.resample(poly, n)[0], dtype=float)
         dense.setflags(write=False)
-        if len(_DENSE) >= _TREES_MAX:
-            _DENSE.clear()
-        _DENSE[key] = dense
-    return dense
+        return dense
+
+    return _memo(_DENSE, key, make)
 
 
 def _dense_tree(poly: np.ndarray, spacing: float):
@@ -261,13 +257,7 @@ def _dense_tree(poly: np.ndarray, spacing: float):
 
     poly = np.ascontiguousarray(poly, dtype=float)
     key = (_poly_key(poly), spacing)
-    tree = _TREES.get(key)
-    if tree is None:
-        tree = cKDTree(_dense_points(poly, spacing))
-        if len(_TREES) >= _TREES_MAX:
-            _TREES.clear()
-        _TREES[key] = tree
-    return tree
+    return _memo(_TREES, key, lambda: cKDTree(_dense_points(poly, spacing)))
 
 
 #: Truncated squared distances of one frame's crossing candidates from another frame's
@@ -302,14 +292,7 @@ _LENGTHS: dict[bytes, float] = {}
 
 def _length(poly: np.ndarray) -> float:
     """``pl.arc_length(poly)[-1]`` by content."""
-    key = _poly_key(poly)
-    length = _LENGTHS.get(key)
-    if length is None:
-        length = float(pl.arc_length(poly)[-1])
-        if len(_LENGTHS) >= _TREES_MAX:
-            _LENGTHS.clear()
-        _LENGTHS[key] = length
-    return length
+    return _memo(_LENGTHS, _poly_key(poly), lambda: float(pl.arc_length(poly)[-1]))
 
 
 #: Crossing candidates of one frame (:func:`_frame_candidates`) by content.
