@@ -55,7 +55,6 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
 import json  # noqa: E402
-import sys  # noqa: E402
 import time  # noqa: E402
 import warnings  # noqa: E402
 from multiprocessing import get_context  # noqa: E402
@@ -397,9 +396,29 @@ def truth_start_survey(seed0: int, count: int) -> dict:
     return out
 
 
-if __name__ == "__main__":
-    args = sys.argv[1:]
-    if args[:1] == ["--truth-start"]:
-        print(json.dumps(truth_start_survey(int(args[1]), int(args[2])), indent=1))
+def main(argv: list[str] | None = None) -> None:
+    """``python -m bench.bundle [--quick | --truth-start SEED0 COUNT]`` (bad arguments: a
+    one-line message and exit status 2, argparse's)."""
+    import argparse
+
+    ap = argparse.ArgumentParser(prog="python -m bench.bundle")
+    ap.add_argument("--quick", action="store_true", help="one Bezier scene a measure")
+    ap.add_argument(
+        "--truth-start",
+        nargs=2,
+        type=int,
+        metavar=("SEED0", "COUNT"),
+        help="the oracle alone on COUNT scenes a family from SEED0 (truth_start_survey)",
+    )
+    args = ap.parse_args(argv)
+    if args.truth_start is not None:
+        seed0, count = args.truth_start
+        if count < 1:
+            ap.error("COUNT must be at least 1")
+        print(json.dumps(truth_start_survey(seed0, count), indent=1))
     else:
-        print(json.dumps(run("--quick" in args), indent=1))
+        print(json.dumps(run(args.quick), indent=1))
+
+
+if __name__ == "__main__":
+    main()

@@ -4,8 +4,9 @@ frames it stays on the true curve, so where it misses a target on noisy frames, 
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
-from bench.bundle import truth_start_bundle, worst_angle_deg
+from bench.bundle import main, truth_start_bundle, worst_angle_deg
 from bench.curve_end_to_end import curve_error
 from curverecon.curve.bundle import shape_and_poses
 from curverecon.simulate import make_scene
@@ -25,3 +26,20 @@ def test_worst_angle_folds_phi_and_sees_each_angle():
     assert worst_angle_deg(np.array([99.0, 0.5, 0.6, -2.0]), truth) < 1e-12  # mirror image
     off = truth + [0.0, 0.0, np.radians(3.0), 0.0]
     assert abs(worst_angle_deg(off, truth) - 3.0) < 1e-9
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["--truth-start", "3000"],
+        ["--truth-start", "a", "2"],
+        ["--truth-start", "3000", "0"],
+        ["--seeds"],
+    ],
+)
+def test_bad_arguments_exit_2_with_one_line(argv, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err[-1].startswith("python -m bench.bundle: error:")
