@@ -101,9 +101,23 @@ def test_merge_section_rewrites_one_targets_table_and_fences_long_values(tmp_pat
     merge_section(tmp_path, "fuzz", {"fuzz_tests_passed": True, "fuzz_failure": None})
     md = (tmp_path / "REPORT.md").read_text()
     assert md.count("## Issue targets") == 1 and md.count("## Section: fuzz") == 1
-    assert "| 16 | fuzz: every property test passes | True | **PASS** |" in md
-    assert "| 12 | minimal_solve_seconds_median <= 0.02 | 0.5 | **MISS** |" in md
+    assert "| 16 (ended, resolved) | fuzz: every property test passes | True | **PASS** |" in md
+    assert "| 12 (ended, blocked) | minimal_solve_seconds_median <= 0.02 | 0.5 | **MISS** |" in md
     merge_section(tmp_path, "fuzz", {"fuzz_failure": "line one\nline two"})
     md = (tmp_path / "REPORT.md").read_text()
     assert "| `fuzz_failure` | (below) |" in md and "```\nline one\nline two\n```" in md
     assert md.index("## Issue targets") < md.index("## Section: fuzz")
+
+
+def test_ended_issues_are_marked_and_counted_apart_from_the_open_ones():
+    # one open-issue target met (issue 13's ratio), one ended issue's target met (issue 16's
+    # tracebacks): each count holds exactly its own issues' rows
+    doc = {"bundle_time_ratio_20_frames": 1.5, "fuzz_tracebacks": 0}
+    text = issue_targets.markdown(doc)
+    got = issue_targets.rows(doc)
+    n_open = sum(r[0] not in issue_targets.ENDED for r in got)
+    n_ended = len(got) - n_open
+    assert f"open issues: 1 of {n_open} met" in text
+    assert f"ended issues (kept as regression checks): 1 of {n_ended}" in text
+    assert "| 16 (ended, resolved) | fuzz: no traceback | 0 | **PASS** |" in text
+    assert "| 13 | bundle_time_ratio_20_frames <= 2 | 1.5 | **PASS** |" in text
