@@ -382,6 +382,33 @@ class CurveOptions:
     Refused, the end-point answer's std is scaled by sqrt(dchi2 / never_worse_dchi2): the two
     answers disagree, and the bundle's shape is then just inside the scaled 99 % region."""
 
+    never_worse_f_test: bool = True
+    """Refused by ``never_worse_dchi2`` (a known noise level), the bundle's shape is still kept
+    when ``end_point_dchi2`` is within 4 F(4, N - 4) at the same probability (99 %;
+    ``bundle.never_worse_limit``: 28.0 at 12 frames, 19.1 at 20, 13.4 at 1,000) and the
+    polylines reject the end-point answer's poses (``never_worse_polyline_level``).  The
+    variance factor comes from the end-point fit's own N - 4 degrees of freedom, so with an
+    estimated noise level the end points' 99 % region reaches the F limit: between the two the
+    end points do not say whether the shape is inside it, and the polylines decide.  Helix seed
+    1105 (0.5 px, 0.5 degree, 12 frames): the bundle reached the truth's minimum (curve 0.040 %
+    of its length off; started at the truth 0.038 %) but s2 was 0.16 where the noise gives
+    0.25 (a chi2_8 draw; a third of them fall below 0.7 of their mean), dchi2 16.2 (the
+    truth-start bundle's 15.3): refused, the curve fitted on the end-point poses stayed 20
+    times the polylines' noise from them and was 2.5 % off.  Bench seeds 1100-1107 (0.5 px, 12
+    frames, every family): 3 refusals in the band, all kept (2.50 -> 0.04 %, 0.29 -> 0.09 %,
+    0.51 -> 0.26 %); held out 3000-3007: 3, all kept (2.28 -> 0.03, 0.30 -> 0.17, 1.06 ->
+    0.13 %).  The F limit alone (no polyline test) also took random 1205 (1 px; dchi2 16.6),
+    whose fixed-pose curve fits the polylines at their noise (F test tail 0.013): its beta went
+    3.5 std of the end-point answer off (1.24 kept).  Off: ``never_worse_dchi2`` alone."""
+
+    never_worse_polyline_level: float = 0.999
+    """The polylines reject the end-point answer's poses (``never_worse_f_test``) when the
+    curve fitted on them with its ends pinned leaves more polyline residual than the bundle
+    beyond this level of the nested-model F test (``bundle.polylines_reject_fixed_poses``,
+    5 N + 4 parameters more in the bundle).  0.999 rather than the gate's 0.99: it overrides the
+    end points' known-variance verdict, so the polylines must be decisive; the 6 scenes kept
+    on bench seeds 1100-1107, 3000-3007 had tails below 1e-190, random 1205 (refused) 0.013."""
+
     never_worse_alternatives: bool = True
     """Where the end-point answer has equally good ``alternatives`` the gate still applies, from
     the least chi2 among the answer and its alternatives (``bundle.gate_reference_chi2``: the

@@ -140,3 +140,48 @@ def test_the_gate_holds_where_the_end_points_have_alternatives():
     )
     assert old.curve_bundle["accepted"]
     assert _shape_error(old, scene.truth, without.std) > e_without + 1.0
+
+
+def test_never_worse_limit_is_the_99_percent_point_with_an_estimated_variance():
+    """``bundle.never_worse_limit``: with the variance factor estimated from ``dof`` degrees of
+    freedom, (chi2 with 4 dof) / (s2 from a chi2 with ``dof``) stays below the limit with the
+    probability of ``never_worse_dchi2`` under chi2_4 (99 %; checked by drawing both, seeded),
+    and the limit falls to ``never_worse_dchi2`` itself as dof grows."""
+    from curverecon.curve.bundle import never_worse_limit
+
+    rng = np.random.default_rng(11)
+    for dof in (8, 16):
+        x = rng.chisquare(4, 400_000)
+        s2 = rng.chisquare(dof, 400_000) / dof
+        frac = float(np.mean(x / s2 <= never_worse_limit(dof)))
+        assert abs(frac - 0.99) < 0.001, (dof, frac)
+        assert np.mean(x / s2 <= CurveOptions().never_worse_dchi2) < 0.975
+    assert never_worse_limit(8) > never_worse_limit(16) > CurveOptions().never_worse_dchi2
+    assert never_worse_limit(10**6) == pytest.approx(CurveOptions().never_worse_dchi2, rel=1e-3)
+
+
+def test_a_bundle_at_the_truths_minimum_refused_by_a_low_variance_factor_is_kept():
+    """Bench scene helix 1105 (0.5 px, 0.5 degree, 12 frames): the bundle reaches the minimum
+    the fit started at the true curve and poses reaches, but the end-point fit's variance
+    factor from its 8 degrees of freedom is low, and against the known-variance limit alone
+    (``never_worse_f_test`` off) the shape was refused and the curve fitted on the end-point
+    poses came out 2.5 % of its length off.  Within the F limit and with the polylines
+    rejecting those poses, the bundle's answer is kept: the curve within 0.1 % of the
+    simulator's true curve, the angles within 1 degree."""
+    scene = make_scene(
+        np.random.default_rng(1105), 12, 0.5, 0.5, with_curve=True, curve_family="helix"
+    )
+    rec = reconstruct(scene.observations)
+    info = rec.curve_bundle
+    assert info["accepted"]
+    assert CurveOptions().never_worse_dchi2 < info["end_point_dchi2"]
+    assert any("polylines reject" in w for w in rec.warnings)
+    assert curve_error(rec.curve3d, scene.curve_3d) < 0.001
+    truth = scene.truth.shape
+    assert np.degrees(np.abs(rec.shape[1:3] - truth[1:3])).max() < 1.0
+    old = reconstruct(
+        scene.observations,
+        options=ReconstructOptions(curve=CurveOptions(never_worse_f_test=False)),
+    )
+    assert not old.curve_bundle["accepted"]
+    assert curve_error(old.curve3d, scene.curve_3d) > 0.02

@@ -2290,7 +2290,7 @@ def gate_reference_chi2(chi2_answer: float, alternatives, options=None) -> float
     equally good ``Reconstruction.alternatives`` (each refitted on the same inlier frames with
     the same sigmas, so their chi2 compare).  With ``CurveOptions.never_worse_alternatives``
     the least of these chi2, else the answer's.  The end points' likelihood-ratio confidence
-    region is then the set of shapes within ``never_worse_dchi2`` (in units of the variance
+    region is then the set of shapes within :func:`never_worse_limit` (in units of the variance
     factor) of the best fit: the union of the regions about every hypothesis that fits about
     as well, which takes a bundle that chose one of them by the curve and refuses a shape
     outside all of them."""
@@ -2301,6 +2301,54 @@ def gate_reference_chi2(chi2_answer: float, alternatives, options=None) -> float
             if np.isfinite(alt.chi2):
                 chi2 = min(chi2, float(alt.chi2))
     return chi2
+
+
+def never_worse_limit(dof: int, options=None) -> float:
+    """The upper end of the never-worse gate's band (``CurveOptions.never_worse_f_test``): the
+    limit on ``end_point_dchi2`` (the bundle shape's end-point chi2 above the reference, in
+    units of the variance factor s2 = chi2 / ``dof`` of the end-point fit, ``dof`` = inlier
+    frames - 4) when s2 is estimated from the fit itself, 4 F(4, dof) at the probability of
+    ``CurveOptions.never_worse_dchi2`` under chi2 with 4 degrees of freedom (the known-variance
+    limit, 99 %), which it tends to as dof grows: 28.0 at 12 frames, 19.1 at 20."""
+    o = options if options is not None else CurveOptions()
+    limit = float(o.never_worse_dchi2)
+    if dof < 1 or not np.isfinite(limit) or limit <= 0.0:
+        return limit
+    from scipy.stats import chi2, f
+
+    return float(4.0 * f.ppf(chi2.cdf(limit, 4), 4, int(dof)))
+
+
+def polylines_reject_fixed_poses(
+    counts: np.ndarray,
+    rms_fixed: np.ndarray,
+    rms_bundle: np.ndarray,
+    k: int,
+    level: float,
+) -> tuple[bool, float]:
+    """Whether the polylines reject the end-point answer's poses: the nested-model F test of
+    the curve fitted with every pose fixed and its ends pinned (:func:`fit_curve_fixed_poses`,
+    per-frame RMS ``rms_fixed`` px) against the bundle (``rms_bundle``; both on the frames
+    whose polylines the fits use).  ``counts``: polyline points of those frames (each less 2,
+    as :func:`_bic` counts them); ``k``: the bundle's control points.  The bundle has 5 N + 4
+    more parameters than the pinned fixed-pose curve (3 K - 1 + 5 (N - 1) against
+    2 + 3 (K - 4)), the noise level is the bundle's own RSS over its residual degrees of
+    freedom (scale-free, like :func:`_bic`).  Returns (rejected at ``level``, the upper-tail
+    probability)."""
+    from scipy.stats import f
+
+    counts = np.asarray(counts, float)
+    n_fr = len(counts)
+    n_obs = float(counts.sum())
+    p = 5 * n_fr + 4
+    dof2 = n_obs - (3 * k - 1 + 5 * (n_fr - 1))
+    rss_f = float(np.sum(counts * np.asarray(rms_fixed, float) ** 2))
+    rss_b = float(np.sum(counts * np.asarray(rms_bundle, float) ** 2))
+    if dof2 < 1 or not (np.isfinite(rss_f) and np.isfinite(rss_b)) or rss_b <= 0.0:
+        return False, 1.0
+    stat = ((rss_f - rss_b) / p) / (rss_b / dof2)
+    tail = float(f.sf(stat, p, dof2))
+    return tail < 1.0 - level, tail
 
 
 def refine_reconstruction(
@@ -2329,8 +2377,10 @@ def refine_reconstruction(
       points fit is flagged: its polyline contradicts the end points (another curve, a tracking
       error) and is left out of a second fit, not averaged in (``curve_bundle.flagged_frames``);
     - never worse: the bundle's shape and poses are kept only if their end-point chi2 exceeds
-      the end-point answer's by at most ``never_worse_dchi2`` in units of the end-point fit's
-      own variance factor (chi2 / dof, the noise level the end points show).  Beyond that the
+      the end-point answer's by at most :func:`never_worse_limit` (``never_worse_dchi2``, or
+      with ``never_worse_f_test`` its F-distribution counterpart for a variance estimated from
+      the fit) in units of the end-point fit's own variance factor (chi2 / dof, the noise
+      level the end points show).  Beyond that the
       polylines (or the curve model) pull the answer outside the end points' confidence region,
       so the end-point answer stays and the curve alone is fitted to the polylines with every
       pose fixed and the ends and end tangent lines pinned (:func:`fit_curve_fixed_poses`).
@@ -2603,7 +2653,7 @@ def refine_reconstruction(
     shape, poses, _ = shape_and_poses(br)
     shape_n, poses_n = normalise(shape, poses)
     frame_chi2 = end_point_chi2(shape_n, poses_n, obs, inl, w8)
-    accepted, dchi2 = True, None
+    accepted, dchi2, band = True, None, False
     if s2 is not None:
         # the end points' profile chi2 of the bundle's shape (every pose at its best for that
         # shape): the shape's own distance from the end-point answer, in 4 dimensions
@@ -2622,6 +2672,13 @@ def refine_reconstruction(
             bool(rec.alternatives) and not o.never_worse_alternatives
         )
         accepted = undetermined or dchi2 <= o.never_worse_dchi2
+        # between the known-variance limit and the estimated-variance one the end points leave
+        # it open whether the shape is inside their 99 % region: the polylines decide below
+        band = (
+            not accepted
+            and o.never_worse_f_test
+            and dchi2 <= never_worse_limit(max(int(inl.sum()) - 4, 1), o)
+        )
     k = br.control.shape[0]
     if not accepted:
         # the end-point answer stays; the curve alone is fitted with its poses and ends
@@ -2638,7 +2695,27 @@ def refine_reconstruction(
             "end_point_dchi2": float(dchi2),
             "flagged_frames": flagged,
         }
+        n_warnings = len(warnings)
         out, curve3d, info = fixed_answer(start, k, mask, extra)
+        if band:
+            # the band (CurveOptions.never_worse_f_test): the bundle's shape is kept when the
+            # polylines reject the end-point answer's poses (the curve fitted on them stays
+            # beyond the noise from the polylines the bundle fits)
+            counts = np.array([max(len(c) - 2, 1) for c in curves], float)[mask]
+            rms_fixed = np.asarray(info["frame_rms_px"], float)[mask]
+            accepted, tail = polylines_reject_fixed_poses(
+                counts, rms_fixed, br.rms[mask], k, o.never_worse_polyline_level
+            )
+            if accepted:
+                del warnings[n_warnings:]  # the fixed-pose fit's own flags: not the answer's
+                warnings.append(
+                    f"the curve bundle's shape is {float(dchi2):.1f} (variance factors) above the "
+                    "end points' best fit, beyond the 99 % limit for a known noise level "
+                    f"({o.never_worse_dchi2:g}) but within it for the level the end points show "
+                    f"({int(inl.sum()) - 4} degrees of freedom); the polylines reject the "
+                    f"end-point answer's poses (probability {tail:.1e}): the bundle's answer kept"
+                )
+    if not accepted:
         if out.std is not None:
             # the two answers disagree beyond the end points' 99 % region: one of the models
             # (the end points' or the curve's) is off, and refusals come most often where the
