@@ -208,3 +208,30 @@ def test_end_and_tangent_rows_equal_the_numpy_construction():
             dvdw = -np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
             assert np.allclose(jtp[f, row, :3], g @ dvdw[:2], rtol=1e-12, atol=1e-9)
             assert not jtp[f, row, 3:].any()
+
+
+def test_sweep_distances_stop_each_pose_beyond_the_bound():
+    """``bundle_kernel.sweep_distances`` (the pose sweep with each pose's scan stopped once
+    its sum of squared distances exceeds the bound): the distances it measures are the k-d
+    tree's; a pose is stopped exactly when the k-d tree's full sum exceeds the bound (up to
+    the sums' rounding), and then its first points' partial sum does."""
+    prob, *_ = _truth_problem(3, 6, "helix", False)
+    rng = np.random.default_rng(5)
+    dense = prob.resampled(2)
+    per = 40
+    # 30 "poses": the polyline's samples shifted by offsets of 0.5 - 20 px
+    base = dense[:: len(dense) // per][:per]
+    q = np.vstack([base + rng.normal(scale=s, size=base.shape) for s in np.linspace(0.5, 20, 30)])
+    expected = cKDTree(dense).query(q)[0].reshape(30, per)
+    full = np.sum(expected**2, axis=1)
+    bound = float(np.median(full))
+    got, over = bk.sweep_distances(dense, q, per, bound)
+    got = got.reshape(30, per)
+    assert 0 < over.sum() < 30
+    measured = np.isfinite(got)
+    assert np.array_equal(got[measured], expected[measured])
+    assert np.all(measured[~over])
+    assert np.array_equal(over, full > bound)
+    for p in np.flatnonzero(over):
+        k = int(measured[p].sum())
+        assert np.sum(expected[p, :k] ** 2) > bound >= np.sum(expected[p, : k - 1] ** 2)

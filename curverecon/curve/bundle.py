@@ -102,6 +102,7 @@ from curverecon.curve.bundle_kernel import (
     polyline_normal_blocks,
     polyline_rows,
     segment_offsets,
+    sweep_distances,
     tangent_rows,
 )
 from curverecon.model.pose import rotations as pose_rotations
@@ -1257,30 +1258,55 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     chord = poly[-1] - poly[0]
     cp = float(np.hypot(*chord))
     e1 = ab / c
-    e2 = np.cross(e1, [1.0, 0.0, 0.0] if abs(e1[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e2 = _cross3(e1, np.array([1.0, 0.0, 0.0] if abs(e1[0]) < 0.9 else [0.0, 1.0, 0.0]))
     e2 /= np.linalg.norm(e2)
-    cmat = np.column_stack([e1, e2, np.cross(e1, e2)])
+    cmat = np.column_stack([e1, e2, _cross3(e1, e2)])
     tau_abs = float(np.arccos(min(cp / c, 1.0)))
     theta = float(np.arctan2(chord[1], chord[0]))
-    pts = prob.basis.values(np.linspace(0.0, 1.0, 40)) @ ctrl - a3
+    pts = _sweep_basis(prob.k) @ ctrl - a3
     dense = prob.resampled(i)
-    deltas = np.radians(np.arange(0.0, 360.0, 10.0))
+    deltas = _SWEEP_DELTAS
     taus = np.array(sorted({tau_abs, -tau_abs}))
     mms = _rot_zyx(theta, np.repeat(taus, len(deltas)), np.tile(deltas, len(taus))) @ cmat.T
-    # every sweep pose's projected curve in one query (the same distances as one by one)
-    proj = pts @ np.transpose(mms[:, :2], (0, 2, 1)) + poly[0]
-    dist = nearest_distances(dense, proj.reshape(-1, 2)).reshape(len(mms), len(pts))
-    scores = np.mean(dist**2, axis=1)  # row by row: the same sums as one pose at a time
-    cands = [(float(scores[j]), j, mm) for j, mm in enumerate(mms)]
-    cands.sort(key=lambda t: t[:2])
     current = float(np.mean(nearest_distances(dense, (pts + a3) @ mi[:2].T + bi[:2]) ** 2))
+    # every sweep pose's projected curve in one query (the same distances as one by one); a
+    # pose is measured only until its sum exceeds the refinement's limit (RESECT_GAIN times
+    # the current score, with a margin for the order of the sums): such a pose is not refined
+    # whatever its score, and the others keep theirs (the same starts as measuring them all)
+    proj = pts @ np.transpose(mms[:, :2], (0, 2, 1)) + poly[0]
+    bound = RESECT_GAIN * current * len(pts) * (1.0 + 1e-9)
+    dist, over = sweep_distances(dense, proj.reshape(-1, 2), len(pts), bound)
+    dist = dist.reshape(len(mms), len(pts))
+    scores = np.mean(dist**2, axis=1)  # row by row: the same sums as one pose at a time
+    scores[over] = np.inf
+    best = np.argsort(scores, kind="stable")[:2]  # ties: the first pose (by score, index)
     # only sweep poses that beat the current one even on the coarse grid are refined
     starts = [
-        (mm, np.append(poly[0] - (mm @ a3)[:2], 0.0))
-        for score, _, mm in cands[:2]
-        if score < RESECT_GAIN * current
+        (mms[j], np.append(poly[0] - (mms[j] @ a3)[:2], 0.0))
+        for j in best
+        if float(scores[j]) < RESECT_GAIN * current
     ]
     return starts
+
+
+#: The pose sweep's rotations about AB (:func:`_resect_starts`), 10 degrees apart.
+_SWEEP_DELTAS = np.radians(np.arange(0.0, 360.0, 10.0))
+_SWEEP_DELTAS.flags.writeable = False
+
+
+@functools.cache
+def _sweep_basis(k: int) -> np.ndarray:
+    """The basis values (40, k) of the pose sweep's curve samples (:func:`_resect_starts`)."""
+    out = _Basis(k).values(np.linspace(0.0, 1.0, 40))
+    out.flags.writeable = False
+    return out
+
+
+def _cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.cross`` of two 3-vectors (its products and differences, without its dispatch)."""
+    return np.array(
+        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    )
 
 
 def _expm_so3_batch(w: np.ndarray) -> np.ndarray:
