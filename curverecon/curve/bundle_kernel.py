@@ -376,10 +376,11 @@ def basis_rows(coef, u, rev_basis, n):
 
 
 @numba.njit(**_JIT)
-def polyline_rows(r_fw, rev_r, rows, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
+def polyline_rows(r_fw, rev_r, rows, fwd_w, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
     """The polyline rows of ``bundle._Problem.evaluate`` (forward rows, then every frame's
     reverse rows, frame-major; ``rows``: each row's frame) from their signed distances: Huber
-    (threshold ``hk``, units of sigma ``s``; reverse rows weighted by their frame's ``rev_w``),
+    (threshold ``hk``, units of sigma ``s``; forward rows weighted by their frame's ``fwd_w``,
+    reverse rows by its ``rev_w``),
     the polyline weights ``pw`` and the square roots of the frame weights ``fw`` applied, in
     the order the NumPy code applied them (the same values bit for bit).  With ``jac``: the
     curve Jacobian's factor dmw (the offset direction through the pose, ``dm``, scaled) and the
@@ -395,7 +396,7 @@ def polyline_rows(r_fw, rev_r, rows, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
         f = rows[i]
         if i < nq:
             r = r_fw[i]
-            wt = 1.0
+            wt = fwd_w[f]
         else:
             r = rev_r[i - nq]
             wt = rev_w[f]
