@@ -18,10 +18,11 @@ from curverecon.curve import bundle_kernel as bk
 from curverecon.simulate import make_scene
 
 
-def _truth_problem(seed: int, frames: int, family: str, robust_ends: bool):
-    """A bundle problem of a noisy scene (end points and tangents given) at the true state."""
+def _truth_problem(seed: int, frames: int, family: str, robust_ends: bool, noise: float = 1.0):
+    """A bundle problem of a scene with ``noise`` px (end points and tangents given) at the
+    true state."""
     scene = make_scene(
-        np.random.default_rng(seed), frames, 1.0, 1.0, with_curve=True, curve_family=family
+        np.random.default_rng(seed), frames, noise, noise, with_curve=True, curve_family=family
     )
     obs = scene.observations
     rot, tr = scene.truth.rotations, scene.truth.A3
@@ -208,3 +209,73 @@ def test_end_and_tangent_rows_equal_the_numpy_construction():
             dvdw = -np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
             assert np.allclose(jtp[f, row, :3], g @ dvdw[:2], rtol=1e-12, atol=1e-9)
             assert not jtp[f, row, 3:].any()
+
+
+def test_sweep_distances_stop_each_pose_beyond_the_bound():
+    """``bundle_kernel.sweep_distances`` (the pose sweep with each pose's scan stopped once
+    its sum of squared distances exceeds the bound): the distances it measures are the k-d
+    tree's; a pose is stopped exactly when the k-d tree's full sum exceeds the bound (up to
+    the sums' rounding), and then its first points' partial sum does."""
+    prob, *_ = _truth_problem(3, 6, "helix", False)
+    rng = np.random.default_rng(5)
+    dense = prob.resampled(2)
+    per = 40
+    # 30 "poses": the polyline's samples shifted by offsets of 0.5 - 20 px
+    base = dense[:: len(dense) // per][:per]
+    q = np.vstack([base + rng.normal(scale=s, size=base.shape) for s in np.linspace(0.5, 20, 30)])
+    expected = cKDTree(dense).query(q)[0].reshape(30, per)
+    full = np.sum(expected**2, axis=1)
+    bound = float(np.median(full))
+    got, over = bk.sweep_distances(dense, q, per, bound)
+    got = got.reshape(30, per)
+    assert 0 < over.sum() < 30
+    measured = np.isfinite(got)
+    assert np.array_equal(got[measured], expected[measured])
+    assert np.all(measured[~over])
+    assert np.array_equal(over, full > bound)
+    for p in np.flatnonzero(over):
+        k = int(measured[p].sum())
+        assert np.sum(expected[p, :k] ** 2) > bound >= np.sum(expected[p, : k - 1] ** 2)
+
+
+def test_thinned_problem_stands_for_the_full_polylines():
+    """The coarse stage's thinned polylines (``bundle._thinned``, ``_Problem.stand_for``):
+    the same ends and every s-th point of each polyline; the cost on the scale of the full
+    polylines' (the forward rows weighted by the points they stand for): at the true state of
+    a noisy scene (within the noise of the sums) with per-frame RMS distances alike, and, on
+    the noise-free scene, the rise of one frame's cost when its pose is turned 3 degrees (what
+    the pose search compares)."""
+
+    def problems(noise: float):
+        prob, state, _ = _truth_problem(11, 12, "helix", False, noise)
+        prob.frame_w = np.ones(prob.n)
+        prob.poly_w = np.ones(prob.n)
+        thin_polys = [bd._thinned(p, 40) for p in prob.polys]
+        thin = bd._Problem(
+            thin_polys, 1.0, 12, prob.ends, prob.tangents, prob.point_sigma, prob.tangent_sigma
+        )
+        thin.stand_for(prob.polys)
+        return prob, thin, state
+
+    prob, thin, (ctrl, m, b) = problems(1.0)
+    for p, t in zip(prob.polys, thin.polys, strict=True):
+        step = round((len(p) - 1) / 40)
+        assert step > 1
+        assert np.array_equal(t[0], p[0]) and np.array_equal(t[-1], p[-1])
+        assert np.array_equal(t[: len(p[::step])], p[::step])
+        assert 30 <= len(t) <= 50
+    r, _, _, rows, rms = prob.evaluate(ctrl, m, b, jac=False)
+    r_t, _, _, rows_t, rms_t = thin.evaluate(ctrl, m, b, jac=False)
+    # chi2 of ~150 points per frame against ~40 weighted ones: within the noise of the sums
+    assert 0.75 < np.sum(r_t**2) / np.sum(r**2) < 1.33
+    assert np.allclose(rms_t, rms, rtol=0.25)
+    prob, thin, (ctrl, m, b) = problems(0.0)
+    turned = m.copy()
+    turned[4] = bd._expm_so3(np.radians(3.0) * np.array([0.6, 0.8, 0.0])) @ m[4]
+    rise = []
+    for pr in (prob, thin):
+        r, _, _, rows, _ = pr.evaluate(ctrl, m, b, jac=False)
+        r2, _, _, rows2, _ = pr.evaluate(ctrl, turned, b, jac=False)
+        rise.append(pr.frame_costs(r2, rows2)[4] - pr.frame_costs(r, rows)[4])
+    assert rise[0] > 20.0
+    assert 0.9 < rise[1] / rise[0] < 1.1

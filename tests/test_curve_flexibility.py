@@ -9,7 +9,7 @@ simulator (no project code in the geometry), 12 frames, end points and tangents 
   keeps the 12 of the start while a wiggly Fourier curve, which a 12-point spline misses by more
   (checked on the true 3-D curve), gets more.
 - What limits ``curve3d`` at 0.5 px is not the flexibility: a Fourier scene whose ``curve3d``
-  is more than 0.5 % of the length off has the right shape (within 0.1 % after the best
+  is about 0.5 % of the length off has the right shape (within 0.1 % after the best
   rotation about A) and is tilted as a whole in frame 0's camera, which only frame 0's own view
   fixes; the reported ``curve3d_std`` covers that tilt.
 """
@@ -83,14 +83,18 @@ def test_curve3d_error_at_half_a_pixel_is_the_tilt_in_frame_0_not_the_shape():
     length = _length(truth)
     mirror = min((truth, truth * [1.0, 1.0, -1.0]), key=lambda q: _mean_distance(rec.curve3d, q))
     err = _mean_distance(rec.curve3d, mirror) / length
-    assert err > 0.005  # the raw error in frame 0's camera: over the issue's 0.5 %
+    # the raw error in frame 0's camera: about the issue's 0.5 % (0.48 %; 0.8 % before the
+    # coarse stage's thinned polylines, bundle.COARSE_POINTS, found a lower-cost fit)
+    assert err > 0.004
     # the same points in arc length, the best rotation about A
     u = np.linspace(0.0, 1.0, 200)
     p = np.column_stack([np.interp(u, _arc(rec.curve3d), rec.curve3d[:, j]) for j in range(3)])
     q = np.column_stack([np.interp(u, _arc(mirror), mirror[:, j]) for j in range(3)])
     rot, _ = Rotation.align_vectors(q - q[0], p - p[0])
     aligned = rot.apply(rec.curve3d - rec.curve3d[0]) + mirror[0]
-    assert _mean_distance(aligned, mirror) / length < 0.001
+    aligned_err = _mean_distance(aligned, mirror) / length
+    assert aligned_err < 0.001
+    assert err > 5.0 * aligned_err  # the raw error is the tilt
     tilt_deg = np.degrees(np.linalg.norm(rot.as_rotvec()))
     assert tilt_deg > 0.5
     # the reported std covers the raw error

@@ -47,7 +47,9 @@ in blocks, the 5 x 5 pose blocks (a frame's rows see only its own pose) eliminat
 Schur complement (:func:`_schur_solve`): O(N) per step, no dense Jacobian of all the poses (the
 same steps as the dense solve, to rounding; the covariance of the curve likewise,
 :func:`_curve_covariance`).  Stages (:func:`bundle_adjust`): a coarse curve (``K_COARSE``
-control points) with the start poses; every frame's pose searched again against that curve
+control points, on polylines thinned to about ``COARSE_POINTS`` points that stand for the
+full ones, :meth:`_Problem.stand_for`) with the start poses; every frame's pose searched again
+against that curve
 (:func:`_resect_starts`: a sweep over the poses that put A, B on the polyline's ends - the
 wrong-branch poses that degree-off end tangents leave are beyond LM's reach - refined for every
 frame at once by :func:`_resect_all`, and a regauge when frame 0's own pose moves); the coarse
@@ -102,6 +104,7 @@ from curverecon.curve.bundle_kernel import (
     polyline_normal_blocks,
     polyline_rows,
     segment_offsets,
+    sweep_distances,
     tangent_rows,
 )
 from curverecon.model.pose import rotations as pose_rotations
@@ -133,6 +136,17 @@ MAX_ITER = 60
 DIFF_ORDER = 4
 #: Control points of the coarse stage (smoother cost landscape for the pose search).
 K_COARSE = 6
+#: Polyline points (about) of the coarse stage and its pose search (:func:`_thinned`; 0: all):
+#: a 6-point curve and the poses' basin need no 150 points per frame, and the stage's LM runs
+#: and pose searches took two thirds of the bundle's time (bench time_20, seed 1400: coarse LM
+#: 0.52 s -> 0.25 s of the bundle's 1.27 s; time_20 ratio 2.89 -> 2.52, held-out seeds 2000 and
+#: 2100 2.59 -> 2.23 and 2.48 -> 2.24).  curve_05 (12 frames, 0.5 px, seeds 1100-1107, every
+#: family) kept every count within 0.5 % and moved errors by -0.9 to +0.05 % of the length
+#: (least bundle cost lower in 26 scenes, higher in 15, by under 0.4 %; 30 and 60 points did
+#: worse there).  Against it: sharp-ends 6001 (12 frames, 1 px, ``refit_with_bundle`` on) fell
+#: into a worse basin, cost 2652 -> 3244 (30, 50, 60 points: 1898, 2670, 2357); that scene's
+#: basin moves with any change of the coarse stage (test_curve_std's two cases on it fail).
+COARSE_POINTS = 40
 #: Rounds of per-frame pose search against the coarse curve.
 RESECT_ROUNDS = 2
 #: Relative decrease of the cost below which LM stops.
@@ -194,7 +208,8 @@ class BundleResult:
     m, b: (N, 3, 3), (N, 3) frame 0 camera -> frame i camera (``X_i = m_i X_0 + b_i``).
     sigma: the pixel noise used as the residual unit.
     rms: (N,) RMS distance (pixels) of each frame's polyline points from the projected curve.
-    cost_start, cost: sum of squared (weighted) residuals before and after.
+    cost_start, cost: sum of squared (weighted) residuals before and after (cost_start on the
+        coarse stage's thinned polylines, which stand for the full ones: the same scale).
     iterations: LM iterations taken; converged: whether the relative-change test was met.
     """
 
@@ -325,6 +340,18 @@ def fit_spline(points: np.ndarray, k: int) -> np.ndarray:
     return np.vstack([pts[0], inner, pts[-1]])
 
 
+def _thinned(poly: np.ndarray, target: int) -> np.ndarray:
+    """Every s-th point of the polyline and its last one, s = round((M - 1) / target) (at
+    least 1): about ``target`` points, the same ends."""
+    step = max(int(round((len(poly) - 1) / max(target, 1))), 1)
+    if step == 1:
+        return poly
+    idx = np.arange(0, len(poly), step)
+    if idx[-1] != len(poly) - 1:
+        idx = np.append(idx, len(poly) - 1)
+    return np.ascontiguousarray(poly[idx])
+
+
 def _huber_points(r: np.ndarray, jc: np.ndarray, jp: np.ndarray, k: float = HUBER_K):
     """Huber (``HUBER_K``) on each 2-D point residual (rows 2j, 2j + 1, units of sigma) by its
     length: ``r -> f(a) r / a`` with ``f(a)^2 = 2 k a - k^2`` beyond k, the Jacobian through
@@ -431,13 +458,30 @@ class _Problem:
         self.rev_weight = [
             np.sqrt(REVERSE_WEIGHT * max(len(p) - 2, 1) / len(self.rev_basis)) for p in polys
         ]
+        # weight of each frame's forward rows (above 1: thinned polylines, :meth:`stand_for`)
+        self.fwd_w = np.ones(self.n)
+        # the polylines the pose sweep measures distances to (:meth:`resampled`)
+        self._sweep_polys = polys
         self._setup_batch()
+
+    def stand_for(self, full: Sequence[np.ndarray]) -> None:
+        """Let this problem's polylines, thinned from ``full`` (the same ends, every few points
+        kept: :func:`_thinned`), stand for them: each forward row weighted by the square root
+        of the interior points it stands for and the reverse term's weight from the full count
+        (the cost on the scale of the full polylines', the balance with the end-point and
+        tangent rows and ``LM_STOP_DCHI2`` as there), the pose sweep on the full polylines."""
+        full_cnt = np.array([max(len(p) - 2, 1) for p in full], float)
+        self.fwd_w = np.sqrt(full_cnt / np.maximum(self.q_cnt, 1))
+        self.rev_weight = [np.sqrt(REVERSE_WEIGHT * c / len(self.rev_basis)) for c in full_cnt]
+        self._sweep_polys = list(full)
 
     def resampled(self, i: int) -> np.ndarray:
         """Frame i's polyline resampled to 200 points equally spaced in arc length (the pose
         sweep's distances, :func:`_resect_starts`), computed once per problem."""
         if self._resampled[i] is None:
-            self._resampled[i] = np.ascontiguousarray(pl.resample(self.polys[i], 200)[0], float)
+            self._resampled[i] = np.ascontiguousarray(
+                pl.resample(self._sweep_polys[i], 200)[0], float
+            )
         return self._resampled[i]
 
     def _to_polyline(self, pts: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
@@ -847,6 +891,7 @@ class _Problem:
             r_fw,
             rev_r,
             rows_f,
+            np.asarray(self.fwd_w, float),
             np.asarray(self.rev_weight, float),
             pw,
             fw,
@@ -1043,6 +1088,8 @@ class _Problem:
         sub.smooth_weight = self.smooth_weight
         sub.robust_ends = self.robust_ends
         sub.rev_weight = [self.rev_weight[i] for i in fr]
+        sub.fwd_w = np.asarray(self.fwd_w, float)[fr]
+        sub._sweep_polys = [self._sweep_polys[i] for i in fr]
         return sub
 
     def frame_costs(self, r: np.ndarray, rows: np.ndarray) -> np.ndarray:
@@ -1257,30 +1304,55 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     chord = poly[-1] - poly[0]
     cp = float(np.hypot(*chord))
     e1 = ab / c
-    e2 = np.cross(e1, [1.0, 0.0, 0.0] if abs(e1[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e2 = _cross3(e1, np.array([1.0, 0.0, 0.0] if abs(e1[0]) < 0.9 else [0.0, 1.0, 0.0]))
     e2 /= np.linalg.norm(e2)
-    cmat = np.column_stack([e1, e2, np.cross(e1, e2)])
+    cmat = np.column_stack([e1, e2, _cross3(e1, e2)])
     tau_abs = float(np.arccos(min(cp / c, 1.0)))
     theta = float(np.arctan2(chord[1], chord[0]))
-    pts = prob.basis.values(np.linspace(0.0, 1.0, 40)) @ ctrl - a3
+    pts = _sweep_basis(prob.k) @ ctrl - a3
     dense = prob.resampled(i)
-    deltas = np.radians(np.arange(0.0, 360.0, 10.0))
+    deltas = _SWEEP_DELTAS
     taus = np.array(sorted({tau_abs, -tau_abs}))
     mms = _rot_zyx(theta, np.repeat(taus, len(deltas)), np.tile(deltas, len(taus))) @ cmat.T
-    # every sweep pose's projected curve in one query (the same distances as one by one)
-    proj = pts @ np.transpose(mms[:, :2], (0, 2, 1)) + poly[0]
-    dist = nearest_distances(dense, proj.reshape(-1, 2)).reshape(len(mms), len(pts))
-    scores = np.mean(dist**2, axis=1)  # row by row: the same sums as one pose at a time
-    cands = [(float(scores[j]), j, mm) for j, mm in enumerate(mms)]
-    cands.sort(key=lambda t: t[:2])
     current = float(np.mean(nearest_distances(dense, (pts + a3) @ mi[:2].T + bi[:2]) ** 2))
+    # every sweep pose's projected curve in one query (the same distances as one by one); a
+    # pose is measured only until its sum exceeds the refinement's limit (RESECT_GAIN times
+    # the current score, with a margin for the order of the sums): such a pose is not refined
+    # whatever its score, and the others keep theirs (the same starts as measuring them all)
+    proj = pts @ np.transpose(mms[:, :2], (0, 2, 1)) + poly[0]
+    bound = RESECT_GAIN * current * len(pts) * (1.0 + 1e-9)
+    dist, over = sweep_distances(dense, proj.reshape(-1, 2), len(pts), bound)
+    dist = dist.reshape(len(mms), len(pts))
+    scores = np.mean(dist**2, axis=1)  # row by row: the same sums as one pose at a time
+    scores[over] = np.inf
+    best = np.argsort(scores, kind="stable")[:2]  # ties: the first pose (by score, index)
     # only sweep poses that beat the current one even on the coarse grid are refined
     starts = [
-        (mm, np.append(poly[0] - (mm @ a3)[:2], 0.0))
-        for score, _, mm in cands[:2]
-        if score < RESECT_GAIN * current
+        (mms[j], np.append(poly[0] - (mms[j] @ a3)[:2], 0.0))
+        for j in best
+        if float(scores[j]) < RESECT_GAIN * current
     ]
     return starts
+
+
+#: The pose sweep's rotations about AB (:func:`_resect_starts`), 10 degrees apart.
+_SWEEP_DELTAS = np.radians(np.arange(0.0, 360.0, 10.0))
+_SWEEP_DELTAS.flags.writeable = False
+
+
+@functools.cache
+def _sweep_basis(k: int) -> np.ndarray:
+    """The basis values (40, k) of the pose sweep's curve samples (:func:`_resect_starts`)."""
+    out = _Basis(k).values(np.linspace(0.0, 1.0, 40))
+    out.flags.writeable = False
+    return out
+
+
+def _cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``np.cross`` of two 3-vectors (its products and differences, without its dispatch)."""
+    return np.array(
+        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    )
 
 
 def _expm_so3_batch(w: np.ndarray) -> np.ndarray:
@@ -1461,10 +1533,11 @@ def bundle_adjust(
         the run stops there (``stopped``, cost infinite): it would retrace the other run
         (``CurveOptions.frame0_branch_same_deg``).
 
-    Stages: a coarse curve (``K_COARSE`` control points) with the start poses; every frame's
-    pose searched again against that curve (``_resect_all``: the wrong-branch poses the end
-    tangents leave are far from the right ones, beyond LM's reach) and the coarse fit repeated
-    (``RESECT_ROUNDS``); then the full curve.
+    Stages: a coarse curve (``K_COARSE`` control points, on every polyline thinned to about
+    ``COARSE_POINTS`` points, weighted to stand for the full one) with the start poses; every
+    frame's pose searched again against that curve (``_resect_all``: the wrong-branch poses the
+    end tangents leave are far from the right ones, beyond LM's reach) and the coarse fit
+    repeated (``RESECT_ROUNDS``); then the full curve on the full polylines.
 
     Returns a :class:`BundleResult` (curve and poses in frame 0's camera coordinates).
     Raises ``CurveReconError`` for bad input.
@@ -1513,14 +1586,26 @@ def bundle_adjust(
     if use_poly.shape != (n,) or (ends_arr is None and not use_poly.all()):
         raise _error(f"polyline_mask: expected {n} flags (and given end points to leave any out)")
 
-    def problem(kk: int) -> _Problem:
-        prob = _Problem(polys, sigma, kk, ends_arr, tans_arr, float(point_sigma), ts)
+    def problem(kk: int, coarse: bool = False) -> _Problem:
+        if coarse and COARSE_POINTS > 0:
+            prob = _Problem(
+                [_thinned(p, COARSE_POINTS) for p in polys],
+                sigma,
+                kk,
+                ends_arr,
+                tans_arr,
+                float(point_sigma),
+                ts,
+            )
+            prob.stand_for(polys)
+        else:
+            prob = _Problem(polys, sigma, kk, ends_arr, tans_arr, float(point_sigma), ts)
         prob.poly_w = use_poly.astype(float)
         prob.smooth_weight = float(smooth_weight)
         return prob
 
     k_coarse = min(K_COARSE, k)
-    prob = problem(k_coarse)
+    prob = problem(k_coarse, coarse=True)
     ctrl = fit_spline(curve0 - [0.0, 0.0, curve0[0, 2]], k_coarse)
     if resect_first:
         # the start poses were made for another curve: every frame's pose searched against the
@@ -1566,8 +1651,10 @@ def bundle_adjust(
             ctrl, m, b, sigma, rms, cost_start, np.inf, total_it, False, [], coarse_m, True
         )
     converged = True
-    if k > k_coarse:
-        ctrl = fit_spline(prob.basis.values(np.linspace(0.0, 1.0, 200)) @ ctrl, k)
+    if k > k_coarse or not END_POLISH:
+        # the full curve on the full polylines (the coarse stage's were thinned)
+        if k > k_coarse:
+            ctrl = fit_spline(prob.basis.values(np.linspace(0.0, 1.0, 200)) @ ctrl, k)
         prob = problem(k)
         (ctrl, m, b), cost, it, converged = _lm_bundle(prob, (ctrl, m, b), max_iter)
         total_it += it

@@ -321,6 +321,36 @@ def nearest_distances(pts, q):
 
 
 @numba.njit(**_JIT)
+def sweep_distances(pts, q, per, bound):
+    """:func:`nearest_distances` of q, ``per`` consecutive points per sweep pose (pose-major),
+    each pose's points measured only until their sum of squared distances exceeds ``bound``:
+    returns (distances, inf where not measured; (poses,) bool, True for a pose stopped so).
+    The distances measured are :func:`nearest_distances`' (the scan is exact whatever its
+    start)."""
+    g = pts.shape[0]
+    box = _boxes(pts, 0, g, RUN)
+    n_pose = q.shape[0] // per
+    out = np.full(q.shape[0], np.inf)
+    over = np.zeros(n_pose, np.bool_)
+    guess = 0
+    for p in range(n_pose):
+        acc = 0.0
+        for s in range(per):
+            i = p * per + s
+            j = _scan(pts, 0, g, box, RUN, q[i, 0], q[i, 1], guess)
+            guess = j
+            ex = pts[j, 0] - q[i, 0]
+            ey = pts[j, 1] - q[i, 1]
+            d = np.sqrt(ex * ex + ey * ey)
+            out[i] = d
+            acc += d * d
+            if acc > bound:
+                over[p] = True
+                break
+    return out, over
+
+
+@numba.njit(**_JIT)
 def basis_rows(coef, u, rev_basis, n):
     """The spline's basis values (``bundle._Basis.values``, the same arithmetic) at the foot
     parameters u, then ``n`` copies of the reverse samples' rows ``rev_basis``: the polyline
@@ -346,10 +376,11 @@ def basis_rows(coef, u, rev_basis, n):
 
 
 @numba.njit(**_JIT)
-def polyline_rows(r_fw, rev_r, rows, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
+def polyline_rows(r_fw, rev_r, rows, fwd_w, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
     """The polyline rows of ``bundle._Problem.evaluate`` (forward rows, then every frame's
     reverse rows, frame-major; ``rows``: each row's frame) from their signed distances: Huber
-    (threshold ``hk``, units of sigma ``s``; reverse rows weighted by their frame's ``rev_w``),
+    (threshold ``hk``, units of sigma ``s``; forward rows weighted by their frame's ``fwd_w``,
+    reverse rows by its ``rev_w``),
     the polyline weights ``pw`` and the square roots of the frame weights ``fw`` applied, in
     the order the NumPy code applied them (the same values bit for bit).  With ``jac``: the
     curve Jacobian's factor dmw (the offset direction through the pose, ``dm``, scaled) and the
@@ -365,7 +396,7 @@ def polyline_rows(r_fw, rev_r, rows, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
         f = rows[i]
         if i < nq:
             r = r_fw[i]
-            wt = 1.0
+            wt = fwd_w[f]
         else:
             r = rev_r[i - nq]
             wt = rev_w[f]
