@@ -22,7 +22,7 @@ code), seeds from 1000 on (not the seeds the defaults were tuned on, 0-30).  Mea
   polylines (``--curve-bundle off``).  Shape error E = max over (c, alpha, beta, phi) of
   |error| / std, std of the answer without polylines; never worse: E_with <= E_without + 1
   (one std of the answer without polylines: the noise of the comparison).  The paired
-  comparison: ``bundle_pairedworst_angle_deg`` (median worst-angle error with / without).
+  comparison: ``bundle_paired_worst_angle_deg`` (median worst-angle error with / without).
 - ``std_coverage_3sigma``: the same scenes with polylines, fraction of (scene, parameter) pairs
   with |error| / std < 3 (the std the answer reports); ``curve3d_std_coverage_3sigma``: fraction
   of ``curve3d`` points whose distance from the true curve is below 3 ``curve3d_std`` (that std
@@ -288,7 +288,7 @@ def run(quick: bool = False) -> dict:
         if nw
         else None,
         "bundle_never_worse_scenes": len(of("never_worse")),
-        "bundle_pairedworst_angle_deg": {
+        "bundle_paired_worst_angle_deg": {
             "with_polylines_median": round(float(np.median([r["angle_with"] for r in nw])), 3),
             "without_median": round(float(np.median([r["angle_without"] for r in nw])), 3),
             "bundle_accepted_rate": round(float(np.mean([r["accepted"] for r in nw])), 3),

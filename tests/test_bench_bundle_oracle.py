@@ -43,3 +43,34 @@ def test_bad_arguments_exit_2_with_one_line(argv, capsys):
     assert exc.value.code == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert err[-1].startswith("python -m bench.bundle: error:")
+
+
+def test_the_bundle_section_reports_every_key_the_issue_and_readme_read():
+    """The keys of ``bench.bundle.run``'s report, read from its source (running it takes minutes):
+    issue 13's named keys, and the paired comparison the README reads (a rename of a helper once
+    turned it into ``bundle_pairedworst_angle_deg`` unseen)."""
+    import ast
+    import inspect
+
+    from bench import bundle
+
+    tree = ast.parse(inspect.getsource(bundle.run))
+    keys = {
+        k.value
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Dict)
+        for k in node.keys
+        if isinstance(k, ast.Constant) and isinstance(k.value, str)
+    }
+    need = {
+        "bundle_noise_free_max_error",
+        "bundle_curve_error_median_by_family",
+        "bundle_never_worse_rate",
+        "polylines_only_angles_within_1deg_rate",
+        "std_coverage_3sigma",
+        "bundle_time_ratio_20_frames",
+        "bundle_time_ratio_1000_frames",
+        "bundle_paired_worst_angle_deg",
+        "curve3d_normal_std_coverage_3sigma",
+    }
+    assert need <= keys, need - keys
