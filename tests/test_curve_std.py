@@ -96,17 +96,15 @@ def test_refused_bundle_widens_the_end_point_std():
     assert np.all(default.std >= rec.std * (1 - 1e-12))
 
 
-# sharp-ends 6001 with the joint refits before the bundle (its end-point answer then a nearby
-# optimum 10-18 degrees off) was a second case here until the coarse stage ran on thinned
-# polylines (bundle.COARSE_POINTS): its refused bundle now ends in another local minimum (cost
-# 3244 against 2652; 1898 with 30 points), dchi2 82, no nearer the truth than the end-point
-# answer, so the scene no longer shows the case (nor does any sharp-ends seed of 6000-6029,
-# the test's conditions scanned); by default (no refits) its bundle is accepted
-# (test_curve_search_speed)
-@pytest.mark.parametrize(("family", "seed", "refit"), [("helix", 6007, False)])
+# sharp-ends 6001: refused with the joint refits before the bundle (its end-point answer is
+# then a nearby optimum 10-18 degrees off); by default (CurveOptions.refit_with_bundle off)
+# the bundle's shape is accepted there (test_curve_search_speed)
+@pytest.mark.parametrize(
+    ("family", "seed", "refit"), [("helix", 6007, False), ("sharp-ends", 6001, True)]
+)
 def test_refused_bundle_std_includes_the_answers_disagreement(family, seed, refit):
-    """A scene (1 px, 1 degree, 12 frames) whose end-point answer is itself off (by 2-3
-    degrees) and whose bundle shape, nearer the truth, is refused just past the limit:
+    """Scenes (1 px, 1 degree, 12 frames) whose end-point answer is itself off (by 2-3 and by
+    10-18 degrees) and whose bundle shape, nearer the truth, is refused just past the limit:
     the Birge scaling alone leaves errors of more than 3 std; with the two answers' difference
     in quadrature every parameter is within 3 std of the truth."""
     scene = make_scene(
@@ -187,14 +185,14 @@ def test_curve3d_normal_std_matches_the_distances_over_noise_draws():
 
 @pytest.mark.parametrize(
     ("family", "seed", "refit"),
-    [("clothoid", 5212, False), ("helix", 6007, False)],
+    [("clothoid", 5212, False), ("helix", 6007, False), ("sharp-ends", 6001, True)],
 )
 def test_refused_bundle_curve3d_std_includes_the_curves_disagreement(family, seed, refit):
     """Where the bundle is refused, ``curve3d`` is fitted with the end-point answer's poses
     fixed and its std alone is the curve's given those poses; the refusal says they are off,
     so each point's std adds its distance from the bundle's curve: then the true curve is
     within 3 std across the curve of 97-100 % of the points, without that term of 10-84 %.
-    (sharp-ends 6001 with the joint refits left, as above.)"""
+    (sharp-ends 6001 is refused with the joint refits before the bundle only.)"""
     scene = make_scene(
         np.random.default_rng(seed), 12, 1.0, 1.0, with_curve=True, curve_family=family
     )
