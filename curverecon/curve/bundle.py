@@ -47,24 +47,23 @@ in blocks, the 5 x 5 pose blocks (a frame's rows see only its own pose) eliminat
 Schur complement (:func:`_schur_solve`): O(N) per step, no dense Jacobian of all the poses (the
 same steps as the dense solve, to rounding; the covariance of the curve likewise,
 :func:`_curve_covariance`).  Stages (:func:`bundle_adjust`): a coarse curve (``K_COARSE``
-control points, on polylines thinned to about ``COARSE_POINTS`` points that stand for the
-full ones, :meth:`_Problem.stand_for`) with the start poses; every frame's pose searched again
-against that curve
-(:func:`_resect_starts`: a sweep over the poses that put A, B on the polyline's ends - the
-wrong-branch poses that degree-off end tangents leave are beyond LM's reach - refined for every
-frame at once by :func:`_resect_all`, and a regauge when frame 0's own pose moves); the coarse
-fit again; then the full curve; then a polish with robust ends (``END_POLISH``: a traced end
-hooked back along the line of sight ends its polyline at the fold); then, where the polyline
-residuals cluster along the curve (:meth:`_Problem.span_misfit`: a bend or wiggle the spline
-misses), every knot span halved while Akaike's criterion improves
-(``CurveOptions.bundle_max_control_points``, ``bundle_misfit_z``).
-:func:`refine_reconstruction` retries from frame 0's polyline at depth 0 when a frame still fits
-clearly worse than the others (``UNEVEN_RATIO``), then from other frames' polylines
-(:func:`bundle_from_frame`, ``CurveOptions.bundle_extra_starts``), and keeps the lowest cost.
-A flat start searches every frame's pose against the flat curve before the first fit
-(``resect_first``): the end-point answer's poses, made for another curve, bent the flat curve
-into a wrong minimum (trace bench seed 0: every flat start from those poses lost, every one
-from the searched poses found the noise level).
+control points; with ``COARSE_POINTS`` set, on polylines thinned to about that many points that
+stand for the full ones, :meth:`_Problem.stand_for`) with the start poses; every frame's pose
+searched again against that curve (:func:`_resect_starts`: a sweep over the poses that put A, B
+on the polyline's ends - the wrong-branch poses that degree-off end tangents leave are beyond
+LM's reach - refined for every frame at once by :func:`_resect_all`, and a regauge when frame
+0's own pose moves); the coarse fit again; then the full curve; then a polish with robust ends
+(``END_POLISH``: a traced end hooked back along the line of sight ends its polyline at the
+fold); then, where the polyline residuals cluster along the curve (:meth:`_Problem.span_misfit`:
+a bend or wiggle the spline misses), every knot span halved while Akaike's criterion improves
+(``CurveOptions.bundle_max_control_points``, ``bundle_misfit_z``). :func:`refine_reconstruction`
+retries from frame 0's polyline at depth 0 when a frame still fits clearly worse than the others
+(``UNEVEN_RATIO``), then from other frames' polylines (:func:`bundle_from_frame`,
+``CurveOptions.bundle_extra_starts``), and keeps the lowest cost. A flat start searches every
+frame's pose against the flat curve before the first fit (``resect_first``): the end-point
+answer's poses, made for another curve, bent the flat curve into a wrong minimum (trace bench
+seed 0: every flat start from those poses lost, every one from the searched poses found the
+noise level).
 
 Afterwards the shape (c, alpha, beta, phi) and the end tangents come from the fitted curve and
 every frame's pose from its fitted rotation (``shape_and_poses``), in the conventions of
@@ -136,17 +135,20 @@ MAX_ITER = 60
 DIFF_ORDER = 4
 #: Control points of the coarse stage (smoother cost landscape for the pose search).
 K_COARSE = 6
-#: Polyline points (about) of the coarse stage and its pose search (:func:`_thinned`; 0: all):
-#: a 6-point curve and the poses' basin need no 150 points per frame, and the stage's LM runs
-#: and pose searches took two thirds of the bundle's time (bench time_20, seed 1400: coarse LM
-#: 0.52 s -> 0.25 s of the bundle's 1.27 s; time_20 ratio 2.89 -> 2.52, held-out seeds 2000 and
-#: 2100 2.59 -> 2.23 and 2.48 -> 2.24).  curve_05 (12 frames, 0.5 px, seeds 1100-1107, every
-#: family) kept every count within 0.5 % and moved errors by -0.9 to +0.05 % of the length
-#: (least bundle cost lower in 26 scenes, higher in 15, by under 0.4 %; 30 and 60 points did
-#: worse there).  Against it: sharp-ends 6001 (12 frames, 1 px, ``refit_with_bundle`` on) fell
-#: into a worse basin, cost 2652 -> 3244 (30, 50, 60 points: 1898, 2670, 2357); that scene's
-#: basin moves with any change of the coarse stage (test_curve_std's two cases on it fail).
-COARSE_POINTS = 40
+#: Polyline points (about) of the coarse stage and its pose search (:func:`_thinned`; 0: all,
+#: the default).  Off, after measuring it on: a 6-point curve and the poses' basin need no 150
+#: points per frame, and at 40 the stage's LM runs and pose searches took half the time (bench
+#: time_20, seed 1400: coarse LM 0.52 s -> 0.25 s of the bundle's 1.27 s; time_20 ratio 2.89 ->
+#: 2.52, held-out seeds 2000 and 2100 2.59 -> 2.23 and 2.48 -> 2.24; ``make bench`` 3.20 ->
+#: 2.83), and curve_05 (12 frames, 0.5 px, seeds 1100-1107) kept every count.  But every start
+#: lands in other basins, and where the data have several, that is a lottery the default must not
+#: be moved by without a gain in accuracy: the trace bench's seed 20 (traced polylines, 0.08 px)
+#: took the wrong end order (the right order's best fit 0.90 px RMS against 0.08 px with every
+#: point; trace_end_identity_rate 21 of 21 -> 20 of 21); bench seed random 1203 (1 px) reached
+#: a lower cost (2212.5 against 2233.1; the truth-start fit's 2255.3) with phi 4.5 std off
+#: (std_coverage_3sigma 0.990 -> 0.984; held out 2100-2107 1.000 both, curve3d normal coverage
+#: 0.987 -> 1.000); sharp-ends 6001 with the joint refits a basin of cost 3244 against 2652.
+COARSE_POINTS = 0
 #: Rounds of per-frame pose search against the coarse curve.
 RESECT_ROUNDS = 2
 #: Relative decrease of the cost below which LM stops.
@@ -1533,8 +1535,9 @@ def bundle_adjust(
         the run stops there (``stopped``, cost infinite): it would retrace the other run
         (``CurveOptions.frame0_branch_same_deg``).
 
-    Stages: a coarse curve (``K_COARSE`` control points, on every polyline thinned to about
-    ``COARSE_POINTS`` points, weighted to stand for the full one) with the start poses; every
+    Stages: a coarse curve (``K_COARSE`` control points; with ``COARSE_POINTS`` set, on every
+    polyline thinned to about that many points, weighted to stand for the full one) with the
+    start poses; every
     frame's pose searched again against that curve (``_resect_all``: the wrong-branch poses the
     end tangents leave are far from the right ones, beyond LM's reach) and the coarse fit
     repeated (``RESECT_ROUNDS``); then the full curve on the full polylines.
