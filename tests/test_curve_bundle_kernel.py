@@ -279,3 +279,101 @@ def test_thinned_problem_stands_for_the_full_polylines():
         rise.append(pr.frame_costs(r2, rows2)[4] - pr.frame_costs(r, rows)[4])
     assert rise[0] > 20.0
     assert 0.9 < rise[1] / rise[0] < 1.1
+
+
+def test_polyline_rows_equal_the_numpy_construction():
+    """``bundle_kernel.polyline_rows`` (the polyline rows' Jacobian factors from each row's
+    offset direction through its frame's pose and its curve point in that frame's camera)
+    against NumPy's batched products of the same quantities: the curve factor d m_f[:2] and
+    the pose rows (-d1 y2, d0 y2, -d0 y1 + d1 y0, d0, d1) with y = m_f X, on a simulated
+    scene's true state with uneven frame weights, one polyline left out and Huber in play."""
+    prob, (ctrl, m, b), _ = _truth_problem(7, 8, "fourier", False)
+    prob.evaluate(ctrl, m, b, jac=False)
+    u, (rev_dir, rev_r) = prob._last[1], prob._last[2]
+    ps = prob._projected_spans(ctrl, m, b)
+    direc, r_fw, _ = bk.forward_rows(ps, u, prob.q_all, prob.q_lo, prob.q_cnt)
+    r_fw = r_fw * np.where(np.arange(len(r_fw)) % 7 == 0, 10.0, 1.0)  # beyond Huber's k
+    nus = bk.basis_rows(prob.basis.coef, u, prob.rev_basis, prob.n)
+    x = nus[: len(u)] @ ctrl
+    xs = prob.rev_basis @ ctrl
+    rows = prob.rows_f
+    pw = prob.poly_w.astype(float)
+    fw = np.sqrt(prob.frame_w.astype(float))
+    fwd_w = np.linspace(1.0, 2.0, prob.n)
+    rev_w = np.asarray(prob.rev_weight, float)
+    args = (r_fw, rev_r, rows, fwd_w, rev_w, pw, fw, 0.8, bd.HUBER_K)
+    res, dmw, jp = bk.polyline_rows(*args, True, m, direc, rev_dir, x, xs)
+    res0, dmw0, jp0 = bk.polyline_rows(*args, False, m, direc, rev_dir, x, xs)
+    assert np.array_equal(res, res0) and dmw0.shape == (0, 3) and jp0.shape == (0, 5)
+    # the same rows by NumPy: residuals, Huber's weights on them and the Jacobians
+    r_all = np.concatenate([r_fw, rev_r])
+    wt = np.where(np.arange(len(rows)) < len(r_fw), fwd_w[rows], rev_w[rows])
+    a = np.abs(r_all) / 0.8
+    k = bd.HUBER_K
+    fa = np.sqrt(np.maximum(2.0 * k * a - k * k, 0.0))
+    big = a > k
+    w = np.where(big, fa / np.maximum(a, 1e-300), 1.0) * wt * pw[rows] * fw[rows]
+    wj = np.where(big, k / np.maximum(fa, 1e-300), 1.0) * wt * pw[rows] * fw[rows] / 0.8
+    assert big.any() and (pw[rows] == 0).any()
+    assert np.allclose(res, w * r_all / 0.8, rtol=1e-13, atol=1e-13)
+    dirs = np.vstack([direc, rev_dir])
+    xx = np.vstack([x, np.tile(xs, (prob.n, 1))])
+    mr = m[rows]
+    dm = (dirs[:, None, :] @ mr[:, :2])[:, 0]
+    yy = (mr @ xx[:, :, None])[:, :, 0]
+    jp_want = np.column_stack(
+        [
+            -dirs[:, 1] * yy[:, 2],
+            dirs[:, 0] * yy[:, 2],
+            -dirs[:, 0] * yy[:, 1] + dirs[:, 1] * yy[:, 0],
+            dirs[:, 0],
+            dirs[:, 1],
+        ]
+    )
+    scale = np.abs(yy).max()
+    assert np.allclose(dmw, dm * wj[:, None], rtol=1e-12, atol=1e-13)
+    assert np.allclose(jp, jp_want * wj[:, None], rtol=1e-12, atol=1e-12 * scale)
+
+
+def _longest_nondecreasing_reference(x: np.ndarray) -> np.ndarray:
+    """The patience sorting with ``bisect.bisect_right`` (the NumPy-era implementation)."""
+    import bisect
+
+    tails: list[float] = []
+    tail_idx: list[int] = []
+    prev = np.full(len(x), -1)
+    for i, v in enumerate(x):
+        j = bisect.bisect_right(tails, v)
+        if j == len(tails):
+            tails.append(v)
+            tail_idx.append(i)
+        else:
+            tails[j], tail_idx[j] = v, i
+        prev[i] = tail_idx[j - 1] if j else -1
+    keep = np.zeros(len(x), bool)
+    i = tail_idx[-1] if tail_idx else -1
+    while i >= 0:
+        keep[i] = True
+        i = prev[i]
+    return keep
+
+
+def test_longest_nondecreasing_run_is_a_longest_one():
+    """``bundle._longest_nondecreasing`` (numba): a non-decreasing subsequence as long as the
+    longest (O(M^2) dynamic programme), and the same one as the bisect implementation, on
+    noisy increasing sequences (the feet of noisy polylines), with ties and empty input."""
+    rng = np.random.default_rng(3)
+    for t in range(400):
+        n = int(rng.integers(0, 40))
+        x = np.sort(rng.uniform(size=n)) + rng.normal(size=n) * [0.0, 0.02, 0.3][t % 3]
+        if t % 4 == 0:
+            x = np.round(x, 1)  # ties
+        keep = bd._longest_nondecreasing(x)
+        best = np.ones(n, int)  # longest non-decreasing run ending at each point
+        for i in range(n):
+            for j in range(i):
+                if x[j] <= x[i]:
+                    best[i] = max(best[i], best[j] + 1)
+        assert keep.sum() == (best.max() if n else 0)
+        assert np.all(np.diff(x[keep]) >= 0)
+        assert np.array_equal(keep, _longest_nondecreasing_reference(x))

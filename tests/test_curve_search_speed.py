@@ -425,3 +425,52 @@ def test_grids_are_built_on_the_densified_points_without_a_tree():
     # length / spacing points: gaps of spacing (1 + 1 / n)
     assert gaps.max() <= 0.1 * 1.01 and len(dense) >= len(poly)
     np.testing.assert_array_equal(np.sort(grid.sorted, axis=0), np.sort(dense, axis=0))
+
+
+@pytest.mark.parametrize("seed", [5, 6])
+def test_unary_cost_blocks_from_the_cache_give_the_cold_result(seed):
+    """Section 4's unary cost summed from cached (frame, source frame) blocks and new ones
+    (a trial of the branch search: one frame switched, its blocks new, the others' cached)
+    gives bit for bit the curve and residuals of the same poses with every cache empty, and
+    the poses before the switch again the same as first (the end-point answer's poses of a
+    1 px 20-frame scene, frame 5 turned 90 degrees about x)."""
+    from curverecon.options import ReconstructOptions
+    from curverecon.pipeline import reconstruct_end_points
+
+    sc = _scene_20(seed, "helix")
+    rec = reconstruct_end_points(sc.observations, ReconstructOptions())
+    rot, tra = rec.rotations(), rec.translations()
+    rot2 = rot.copy()
+    rot2[5] = rot2[5] @ np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+    curves = sc.observations.curves
+    kw = {"n_samples": 60, "smooth": False}
+
+    def cold(r):
+        for cache in (s4._UNARY, s4._CROSSINGS):
+            cache.clear()
+        return s4.reconstruct_curve(curves, r, tra, **kw)
+
+    want1, want2 = cold(rot), cold(rot2)
+    s4._UNARY.clear()
+    s4._CROSSINGS.clear()
+    first = s4.reconstruct_curve(curves, rot, tra, **kw)
+    n_blocks = len(s4._UNARY)
+    mixed = s4.reconstruct_curve(curves, rot2, tra, **kw)
+    # frame 5's blocks as destination and as source are new, the others' came from the cache
+    assert n_blocks < len(s4._UNARY) < 2 * n_blocks
+    again = s4.reconstruct_curve(curves, rot, tra, **kw)
+    for got, want in ((first, want1), (mixed, want2), (again, want1)):
+        np.testing.assert_array_equal(got.points, want.points)
+        np.testing.assert_array_equal(got.frame_residual, want.frame_residual)
+    assert not np.array_equal(want1.points, want2.points)
+
+
+def test_noise_level_by_content_is_the_polylines():
+    """``section4.noise_level`` (by content, the curve bundle's too) is ``polyline.noise_level``
+    of each polyline, reversed and copied ones included (their own content)."""
+    sc = _scene_20(8, "random")
+    for p in sc.observations.curves:
+        p = np.asarray(p, float)
+        for q in (p, p[::-1].copy(), p + 0.25):
+            assert s4.noise_level(q) == pl.noise_level(q)
+            assert s4.noise_level(q.copy()) == pl.noise_level(q)
