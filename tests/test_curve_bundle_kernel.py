@@ -281,60 +281,6 @@ def test_thinned_problem_stands_for_the_full_polylines():
     assert 0.9 < rise[1] / rise[0] < 1.1
 
 
-def test_polyline_rows_equal_the_numpy_construction():
-    """``bundle_kernel.polyline_rows`` (the polyline rows' Jacobian factors from each row's
-    offset direction through its frame's pose and its curve point in that frame's camera)
-    against NumPy's batched products of the same quantities: the curve factor d m_f[:2] and
-    the pose rows (-d1 y2, d0 y2, -d0 y1 + d1 y0, d0, d1) with y = m_f X, on a simulated
-    scene's true state with uneven frame weights, one polyline left out and Huber in play."""
-    prob, (ctrl, m, b), _ = _truth_problem(7, 8, "fourier", False)
-    prob.evaluate(ctrl, m, b, jac=False)
-    u, (rev_dir, rev_r) = prob._last[1], prob._last[2]
-    ps = prob._projected_spans(ctrl, m, b)
-    direc, r_fw, _ = bk.forward_rows(ps, u, prob.q_all, prob.q_lo, prob.q_cnt)
-    r_fw = r_fw * np.where(np.arange(len(r_fw)) % 7 == 0, 10.0, 1.0)  # beyond Huber's k
-    nus = bk.basis_rows(prob.basis.coef, u, prob.rev_basis, prob.n)
-    x = nus[: len(u)] @ ctrl
-    xs = prob.rev_basis @ ctrl
-    rows = prob.rows_f
-    pw = prob.poly_w.astype(float)
-    fw = np.sqrt(prob.frame_w.astype(float))
-    fwd_w = np.linspace(1.0, 2.0, prob.n)
-    rev_w = np.asarray(prob.rev_weight, float)
-    args = (r_fw, rev_r, rows, fwd_w, rev_w, pw, fw, 0.8, bd.HUBER_K)
-    res, dmw, jp = bk.polyline_rows(*args, True, m, direc, rev_dir, x, xs)
-    res0, dmw0, jp0 = bk.polyline_rows(*args, False, m, direc, rev_dir, x, xs)
-    assert np.array_equal(res, res0) and dmw0.shape == (0, 3) and jp0.shape == (0, 5)
-    # the same rows by NumPy: residuals, Huber's weights on them and the Jacobians
-    r_all = np.concatenate([r_fw, rev_r])
-    wt = np.where(np.arange(len(rows)) < len(r_fw), fwd_w[rows], rev_w[rows])
-    a = np.abs(r_all) / 0.8
-    k = bd.HUBER_K
-    fa = np.sqrt(np.maximum(2.0 * k * a - k * k, 0.0))
-    big = a > k
-    w = np.where(big, fa / np.maximum(a, 1e-300), 1.0) * wt * pw[rows] * fw[rows]
-    wj = np.where(big, k / np.maximum(fa, 1e-300), 1.0) * wt * pw[rows] * fw[rows] / 0.8
-    assert big.any() and (pw[rows] == 0).any()
-    assert np.allclose(res, w * r_all / 0.8, rtol=1e-13, atol=1e-13)
-    dirs = np.vstack([direc, rev_dir])
-    xx = np.vstack([x, np.tile(xs, (prob.n, 1))])
-    mr = m[rows]
-    dm = (dirs[:, None, :] @ mr[:, :2])[:, 0]
-    yy = (mr @ xx[:, :, None])[:, :, 0]
-    jp_want = np.column_stack(
-        [
-            -dirs[:, 1] * yy[:, 2],
-            dirs[:, 0] * yy[:, 2],
-            -dirs[:, 0] * yy[:, 1] + dirs[:, 1] * yy[:, 0],
-            dirs[:, 0],
-            dirs[:, 1],
-        ]
-    )
-    scale = np.abs(yy).max()
-    assert np.allclose(dmw, dm * wj[:, None], rtol=1e-12, atol=1e-13)
-    assert np.allclose(jp, jp_want * wj[:, None], rtol=1e-12, atol=1e-12 * scale)
-
-
 def _longest_nondecreasing_reference(x: np.ndarray) -> np.ndarray:
     """The patience sorting with ``bisect.bisect_right`` (the NumPy-era implementation)."""
     import bisect

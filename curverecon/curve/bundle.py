@@ -198,6 +198,7 @@ MISFIT_BINS = 4
 #: before the pose search, and :func:`refine_reconstruction` tries the second start.
 UNEVEN_RATIO = 1.5
 
+_EMPTY2 = np.empty((0, 2))
 _EMPTY3 = np.empty((0, 3))
 
 
@@ -875,13 +876,19 @@ class _Problem:
         pw = np.asarray(self.poly_w, float)
         fw = np.sqrt(np.asarray(self.frame_w, float))
         nus = None
-        x = _EMPTY3
+        dm = yy = _EMPTY3
+        dirs = _EMPTY2
         if jac:
+            # the Jacobian's products as before (NumPy's matrix products: the same rounding)
             nus = basis_rows(basis.coef, u, self.rev_basis, n)
-            x = nus[: len(u)] @ ctrl  # the forward rows' curve points
+            x = nus[: len(u)] @ ctrl
+            xx = np.vstack([x, np.tile(xs, (n, 1))])
+            dirs = np.vstack([direc, rev_dir])
+            mr = m[rows_f]
+            dm = (dirs[:, None, :] @ mr[:, :2])[:, 0]
+            yy = (mr @ xx[:, :, None])[:, :, 0]
         # Huber, the weights and the Jacobian rows of every polyline row in one loop
-        # (bundle_kernel.polyline_rows: each row's offset direction through its frame's pose
-        # and its curve point in that frame's camera there, not as batched 3 x 3 products)
+        # (bundle_kernel.polyline_rows; the weights as the NumPy code applied them)
         res_p, dmw, jp_p = polyline_rows(
             r_fw,
             rev_r,
@@ -893,11 +900,9 @@ class _Problem:
             float(s),
             HUBER_K,
             bool(jac),
-            m,
-            direc,
-            rev_dir,
-            x,
-            xs,
+            dm,
+            dirs,
+            yy,
         )
         res = [res_p]
         frames = [rows_f]

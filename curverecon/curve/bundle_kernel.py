@@ -376,20 +376,18 @@ def basis_rows(coef, u, rev_basis, n):
 
 
 @numba.njit(**_JIT)
-def polyline_rows(r_fw, rev_r, rows, fwd_w, rev_w, pw, fw, s, hk, jac, m, direc, rev_dir, x, xs):
+def polyline_rows(r_fw, rev_r, rows, fwd_w, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
     """The polyline rows of ``bundle._Problem.evaluate`` (forward rows, then every frame's
     reverse rows, frame-major; ``rows``: each row's frame) from their signed distances: Huber
     (threshold ``hk``, units of sigma ``s``; forward rows weighted by their frame's ``fwd_w``,
     reverse rows by its ``rev_w``),
     the polyline weights ``pw`` and the square roots of the frame weights ``fw`` applied, in
-    the order the NumPy code applied them.  With ``jac``: the curve Jacobian's factor dmw (the
-    offset direction through the pose, ``d m_f[:2]``, scaled) and the pose Jacobian jp
-    (d y / d w = -[Y]x, then b, Y = m_f X) from the offset directions (``direc`` of the forward
-    rows, ``rev_dir`` of the reverse rows), the poses m (N, 3, 3) and the rows' curve points X
-    (``x`` of the forward rows; ``xs``, the reverse samples, the same in every frame)."""
+    the order the NumPy code applied them (the same values bit for bit).  With ``jac``: the
+    curve Jacobian's factor dmw (the offset direction through the pose, ``dm``, scaled) and the
+    pose Jacobian jp (d y / d w = -[Y]x, then b) from the offset directions ``dirs`` and the
+    rows' points ``yy`` in their frame's camera."""
     nq = r_fw.shape[0]
     nr = rows.shape[0]
-    n_rev = xs.shape[0]
     res = np.empty(nr)
     nj = nr if jac else 0
     dmw = np.empty((nj, 3))
@@ -417,24 +415,14 @@ def polyline_rows(r_fw, rev_r, rows, fwd_w, rev_w, pw, fw, s, hk, jac, m, direc,
         res[i] = w * r / s * pf * ff
         if not jac:
             continue
-        if i < nq:
-            d0 = direc[i, 0]
-            d1 = direc[i, 1]
-            x0, x1, x2 = x[i, 0], x[i, 1], x[i, 2]
-        else:
-            d0 = rev_dir[i - nq, 0]
-            d1 = rev_dir[i - nq, 1]
-            t = (i - nq) % n_rev
-            x0, x1, x2 = xs[t, 0], xs[t, 1], xs[t, 2]
-        y0 = m[f, 0, 0] * x0 + m[f, 0, 1] * x1 + m[f, 0, 2] * x2
-        y1 = m[f, 1, 0] * x0 + m[f, 1, 1] * x1 + m[f, 1, 2] * x2
-        y2 = m[f, 2, 0] * x0 + m[f, 2, 1] * x1 + m[f, 2, 2] * x2
         sc = wj / s
         for c in range(3):
-            dmw[i, c] = (d0 * m[f, 0, c] + d1 * m[f, 1, c]) * sc * pf * ff
-        jp[i, 0] = -d1 * y2 * sc * pf * ff
-        jp[i, 1] = d0 * y2 * sc * pf * ff
-        jp[i, 2] = (-d0 * y1 + d1 * y0) * sc * pf * ff
+            dmw[i, c] = dm[i, c] * sc * pf * ff
+        d0 = dirs[i, 0]
+        d1 = dirs[i, 1]
+        jp[i, 0] = -d1 * yy[i, 2] * sc * pf * ff
+        jp[i, 1] = d0 * yy[i, 2] * sc * pf * ff
+        jp[i, 2] = (-d0 * yy[i, 1] + d1 * yy[i, 0]) * sc * pf * ff
         jp[i, 3] = d0 * sc * pf * ff
         jp[i, 4] = d1 * sc * pf * ff
     return res, dmw, jp
