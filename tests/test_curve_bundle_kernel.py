@@ -279,3 +279,47 @@ def test_thinned_problem_stands_for_the_full_polylines():
         rise.append(pr.frame_costs(r2, rows2)[4] - pr.frame_costs(r, rows)[4])
     assert rise[0] > 20.0
     assert 0.9 < rise[1] / rise[0] < 1.1
+
+
+def _longest_nondecreasing_reference(x: np.ndarray) -> np.ndarray:
+    """The patience sorting with ``bisect.bisect_right`` (the NumPy-era implementation)."""
+    import bisect
+
+    tails: list[float] = []
+    tail_idx: list[int] = []
+    prev = np.full(len(x), -1)
+    for i, v in enumerate(x):
+        j = bisect.bisect_right(tails, v)
+        if j == len(tails):
+            tails.append(v)
+            tail_idx.append(i)
+        else:
+            tails[j], tail_idx[j] = v, i
+        prev[i] = tail_idx[j - 1] if j else -1
+    keep = np.zeros(len(x), bool)
+    i = tail_idx[-1] if tail_idx else -1
+    while i >= 0:
+        keep[i] = True
+        i = prev[i]
+    return keep
+
+
+def test_longest_nondecreasing_run_is_a_longest_one():
+    """``bundle._longest_nondecreasing`` (numba): a non-decreasing subsequence as long as the
+    longest (O(M^2) dynamic programme), and the same one as the bisect implementation, on
+    noisy increasing sequences (the feet of noisy polylines), with ties and empty input."""
+    rng = np.random.default_rng(3)
+    for t in range(400):
+        n = int(rng.integers(0, 40))
+        x = np.sort(rng.uniform(size=n)) + rng.normal(size=n) * [0.0, 0.02, 0.3][t % 3]
+        if t % 4 == 0:
+            x = np.round(x, 1)  # ties
+        keep = bd._longest_nondecreasing(x)
+        best = np.ones(n, int)  # longest non-decreasing run ending at each point
+        for i in range(n):
+            for j in range(i):
+                if x[j] <= x[i]:
+                    best[i] = max(best[i], best[j] + 1)
+        assert keep.sum() == (best.max() if n else 0)
+        assert np.all(np.diff(x[keep]) >= 0)
+        assert np.array_equal(keep, _longest_nondecreasing_reference(x))

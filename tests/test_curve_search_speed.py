@@ -425,3 +425,105 @@ def test_grids_are_built_on_the_densified_points_without_a_tree():
     # length / spacing points: gaps of spacing (1 + 1 / n)
     assert gaps.max() <= 0.1 * 1.01 and len(dense) >= len(poly)
     np.testing.assert_array_equal(np.sort(grid.sorted, axis=0), np.sort(dense, axis=0))
+
+
+@pytest.mark.parametrize("seed", [5, 6])
+def test_unary_cost_blocks_from_the_cache_give_the_cold_result(seed):
+    """Section 4's unary cost summed from cached (frame, source frame) blocks and new ones
+    (a trial of the branch search: one frame switched, its blocks new, the others' cached)
+    gives bit for bit the curve and residuals of the same poses with every cache empty, and
+    the poses before the switch again the same as first (the end-point answer's poses of a
+    1 px 20-frame scene, frame 5 turned 90 degrees about x)."""
+    from curverecon.options import ReconstructOptions
+    from curverecon.pipeline import reconstruct_end_points
+
+    sc = _scene_20(seed, "helix")
+    rec = reconstruct_end_points(sc.observations, ReconstructOptions())
+    rot, tra = rec.rotations(), rec.translations()
+    rot2 = rot.copy()
+    rot2[5] = rot2[5] @ np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+    curves = sc.observations.curves
+    kw = {"n_samples": 60, "smooth": False}
+
+    def cold(r):
+        for cache in (s4._UNARY, s4._CROSSINGS):
+            cache.clear()
+        return s4.reconstruct_curve(curves, r, tra, **kw)
+
+    want1, want2 = cold(rot), cold(rot2)
+    s4._UNARY.clear()
+    s4._CROSSINGS.clear()
+    first = s4.reconstruct_curve(curves, rot, tra, **kw)
+    n_blocks = len(s4._UNARY)
+    mixed = s4.reconstruct_curve(curves, rot2, tra, **kw)
+    # frame 5's blocks as destination and as source are new, the others' came from the cache
+    assert n_blocks < len(s4._UNARY) < 2 * n_blocks
+    again = s4.reconstruct_curve(curves, rot, tra, **kw)
+    for got, want in ((first, want1), (mixed, want2), (again, want1)):
+        np.testing.assert_array_equal(got.points, want.points)
+        np.testing.assert_array_equal(got.frame_residual, want.frame_residual)
+    assert not np.array_equal(want1.points, want2.points)
+
+
+def test_noise_level_by_content_is_the_polylines():
+    """``section4.noise_level`` (by content, the curve bundle's too) is ``polyline.noise_level``
+    of each polyline, reversed and copied ones included (their own content)."""
+    sc = _scene_20(8, "random")
+    for p in sc.observations.curves:
+        p = np.asarray(p, float)
+        for q in (p, p[::-1].copy(), p + 0.25):
+            assert s4.noise_level(q) == pl.noise_level(q)
+            assert s4.noise_level(q.copy()) == pl.noise_level(q)
+
+
+def test_unary_cost_is_the_truncated_reprojection_distance_sum(monkeypatch):
+    """Section 4's unary cost of every candidate (the states of its dynamic programme) against
+    its definition written out: the candidate's 3-D point (frame 0's sample, its depth) mapped
+    into every informative frame, the squared distance to that frame's densified polyline (a
+    k-d tree on the same points), truncated at (3 sigma + 1)^2, summed, over sigma^2; after a
+    trial with one frame switched (its blocks new, the others' from the cache) too."""
+    from scipy.spatial import cKDTree
+
+    from curverecon.options import ReconstructOptions
+    from curverecon.pipeline import reconstruct_end_points
+
+    sc = _scene_20(9, "bezier")
+    rec = reconstruct_end_points(sc.observations, ReconstructOptions())
+    rot, tra = rec.rotations(), rec.translations()
+    rot2 = rot.copy()
+    rot2[3] = rot2[3] @ np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+    seen = []
+    orig = s4.depth_path
+
+    def spy(z, u, offs, *args):
+        seen.append((z.copy(), u.copy(), offs.copy()))
+        return orig(z, u, offs, *args)
+
+    monkeypatch.setattr(s4, "depth_path", spy)
+    s4._UNARY.clear()
+    polys = [np.asarray(p, float) for p in sc.observations.curves]
+    for r in (rot, rot2):
+        s4.reconstruct_curve(polys, r, tra, n_samples=60, smooth=False)
+        z, u, offs = seen[-1]
+        oriented = [
+            p[::-1] if np.hypot(*(p[-1] - tra[i, :2])) < np.hypot(*(p[0] - tra[i, :2])) else p
+            for i, p in enumerate(polys)
+        ]
+        sigma = max(float(np.median([pl.noise_level(p) for p in oriented])), 0.3)
+        trunc = (3.0 * sigma + 1.0) ** 2
+        xy = pl.resample(oriented[0], 60)[0]
+        m = np.einsum("nij,kj->nik", r, r[0])
+        b = tra - np.einsum("nij,j->ni", m, tra[0])
+        frames = [i for i in range(1, 20) if np.hypot(*m[i, :2, 2]) >= s4.MIN_VIEW_SIN]
+        trees = {i: cKDTree(s4._dense_points(oriented[i], 0.1)) for i in frames}
+        k = np.repeat(np.arange(len(offs) - 1), np.diff(offs))
+        inner = (k > 0) & (k < len(offs) - 2)  # A and B: fixed states
+        pts = np.column_stack([xy[k], z])[inner]
+        want = np.zeros(len(pts))
+        for i in frames:
+            d = trees[i].query((pts @ m[i].T + b[i])[:, :2])[0]
+            want += np.minimum(d**2, trunc)
+        np.testing.assert_allclose(u[inner], want / sigma**2, rtol=1e-9, atol=1e-9)
+        # candidates that most frames fit and ones that most reject (the truncation in play)
+        top = len(frames) * trunc
+        assert want.min() < 0.25 * top and want.max() > 0.75 * top

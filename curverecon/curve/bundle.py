@@ -99,6 +99,7 @@ from curverecon.curve.bundle_kernel import (
     end_rows,
     foot_parameters,
     forward_rows,
+    longest_nondecreasing,
     nearest_distances,
     polyline_normal_blocks,
     polyline_rows,
@@ -106,6 +107,7 @@ from curverecon.curve.bundle_kernel import (
     sweep_distances,
     tangent_rows,
 )
+from curverecon.curve.section4 import noise_level
 from curverecon.model.pose import rotations as pose_rotations
 from curverecon.model.pose import translations as pose_translations
 from curverecon.options import CurveOptions
@@ -1578,7 +1580,7 @@ def bundle_adjust(
     k = int(n_control) if n_control is not None else int(np.clip(m_pts // 6, 5, N_CONTROL))
     if k < 4:
         raise _error(f"n_control must be at least 4, got {k}")
-    sigma = max(float(np.median([pl.noise_level(p) for p in polys])), SIGMA_FLOOR)
+    sigma = max(float(np.median([noise_level(p) for p in polys])), SIGMA_FLOOR)
     m = np.einsum("nij,kj->nik", rot, rot[0])  # R_i R_0^T: frame 0 camera -> frame i camera
     b = tr - np.einsum("nij,j->ni", m, tr[0])
     ends_arr = None if ends is None else np.asarray(ends, float)
@@ -1972,26 +1974,9 @@ def _folded(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, tol:
 
 
 def _longest_nondecreasing(x: np.ndarray) -> np.ndarray:
-    """Mask of one longest non-decreasing subsequence of ``x`` (patience sorting)."""
-    import bisect
-
-    tails: list[float] = []  # least last value of a run of each length
-    tail_idx: list[int] = []
-    prev = np.full(len(x), -1)
-    for i, v in enumerate(x):
-        j = bisect.bisect_right(tails, v)
-        if j == len(tails):
-            tails.append(v)
-            tail_idx.append(i)
-        else:
-            tails[j], tail_idx[j] = v, i
-        prev[i] = tail_idx[j - 1] if j else -1
-    keep = np.zeros(len(x), bool)
-    i = tail_idx[-1] if tail_idx else -1
-    while i >= 0:
-        keep[i] = True
-        i = prev[i]
-    return keep
+    """Mask of one longest non-decreasing subsequence of ``x`` (patience sorting,
+    ``bundle_kernel.longest_nondecreasing``: the fold test runs it on every frame's feet)."""
+    return longest_nondecreasing(np.ascontiguousarray(x, float))
 
 
 def _unfolded_points(
@@ -2597,9 +2582,7 @@ def refine_reconstruction(
     # the polylines' noise level from the frames the curve is fitted to (long sequences: the
     # ``curve_frames`` subset; all 1,000 frames' estimates took a fifth of the curve stage)
     measured = curves if curve_frames is None else [curves[i] for i in curve_frames]
-    sigma = max(
-        float(np.median([pl.noise_level(pl.as_polyline(p)) for p in measured])), SIGMA_FLOOR
-    )
+    sigma = max(float(np.median([noise_level(pl.as_polyline(p)) for p in measured])), SIGMA_FLOOR)
     limit = o.flag_rms_sigma * sigma + o.flag_rms_px
     warnings = list(rec.warnings)
 

@@ -506,3 +506,35 @@ def tangent_rows(v3, ang, ok, m, ts, cidx, n_curve, jac):
             jtp[f, row, 1] = g0 * v2
             jtp[f, row, 2] = -g0 * v1 + g1 * v0
     return out, jt, jtp
+
+
+@numba.njit(**_JIT)
+def longest_nondecreasing(x):
+    """Mask of one longest non-decreasing subsequence of ``x`` (patience sorting:
+    ``bundle._longest_nondecreasing``'s loop with its ``bisect.bisect_right``, the same
+    subsequence)."""
+    n = x.shape[0]
+    tails = np.empty(n)  # least last value of a run of each length
+    tail_idx = np.empty(n, np.int64)
+    prev = np.full(n, -1, np.int64)
+    size = 0
+    for i in range(n):
+        v = x[i]
+        lo, hi = 0, size  # bisect_right: the first run whose last value exceeds v
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if v < tails[mid]:
+                hi = mid
+            else:
+                lo = mid + 1
+        tails[lo] = v
+        tail_idx[lo] = i
+        if lo == size:
+            size += 1
+        prev[i] = tail_idx[lo - 1] if lo > 0 else -1
+    keep = np.zeros(n, np.bool_)
+    i = tail_idx[size - 1] if size > 0 else -1
+    while i >= 0:
+        keep[i] = True
+        i = prev[i]
+    return keep

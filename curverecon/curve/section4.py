@@ -153,16 +153,18 @@ def coplanarity(ab: np.ndarray, tangent_a: np.ndarray, tangent_b: np.ndarray) ->
 
 def _robust_sigma(polys: list[np.ndarray]) -> float:
     """Pixel noise used for weights and gates (never below 0.3 px: polyline discretisation)."""
-    est = [_noise_level(p) for p in polys]
+    est = [noise_level(p) for p in polys]
     return max(float(np.median(est)), 0.3)
 
 
 #: ``polyline.noise_level`` by content (the branch search reconstructs the same polylines
-#: dozens of times)
+#: dozens of times, and the curve bundle measures them again in every run)
 _NOISE: dict[tuple, float] = {}
 
 
-def _noise_level(poly: np.ndarray) -> float:
+def noise_level(poly: np.ndarray) -> float:
+    """``polyline.noise_level(poly)`` by content (the same value; computed once per polyline:
+    section 4, its smoothing and every run of the curve bundle ask for it again)."""
     poly = np.ascontiguousarray(poly, dtype=float)
     return _memo(_NOISE, _poly_key(poly), lambda: pl.noise_level(poly))
 
@@ -436,37 +438,46 @@ def reconstruct_curve(
     if len(flat_z):
         pts0 = np.column_stack([xy[flat_k], flat_z])
         # each (frame, source frame) block by content: a trial of the branch search that
-        # switches one frame changes only that frame's blocks (its crossings, its distances)
-        rows = {f: np.flatnonzero(flat_f == f) for f in np.unique(flat_f)}
-        src = {f: pts0[idx].tobytes() for f, idx in rows.items()}
+        # switches one frame changes only that frame's blocks (its crossings, its distances).
+        # The candidates grouped by source frame (each group in the candidates' order): every
+        # destination frame's blocks are joined in this order and summed there in frame order
+        # (the same sums), then put back once (not one fancy assignment per block)
+        by_f = np.argsort(flat_f, kind="stable")
+        fs, starts = np.unique(flat_f[by_f], return_index=True)
+        ends = np.append(starts[1:], len(by_f))
+        pts_f = pts0[by_f]
+        src = [pts_f[lo:hi].tobytes() for lo, hi in zip(starts, ends, strict=True)]
+        acc = np.zeros(len(flat_z))  # summed over the destination frames in frame order
         for i in informative:
             dest = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), sigma)
-            part = np.empty(len(flat_z))
+            vals: list = [None] * len(fs)
             missing = []
-            for f, idx in rows.items():
-                key = (dest, src[f])
+            for g in range(len(fs)):
+                key = (dest, src[g])
                 val = _UNARY.get(key)
                 if val is None:
-                    missing.append((key, idx))
+                    missing.append((key, g))
                 else:
-                    part[idx] = val
+                    vals[g] = val
             if missing:
                 # every missing block of this frame in one query (each point's distance is its
                 # own: the same values as block by block)
-                idx_all = np.concatenate([idx for _, idx in missing])
-                pts_i = _project_xy(pts0[idx_all], m[i], b[i])
+                pts_i = _project_xy(
+                    np.concatenate([pts_f[starts[g] : ends[g]] for _, g in missing]), m[i], b[i]
+                )
                 # beyond sqrt(trunc) the cost is trunc whatever the distance: the search
                 # stops there
                 dist = _distances_for_frame(pts_i, polys[i], bound=np.sqrt(trunc) * 1.0001)
                 val_all = np.minimum(dist**2, trunc)
-                part[idx_all] = val_all
                 if len(_UNARY) + len(missing) > _UNARY_MAX:
                     _UNARY.clear()
                 off = 0
-                for key, idx in missing:
-                    _UNARY[key] = val_all[off : off + len(idx)]
-                    off += len(idx)
-            unary += part
+                for key, g in missing:
+                    cnt = int(ends[g] - starts[g])
+                    vals[g] = _UNARY[key] = val_all[off : off + cnt]
+                    off += cnt
+            acc += np.concatenate(vals) if len(vals) > 1 else vals[0]
+        unary[by_f] = acc
     unary /= sigma**2
 
     # Dynamic programme along the curve. States: candidates, plus a "missing" state per sample.
@@ -543,7 +554,7 @@ def reconstruct_curve(
     points = np.column_stack([xy, z_ref])
     if smooth:
         points[:, 2] = _smooth_column(z_ref, depth_std)
-        if pl.noise_level(p0) > 0:
+        if noise_level(p0) > 0:
             flat_std = np.ones(k_total)
             for j in range(2):
                 points[:, j] = _smooth_column(xy[:, j], flat_std)
