@@ -2575,10 +2575,13 @@ def refine_reconstruction(
     w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / np.radians(tangent_sigma_deg)] * 2)
     inl = np.asarray(rec.inliers, bool)
     s2 = chi2_ep = None
+    # the end-point fit's degrees of freedom: one per inlier frame (6 measurements, 5 pose
+    # parameters) less the 4 of the shape
+    dof = max(int(inl.sum()) - 4, 1)
     if use_given and rec.poses is not None:
         # the end-point fit's variance factor: the noise level its end points show
         chi2_ep = float(np.sum(end_point_chi2(rec.shape, rec.poses, obs, inl, w8)[inl]))
-        s2 = max(chi2_ep / max(int(inl.sum()) - 4, 1), o.variance_floor)
+        s2 = max(chi2_ep / dof, o.variance_floor)
     # the polylines' noise level from the frames the curve is fitted to (long sequences: the
     # ``curve_frames`` subset; all 1,000 frames' estimates took a fifth of the curve stage)
     measured = curves if curve_frames is None else [curves[i] for i in curve_frames]
@@ -2747,11 +2750,7 @@ def refine_reconstruction(
         accepted = undetermined or dchi2 <= o.never_worse_dchi2
         # between the known-variance limit and the estimated-variance one the end points leave
         # it open whether the shape is inside their 99 % region: the polylines decide below
-        band = (
-            not accepted
-            and o.never_worse_f_test
-            and dchi2 <= never_worse_limit(max(int(inl.sum()) - 4, 1), o)
-        )
+        band = not accepted and o.never_worse_f_test and dchi2 <= never_worse_limit(dof, o)
     k = br.control.shape[0]
     if not accepted:
         # the end-point answer stays; the curve alone is fitted with its poses and ends
@@ -2785,7 +2784,7 @@ def refine_reconstruction(
                     f"the curve bundle's shape is {float(dchi2):.1f} (variance factors) above the "
                     "end points' best fit, beyond the 99 % limit for a known noise level "
                     f"({o.never_worse_dchi2:g}) but within it for the level the end points show "
-                    f"({int(inl.sum()) - 4} degrees of freedom); the polylines reject the "
+                    f"({dof} degrees of freedom); the polylines reject the "
                     f"end-point answer's poses (probability {tail:.1e}): the bundle's answer kept"
                 )
     if not accepted:
