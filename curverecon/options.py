@@ -328,6 +328,26 @@ class CurveOptions:
     to 0.7 above, the other 3 at 18.6-121 degrees, each run to its end); 0 never stops.  The
     rest of a second start took about a third of the curve bundle's time where it ran."""
 
+    frame0_branch_first_iter: int = 3
+    """The bundle from frame 0's other branch (``frame0_branch_dchi2``) searches every frame's
+    pose after this many coarse LM iterations (and as many of the coarse fit with uneven frames
+    down-weighted), not after the full coarse fit, and stops as soon as the poses are the first
+    start's again (``frame0_branch_same_deg``, tested after each pose search as well as at the
+    end of the coarse stage); 0: the search after the full coarse fit.  That run starts with
+    only frame 0's pose flipped (the curve and the other frames as the first start's in world
+    terms); where it returns to the first branch, the coarse LM spent up to 30 iterations
+    dragging the curve and every pose towards frame 0 (fourier seed 1400, 1 px, 20 frames:
+    relative poses 145 -> 116 degrees from the first start's) before a pose search that brought
+    every frame back within a degree.  Seeds 1300-1307, 1400-1402, 2000-2001, every family,
+    1 px, 12 and 20 frames (45 second starts, 36 stopped): the same stops plus one (bezier seed
+    1307, 12 frames: it had run on to the first start's minimum, the same curve), that run's
+    time 7.5 -> 4.6 s in all (a stopped run's median 0.10 -> 0.044 s); bezier seed 1300 at 12
+    frames still found 95 degrees away (cost 1737.3 against 1737.2, curve 0.18 % off against
+    0.20 %); fourier seed 1306 at 12 frames reached the first start's minimum instead of a
+    higher one (the flat start it called for not needed, the same curve).  Capping also the LM
+    after the first pose search (a second search before the test) saved a little more at 20
+    frames but lost 3 of the stops at 12 frames (runs sent to higher minima instead)."""
+
     bundle_extra_starts: int = 3
     """When the curve bundle still leaves some frame fitting clearly worse than the others
     (``bundle.UNEVEN_RATIO``) after its start from the end-point answer and from frame 0's

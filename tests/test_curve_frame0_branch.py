@@ -84,3 +84,47 @@ def test_a_second_start_back_on_the_first_branch_stops_after_its_coarse_stage(mo
     assert np.abs(rec.poses[:, :3] - full.poses[:, :3]).max() < np.radians(0.5)
     for r in (rec, full):
         assert curve_error(r.curve3d, scene.curve_3d) < 0.005
+
+
+def test_a_second_start_back_on_the_first_branch_is_caught_at_its_first_pose_search(monkeypatch):
+    """Random seed 1400, 20 frames, 1 px: the second start (frame 0's other branch) searches
+    every frame's pose after ``frame0_branch_first_iter`` coarse LM iterations and stops there,
+    its poses the first start's again; with the search after the full coarse fit
+    (``frame0_branch_first_iter`` 0) it stops too, after many more LM iterations, and the
+    answer is the first start's either way."""
+    from curverecon.curve import bundle as bd
+
+    scene = make_scene(
+        np.random.default_rng(1400), 20, 1.0, 1.0, with_curve=True, curve_family="random"
+    )
+    results = []
+    orig = bd.bundle_adjust
+
+    def spy(*args, **kwargs):
+        out = orig(*args, **kwargs)
+        results.append(out)
+        return out
+
+    monkeypatch.setattr(bd, "bundle_adjust", spy)
+    runs = {}
+    for first_iter in (CurveOptions().frame0_branch_first_iter, 0):
+        results.clear()
+        rec = reconstruct(
+            scene.observations,
+            options=ReconstructOptions(curve=CurveOptions(frame0_branch_first_iter=first_iter)),
+        )
+        assert [r.stopped for r in results] == [False, True]
+        runs[first_iter] = (rec, list(results))
+    (early, (first, second)), (late, (_, second_late)) = runs.values()
+    # the early stop: its poses within frame0_branch_same_deg of the first start's coarse poses
+    angles = np.degrees(
+        np.arccos(
+            np.clip((np.einsum("nij,nij->n", first.coarse_m, second.coarse_m) - 1) / 2, -1, 1)
+        )
+    )
+    assert angles.max() < CurveOptions().frame0_branch_same_deg
+    assert second.iterations < second_late.iterations / 3
+    # the first start's answer either way, near the simulated curve
+    np.testing.assert_array_equal(early.curve3d, late.curve3d)
+    np.testing.assert_array_equal(early.poses, late.poses)
+    assert curve_error(early.curve3d, scene.curve_3d) < 0.005

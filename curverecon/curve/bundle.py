@@ -1512,6 +1512,7 @@ def bundle_adjust(
     order_tol: float = 0.0,
     twin_m: np.ndarray | None = None,
     twin_deg: float = 0.0,
+    twin_iter: int = 0,
 ) -> BundleResult:
     """Refine the poses and the 3-D curve jointly against every frame's polyline.
 
@@ -1536,6 +1537,9 @@ def bundle_adjust(
         pose m at the end of this run's coarse stage is within ``twin_deg`` degrees of it,
         the run stops there (``stopped``, cost infinite): it would retrace the other run
         (``CurveOptions.frame0_branch_same_deg``).
+    twin_iter: with ``twin_m``, above 0: the coarse LM runs before the first pose search stop
+        after this many iterations, and the twin test is also made after each pose search
+        (``CurveOptions.frame0_branch_first_iter``).
 
     Stages: a coarse curve (``K_COARSE`` control points; with ``COARSE_POINTS`` set, on every
     polyline thinned to about that many points, weighted to stand for the full one) with the
@@ -1623,9 +1627,20 @@ def bundle_adjust(
                 m[i], b[i] = mi, bi
     cost_start = float(np.sum(prob.residuals(ctrl, m, b, jac=False)[0] ** 2))
     coarse = {"max_iter": min(max_iter, COARSE_MAX_ITER), "rel_tol": COARSE_REL_TOL}
-    (ctrl, m, b), cost, total_it, _ = _lm_bundle(prob, (ctrl, m, b), **coarse)
+    # a second start that may retrace another run (``twin_m``): its pose search comes early, and
+    # it stops as soon as its poses are the other run's again
+    early = twin_m is not None and twin_iter > 0
+    first = {**coarse, "max_iter": min(coarse["max_iter"], int(twin_iter))} if early else coarse
+    (ctrl, m, b), cost, total_it, _ = _lm_bundle(prob, (ctrl, m, b), **first)
     limit = RMS_LIMIT_SIGMA * sigma + RMS_LIMIT_PX
-    for _ in range(int(RESECT_ROUNDS)):
+
+    def twin_stop(ctrl, m, b) -> BundleResult:
+        rms = prob.residuals(ctrl, m, b, jac=False)[2]
+        return BundleResult(
+            ctrl, m, b, sigma, rms, cost_start, np.inf, total_it, False, [], m.copy(), True
+        )
+
+    for rnd in range(int(RESECT_ROUNDS)):
         changed = False
         # frames that do not fit (wrong pose branch) bend the coarse curve: refit it with them
         # down-weighted, then search their poses against the cleaner curve
@@ -1633,7 +1648,8 @@ def bundle_adjust(
         if _uneven(rms, sigma):
             ref = min(limit, _uneven_level(rms, sigma))
             prob.frame_w = 1.0 / (1.0 + (rms / ref) ** 4)
-            (ctrl, m, b), _, it, _ = _lm_bundle(prob, (ctrl, m, b), **coarse)
+            lm_opts = first if rnd == 0 else coarse
+            (ctrl, m, b), _, it, _ = _lm_bundle(prob, (ctrl, m, b), **lm_opts)
             total_it += it
             prob.frame_w = np.ones(n)
         r, _, _, rows, _ = prob.evaluate(ctrl, m, b, jac=False)
@@ -1645,16 +1661,15 @@ def bundle_adjust(
                 m[i], b[i] = mi, bi
         if not np.allclose(m[0], np.eye(3), atol=1e-12):
             ctrl, m, b = _regauge(ctrl, m, b)
+        if early and _max_angle_deg(m, twin_m) < twin_deg:
+            return twin_stop(ctrl, m, b)
         (ctrl, m, b), cost, it, _ = _lm_bundle(prob, (ctrl, m, b), **coarse)
         total_it += it
         if not changed:
             break
     coarse_m = m.copy()
     if twin_m is not None and _max_angle_deg(m, twin_m) < twin_deg:
-        rms = prob.residuals(ctrl, m, b, jac=False)[2]
-        return BundleResult(
-            ctrl, m, b, sigma, rms, cost_start, np.inf, total_it, False, [], coarse_m, True
-        )
+        return twin_stop(ctrl, m, b)
     converged = True
     if k > k_coarse or not END_POLISH:
         # the full curve on the full polylines (the coarse stage's were thinned)
@@ -2546,6 +2561,7 @@ def refine_reconstruction(
                     polyline_mask=mask,
                     twin_m=br.coarse_m,
                     twin_deg=o.frame0_branch_same_deg,
+                    twin_iter=o.frame0_branch_first_iter,
                     **kw,
                 )
                 if not other.stopped and other.cost < br.cost:
