@@ -344,7 +344,10 @@ class CurveOptions:
     time 7.5 -> 4.6 s in all (a stopped run's median 0.10 -> 0.044 s); bezier seed 1300 at 12
     frames still found 95 degrees away (cost 1737.3 against 1737.2, curve 0.18 % off against
     0.20 %); fourier seed 1306 at 12 frames reached the first start's minimum instead of a
-    higher one (the flat start it called for not needed, the same curve).  Capping also the LM
+    higher one (the flat start it called for not needed, the same curve).  Held out, seeds
+    1403-1407, 2002-2005, 2100 at 20 frames (18 second starts): the same 15 stops, 1.95 ->
+    1.19 s; sharp-ends seed 2005's run to the end now won by a cost of 0.01 (the rough floor)
+    where it had lost by 1.6, a curve 0.52 % off instead of 3.8 %.  Capping also the LM
     after the first pose search (a second search before the test) saved a little more at 20
     frames but lost 3 of the stops at 12 frames (runs sent to higher minima instead)."""
 
