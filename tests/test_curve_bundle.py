@@ -275,3 +275,18 @@ def test_gauss_newton_floor_stop_agrees_with_a_tight_solve(monkeypatch):
         assert np.max(z) < 0.1, z
         gap = np.linalg.norm(a.curve3d - b.curve3d, axis=1) / b.curve3d_normal_std
         assert np.median(gap) < 0.3, np.median(gap)
+
+
+def test_gauss_newton_damping_reached_by_tenfold_decreases():
+    """The LM's floor stop applies at the damping its tenfold decreases reach from the default
+    start (1e-3 / 10 / 10 / 10, which rounds to just above 1e-6) and below, not one step
+    before."""
+    import curverecon.curve.bundle as bd
+
+    lam = 1e-3
+    seen = []
+    for _ in range(5):
+        seen.append(bd._gauss_newton_damping(lam))
+        lam = max(lam / 10.0, 1e-9)
+    assert bd.LM_GN_LAMBDA == 1e-6  # the sequence below is for this value
+    assert seen == [False, False, False, True, True]
