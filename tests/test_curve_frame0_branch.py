@@ -19,6 +19,27 @@ from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
 
 
+def _spy_bundles(monkeypatch) -> list:
+    """Every ``bundle.bundle_adjust`` result of the reconstructions that follow, in order."""
+    from curverecon.curve import bundle as bd
+
+    results = []
+    orig = bd.bundle_adjust
+
+    def spy(*args, **kwargs):
+        out = orig(*args, **kwargs)
+        results.append(out)
+        return out
+
+    monkeypatch.setattr(bd, "bundle_adjust", spy)
+    return results
+
+
+def _angles_deg(m1: np.ndarray, m2: np.ndarray) -> np.ndarray:
+    """Each frame's rotation angle (degrees) between the rotations m1[i] and m2[i]."""
+    return np.degrees(np.arccos(np.clip((np.einsum("nij,nij->n", m1, m2) - 1) / 2, -1, 1)))
+
+
 def test_the_bundle_tries_frame_0s_other_branch():
     scene = make_scene(
         np.random.default_rng(1300), 12, 1.0, 1.0, with_curve=True, curve_family="bezier"
@@ -49,29 +70,15 @@ def test_a_second_start_back_on_the_first_branch_stops_after_its_coarse_stage(mo
     default that second start stops there and the first start's answer stays; run to its end
     (``frame0_branch_same_deg`` 0) it reaches the same minimum, give or take the cost's rough
     floor: the same poses to a fraction of a degree, both curves near the simulated one."""
-    from curverecon.curve import bundle as bd
-
     scene = make_scene(
         np.random.default_rng(1400), 20, 1.0, 1.0, with_curve=True, curve_family="fourier"
     )
-    results = []
-    orig = bd.bundle_adjust
-
-    def spy(*args, **kwargs):
-        out = orig(*args, **kwargs)
-        results.append(out)
-        return out
-
-    monkeypatch.setattr(bd, "bundle_adjust", spy)
+    results = _spy_bundles(monkeypatch)
     rec = reconstruct(scene.observations)
     assert [r.stopped for r in results] == [False, True]
     first, second = results
     assert not np.isfinite(second.cost) and np.isfinite(first.cost)
-    angles = np.degrees(
-        np.arccos(
-            np.clip((np.einsum("nij,nij->n", first.coarse_m, second.coarse_m) - 1) / 2, -1, 1)
-        )
-    )
+    angles = _angles_deg(first.coarse_m, second.coarse_m)
     assert angles.max() < 1.0
     results.clear()
     full = reconstruct(
@@ -92,20 +99,10 @@ def test_a_second_start_back_on_the_first_branch_is_caught_at_its_first_pose_sea
     its poses the first start's again; with the search after the full coarse fit
     (``frame0_branch_first_iter`` 0) it stops too, after many more LM iterations, and the
     answer is the first start's either way."""
-    from curverecon.curve import bundle as bd
-
     scene = make_scene(
         np.random.default_rng(1400), 20, 1.0, 1.0, with_curve=True, curve_family="random"
     )
-    results = []
-    orig = bd.bundle_adjust
-
-    def spy(*args, **kwargs):
-        out = orig(*args, **kwargs)
-        results.append(out)
-        return out
-
-    monkeypatch.setattr(bd, "bundle_adjust", spy)
+    results = _spy_bundles(monkeypatch)
     runs = {}
     for first_iter in (CurveOptions().frame0_branch_first_iter, 0):
         results.clear()
@@ -117,11 +114,7 @@ def test_a_second_start_back_on_the_first_branch_is_caught_at_its_first_pose_sea
         runs[first_iter] = (rec, list(results))
     (early, (first, second)), (late, (_, second_late)) = runs.values()
     # the early stop: its poses within frame0_branch_same_deg of the first start's coarse poses
-    angles = np.degrees(
-        np.arccos(
-            np.clip((np.einsum("nij,nij->n", first.coarse_m, second.coarse_m) - 1) / 2, -1, 1)
-        )
-    )
+    angles = _angles_deg(first.coarse_m, second.coarse_m)
     assert angles.max() < CurveOptions().frame0_branch_same_deg
     assert second.iterations < second_late.iterations / 3
     # the first start's answer either way, near the simulated curve
