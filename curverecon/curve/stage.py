@@ -53,7 +53,7 @@ def fit_curve(
     # long sequences with given end points: the end-point answer stays, the curve alone is
     # fitted (CurveOptions.bundle_max_frames)
     fixed = bundle and obs.ends_given and n >= o.bundle_max_frames
-    if not bundle and not o.bundle and rec.method == "auto" and rec.std is None:
+    if not o.bundle and rec.method == "auto" and rec.std is None:
         # section 4 works on the end-point answer's poses alone: where the end points do not
         # determine the shape (singular information) neither are the poses, and a curve placed
         # on them is the start's accident (helix seed 2104, 1 px, 12 frames: c 9,142 for 297,
