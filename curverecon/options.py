@@ -251,7 +251,9 @@ class CurveOptions:
     40 % of the branch choice's CPU time at 20 frames (1.22 of 2.5 s over 12 scenes); held
     out (20 frames seeds 2001-2003, 12 frames 0.5 px seeds 1203-1205) the same to 1e-4.  On
     sharp-ends 6001 (12 frames, 1 px) the refit took an optimum 10-18 degrees off and the gate
-    then refused the bundle (curve 8.3 % off); without it the bundle is accepted (1.1 %).  The
+    then refused the bundle (curve 8.3 % off); without it the bundle is accepted (1.1 %).
+    (Since the bundle's pose search leaves out starts in the current pose's basin,
+    ``bundle.RESECT_SAME_DEG``, the path with the refits is accepted there too, 0.7 %.)  The
     refits stay without the bundle (``--curve-bundle off``, section 4's answer)."""
 
     refit_dchi2: float = 4.0

@@ -323,3 +323,45 @@ def test_longest_nondecreasing_run_is_a_longest_one():
         assert keep.sum() == (best.max() if n else 0)
         assert np.all(np.diff(x[keep]) >= 0)
         assert np.array_equal(keep, _longest_nondecreasing_reference(x))
+
+
+def _turn_deg(r1: np.ndarray, r2: np.ndarray) -> float:
+    """The rotation angle between two rotations (degrees)."""
+    return float(np.degrees(np.arccos(np.clip((np.trace(r1 @ r2.T) - 1.0) / 2.0, -1.0, 1.0))))
+
+
+def test_pose_search_leaves_the_current_basin_and_finds_a_far_pose(monkeypatch):
+    """``bundle._resect_starts`` / ``_resect_all`` on a Bezier scene (1 px, 8 frames) with the
+    true curve and poses: every frame at its true pose gets no start within
+    ``RESECT_SAME_DEG`` of it (the sweep itself finds such poses: with the filter off some
+    frames get one), and a frame turned 180 degrees about AB (A, B and their images stay put,
+    the rest of the curve's image moves: built from the 3-D geometry) is brought back to
+    within 2 degrees of its true pose at a lower cost."""
+    prob, (ctrl, m, b), _ = _truth_problem(1, 8, "bezier", False)
+    prob.frame_w = np.ones(8)
+    prob.poly_w[:] = 1.0
+    near = 0
+    for i in range(1, 8):
+        for mm, _ in bd._resect_starts(prob, ctrl, m[i], b[i], i):
+            assert _turn_deg(mm, m[i]) >= bd.RESECT_SAME_DEG
+    monkeypatch.setattr(bd, "RESECT_SAME_DEG", 0.0)
+    for i in range(1, 8):
+        near += sum(
+            _turn_deg(mm, m[i]) < 10.0 for mm, _ in bd._resect_starts(prob, ctrl, m[i], b[i], i)
+        )
+    assert near >= 3
+    monkeypatch.undo()
+    # frame 4 turned by 180 degrees about AB through A: X_i = m_i (A + T (X - A)) + b_i
+    i = 4
+    a3 = ctrl[0]
+    axis = (ctrl[-1] - a3) / np.linalg.norm(ctrl[-1] - a3)
+    turn = 2.0 * np.outer(axis, axis) - np.eye(3)  # the half turn about the axis
+    m_wrong, b_wrong = m.copy(), b.copy()
+    m_wrong[i] = m[i] @ turn
+    b_wrong[i] = b[i] + m[i] @ (a3 - turn @ a3)
+    r, _, _, rows, _ = prob.evaluate(ctrl, m_wrong, b_wrong, jac=False)
+    cost_wrong = prob.frame_costs(r, rows)[i]
+    found = bd._resect_all(prob, ctrl, m_wrong, b_wrong, [i])
+    m_i, _, cost = found[i]
+    assert _turn_deg(m_i, m[i]) < 2.0
+    assert cost < 0.1 * cost_wrong
