@@ -517,3 +517,53 @@ def test_unary_cost_is_the_truncated_reprojection_distance_sum(monkeypatch):
         # candidates that most frames fit and ones that most reject (the truncation in play)
         top = len(frames) * trunc
         assert want.min() < 0.25 * top and want.max() > 0.75 * top
+
+
+def _full_section4_calls(monkeypatch) -> list:
+    """A spy on ``section4.reconstruct_curve``: each call's ``n_samples`` (None: the full
+    reconstruction, the default number of samples)."""
+    import functools
+
+    calls: list = []
+    real = s4.reconstruct_curve
+
+    @functools.wraps(real)
+    def spy(*args, **kwargs):
+        calls.append(kwargs.get("n_samples"))
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(s4, "reconstruct_curve", spy)
+    return calls
+
+
+def test_bundle_starts_from_the_search_curve_and_the_full_one_only_where_refused(monkeypatch):
+    """``CurveOptions.bundle_start_from_search``: an accepted bundle (Bezier seed 1400, 1 px,
+    12 frames) runs no full section-4 reconstruction (only the branch search's 60-sample
+    ones) and still gives ``curve3d`` its default number of samples; a refused one (random
+    1205, the gate's scene) runs exactly one, for the fixed-pose fit, and its answer is the one
+    of the full start throughout (option off): the same shape and the same curve3d."""
+    from dataclasses import replace
+
+    from curverecon.options import CurveOptions, ReconstructOptions
+    from curverecon.pipeline import reconstruct
+    from curverecon.simulate import make_scene
+
+    calls = _full_section4_calls(monkeypatch)
+    sc = make_scene(np.random.default_rng(1400), 12, 1.0, 1.0, with_curve=True)
+    rec = reconstruct(sc.observations)
+    assert rec.curve_bundle["accepted"]
+    assert calls and None not in calls
+    assert len(rec.curve3d) == s4.default_samples(sc.observations.curves[0])
+
+    calls.clear()
+    sc = make_scene(
+        np.random.default_rng(1205), 12, 1.0, 1.0, with_curve=True, curve_family="random"
+    )
+    rec = reconstruct(sc.observations)
+    assert not rec.curve_bundle["accepted"]
+    assert calls.count(None) == 1
+    off = ReconstructOptions(curve=replace(CurveOptions(), bundle_start_from_search=False))
+    old = reconstruct(sc.observations, options=off)
+    assert not old.curve_bundle["accepted"]
+    np.testing.assert_array_equal(rec.shape, old.shape)
+    np.testing.assert_array_equal(rec.curve3d, old.curve3d)

@@ -30,6 +30,7 @@ def resolve_branches_with_curves(
     curves: list[np.ndarray],
     reconstruct_curve,
     o: CurveOptions | None = None,
+    full: bool = True,
 ) -> tuple[Reconstruction, object]:
     """Use the frames' polylines to choose the pose branch of ambiguous frames.
 
@@ -52,12 +53,19 @@ def resolve_branches_with_curves(
         curves: the frames' polylines (A' to B').
         reconstruct_curve: ``curverecon.curve.section4.reconstruct_curve`` (its result has
             ``frame_residual``, the per-frame median reprojection distance).
+        full: the curve result is ``reconstruct_curve``'s on the chosen poses; False: the
+            search's own (``o.search_samples`` samples, unsmoothed) when it has one - a start
+            for the curve bundle, which fits its own spline to it (one reconstruction of the
+            whole curve on every frame saved).
     Returns:
         (reconstruction, curve result) - the input reconstruction if nothing changed.
     """
     o = o or CurveOptions()
     search = _coarse(reconstruct_curve, o)
     limited = _limited(search)
+    if not full:
+        # the search's results stand for the reconstruction's (the same poses, coarser)
+        reconstruct_curve = search
     cand: list[int] = []
     if not (
         rec.branch_alternatives is None
@@ -81,14 +89,16 @@ def resolve_branches_with_curves(
         return float(np.sum(f[inl])) if f.shape == inl.shape else np.inf
 
     switched = np.zeros(len(rec.poses), bool)
-    best_total = (
-        total(res) if search is reconstruct_curve else total(search(curves, *_rt(rec.poses)))
-    )
+    if res is None:  # the search is coarser than the reconstruction: its own start
+        res = search(curves, *_rt(rec.poses))
+    best_total = total(res)
     # the totals of the switch states scored so far (inf: beyond the bound then).  A state comes
     # again two rounds on (switching back the frame switched last, or the last two switches in
     # the other order): its total then decides the same - a finite total is exact, and an inf
     # one exceeded a bound at least as high as any later round's
     scored = {switched.tobytes(): best_total}
+    # the search's result of each state scored (a state kept has a finite total: complete)
+    results = {switched.tobytes(): res}
     for _ in range(o.flip_max_switches):
         round_best = None
         for i in cand:
@@ -103,8 +113,9 @@ def resolve_branches_with_curves(
                 bound = (1.0 - o.flip_gain) * best_total
                 if round_best is not None:
                     bound = min(bound, round_best[0])
-                t = total(limited(curves, *_rt(poses), limit=bound, frames=inl))
-                scored[key] = t
+                r = limited(curves, *_rt(poses), limit=bound, frames=inl)
+                t = total(r)
+                scored[key], results[key] = t, r
             if round_best is None or t < round_best[0]:
                 round_best = (t, i)
         t, i = round_best
@@ -114,7 +125,7 @@ def resolve_branches_with_curves(
         best_total = t
     take = [int(i) for i in np.flatnonzero(switched)]
     if not take:
-        if res is None:
+        if search is not reconstruct_curve:
             res = reconstruct_curve(curves, rec.rotations(), rec.translations())
         return rec, res
     poses = np.array(rec.poses)
@@ -146,6 +157,8 @@ def resolve_branches_with_curves(
         achi2,
         ambiguous_dchi2=rec.ambiguous_dchi2,
     )
+    if not full:
+        return new, results[switched.tobytes()]
     return new, reconstruct_curve(curves, new.rotations(), new.translations())
 
 

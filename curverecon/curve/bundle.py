@@ -87,7 +87,7 @@ std from the fit's covariance (:func:`curve_point_std`).
 from __future__ import annotations
 
 import functools
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -2487,6 +2487,7 @@ def refine_reconstruction(
     n_out: int | None = None,
     options=None,
     curve_frames: np.ndarray | None = None,
+    fixed_start: Callable[[], np.ndarray | None] | None = None,
 ):
     """Run the curve bundle on a reconstruction and return the updated answer.
 
@@ -2523,6 +2524,12 @@ def refine_reconstruction(
     no joint fit; the end-point answer stays and the curve alone is fitted with every pose
     fixed (as when the never-worse test refuses the bundle) to the polylines of these frames;
     ``frame_rms_px`` is then measured on every frame.
+
+    ``fixed_start``: the start curve of the fits with every pose fixed (exact end points, long
+    sequences, a refused bundle), made only when one of them runs (None, or a None result:
+    ``curve_start``).  That fit has local minima, so its start must be good, while the bundle
+    itself starts well from a coarser curve (``curve.stage``: section 4's 60-sample curve of
+    the branch search for the bundle, its full reconstruction made here only when needed).
     """
     from dataclasses import replace
 
@@ -2553,6 +2560,11 @@ def refine_reconstruction(
         "misfit_z": o.bundle_misfit_z,
         "order_tol": o.bundle_order_tol,
     }
+
+    def fixed_curve_start() -> np.ndarray:
+        """The start of the fits with every pose fixed (``fixed_start``, else ``curve_start``)."""
+        made = fixed_start() if fixed_start is not None else None
+        return np.asarray(curve_start if made is None else made, float)
 
     def frame0_other_branch():
         """(rotations, translations, start curve) with frame 0 on its other pose branch, the
@@ -2753,10 +2765,10 @@ def refine_reconstruction(
     if s2 is not None and s2 < o.exact_variance_factor:
         # exact end points (noise-free): the bundle could only move the answer out of their
         # confidence region, which has shrunk to float rounding
-        start = np.asarray(curve_start, float)
+        start = fixed_curve_start()
         return fixed_answer(start, o.exact_start_control_points, np.ones(n, bool), {}, exact=True)
     if curve_frames is not None and not flat:
-        return fixed_answer(np.asarray(curve_start, float), N_CONTROL, np.ones(n, bool), {})
+        return fixed_answer(fixed_curve_start(), N_CONTROL, np.ones(n, bool), {})
     br = run()
     flagged: list[int] = []
     mask = np.ones(n, bool)
@@ -2806,7 +2818,7 @@ def refine_reconstruction(
     if not accepted:
         # the end-point answer stays; the curve alone is fitted with its poses and ends
         a3, _, ta3, _ = rec.points_3d()
-        start = np.asarray(curve_start, float)
+        start = np.asarray(curve_start, float) if flat else fixed_curve_start()
         if flat:
             start = br.curve_points(200)
             d0 = start[min(5, len(start) - 1)] - start[0]

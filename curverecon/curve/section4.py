@@ -90,6 +90,16 @@ def _check_inputs(
     return polys, rot, tr
 
 
+def _default_samples(p0: np.ndarray) -> int:
+    return int(np.clip(2 * len(p0), 20, 200))
+
+
+def default_samples(polyline) -> int:
+    """The number of samples :func:`reconstruct_curve` gives by default for a sequence whose
+    frame 0 has this polyline: min(200, 2 M_0), at least 20 (M_0 its validated points)."""
+    return _default_samples(_valid_polyline(polyline, "frame 0 curve"))
+
+
 def _memo(cache: dict, key, make: Callable[[], Any]) -> Any:
     """``cache[key]``, made by ``make()`` on a miss (the section's caches by content; a cache
     is emptied when it holds ``_TREES_MAX`` entries)."""
@@ -383,7 +393,7 @@ def reconstruct_curve(
 
     p0 = polys[0]
     if n_samples is None:
-        n_samples = int(np.clip(2 * len(p0), 20, 200))
+        n_samples = _default_samples(p0)
     if n_samples < 3:
         raise _error(f"n_samples must be at least 3, got {n_samples}")
     xy, _ = pl.resample(p0, int(n_samples))

@@ -63,6 +63,7 @@ def fit_curve(
             "do not determine the shape: singular information); the curve bundle "
             "(--curve-bundle on) fits the polylines themselves"
         )
+    coarse_start = False
     try:
         if bundle and n > o.curve_search_max_frames:
             # long sequences: the branch choice and the start curve from a fixed-size subset
@@ -73,7 +74,12 @@ def fit_curve(
             # fixed-shape branch switches first, then (without the bundle) the other equally
             # good optima (alternative shapes, joint refits from the other sign of tau); each
             # change is kept only if the recovered curve reprojects clearly better
-            rec, res = resolve_branches_with_curves(rec, obs.curves, reconstruct_curve, o)
+            # with the bundle (and no joint refits after it) the search's coarse curve of the
+            # chosen poses is the bundle's start (CurveOptions.bundle_start_from_search)
+            coarse_start = bundle and not o.refit_with_bundle and o.bundle_start_from_search
+            rec, res = resolve_branches_with_curves(
+                rec, obs.curves, reconstruct_curve, o, full=not coarse_start
+            )
             if not bundle or o.refit_with_bundle:
                 # the joint refits (the bundle refits the shape and every pose itself:
                 # CurveOptions.refit_with_bundle)
@@ -107,6 +113,19 @@ def fit_curve(
             curve3d=np.asarray(res.points, float),
             warnings=list(rec.warnings) + list(res.warnings),
         )
+    fixed_start = None
+    if coarse_start and res is not None:
+        # the fits with every pose fixed (a refused bundle, exact end points) start from the
+        # full section-4 curve of the chosen poses, made only when one runs
+        # (CurveOptions.bundle_start_from_search)
+        rot, tra, coarse_points = rec.rotations(), rec.translations(), res.points
+
+        def fixed_start() -> np.ndarray:
+            try:
+                return reconstruct_curve(obs.curves, rot, tra).points
+            except CurveReconError:
+                return coarse_points
+
     rec, curve3d, info = refine_reconstruction(
         rec,
         obs,
@@ -114,9 +133,11 @@ def fit_curve(
         use_given=obs.ends_given,
         point_sigma=options.point_sigma,
         tangent_sigma_deg=options.tangent_sigma_deg,
-        n_out=None if res is None else len(res.points),
+        # curve3d's samples: section 4's default number (its start may be the coarser search's)
+        n_out=None if res is None else section4.default_samples(obs.curves[0]),
         options=o,
         curve_frames=subset_frames(n, o.curve_search_max_frames) if fixed else None,
+        fixed_start=fixed_start,
     )
     return replace(rec, curve3d=curve3d, curve_bundle=info, warnings=list(rec.warnings) + warnings)
 
