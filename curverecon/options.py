@@ -238,9 +238,10 @@ class CurveOptions:
     in 2 of 3 scenes (seeds 1400-1402, 9 s each)."""
 
     bundle_start_from_search: bool = True
-    """With the curve bundle, its start curve is the branch search's own section-4 curve of the
-    chosen poses (``search_samples`` samples, unsmoothed), not a full reconstruction (200
-    samples, smoothed) made for it: the bundle first fits its own coarse spline to it.  The
+    """With the curve bundle on given end points and tangents, its start curve is the branch
+    search's own section-4 curve of the chosen poses (``search_samples`` samples, unsmoothed),
+    not a full reconstruction (200 samples, smoothed) made for it: the bundle first fits its
+    own coarse spline to it.  The
     full reconstruction (on polylines whose 200-sample crossings nothing has computed yet:
     about 0.027 s a scene at 20 frames, a tenth of the curve stage) is made only where a fit
     with every pose fixed runs (a refused bundle, exact end points), whose local minima need
@@ -249,7 +250,10 @@ class CurveOptions:
     (``never_worse_f_test``) then took the bundle's shape, 3.2 degrees off.  Time ratio at 20
     frames (1 px; seeds 1400, 2000, 2100): 2.53 -> 2.43, 2.17 -> 2.04, 2.24 -> 2.05; on the
     bench's 12-frame scenes (curve_05 1100-1107, 3000-3007, never_worse 1200-1207,
-    2100-2107) every count and rate the same."""
+    2100-2107) every count and rate the same.  Not for polylines only: nothing checks the
+    bundle's answer there (no end-point answer, no gate), and from the coarse curve clothoid
+    1302 (0.5 px, 12 frames) reached a minimum of higher cost (1,877.8 against 1,859.2), phi
+    3.3 degrees off against 0.16."""
 
     refit_with_bundle: bool = False
     """With the curve bundle (``bundle``, method "auto"), also run the joint refits and the

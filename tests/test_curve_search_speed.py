@@ -541,7 +541,8 @@ def test_bundle_starts_from_the_search_curve_and_the_full_one_only_where_refused
     12 frames) runs no full section-4 reconstruction (only the branch search's 60-sample
     ones) and still gives ``curve3d`` its default number of samples; a refused one (random
     1205, the gate's scene) runs exactly one, for the fixed-pose fit, and its answer is the one
-    of the full start throughout (option off): the same shape and the same curve3d."""
+    of the full start throughout (option off): the same shape and the same curve3d.  With the
+    polylines alone (no gate checks the bundle there) the bundle starts from the full one."""
     from dataclasses import replace
 
     from curverecon.options import CurveOptions, ReconstructOptions
@@ -567,3 +568,9 @@ def test_bundle_starts_from_the_search_curve_and_the_full_one_only_where_refused
     assert not old.curve_bundle["accepted"]
     np.testing.assert_array_equal(rec.shape, old.shape)
     np.testing.assert_array_equal(rec.curve3d, old.curve3d)
+
+    from bench.common import polylines_only
+
+    calls.clear()
+    reconstruct(polylines_only(sc.observations))
+    assert None in calls

@@ -74,9 +74,12 @@ def fit_curve(
             # fixed-shape branch switches first, then (without the bundle) the other equally
             # good optima (alternative shapes, joint refits from the other sign of tau); each
             # change is kept only if the recovered curve reprojects clearly better
-            # with the bundle (and no joint refits after it) the search's coarse curve of the
-            # chosen poses is the bundle's start (CurveOptions.bundle_start_from_search)
-            coarse_start = bundle and not o.refit_with_bundle and o.bundle_start_from_search
+            # with the bundle on given end points (and no joint refits after it) the search's
+            # coarse curve of the chosen poses is the bundle's start
+            # (CurveOptions.bundle_start_from_search)
+            coarse_start = (
+                bundle and obs.ends_given and not o.refit_with_bundle and o.bundle_start_from_search
+            )
             rec, res = resolve_branches_with_curves(
                 rec, obs.curves, reconstruct_curve, o, full=not coarse_start
             )
