@@ -241,14 +241,13 @@ class CurveOptions:
     """With the curve bundle on given end points and tangents, its start curve is the branch
     search's own section-4 curve of the chosen poses (``search_samples`` samples, unsmoothed),
     not a full reconstruction (200 samples, smoothed) made for it: the bundle first fits its
-    own coarse spline to it.  The
-    full reconstruction (on polylines whose 200-sample crossings nothing has computed yet:
-    about 0.027 s a scene at 20 frames, a tenth of the curve stage) is made only where a fit
-    with every pose fixed runs (a refused bundle, exact end points), whose local minima need
-    the better start: random 1205 (1 px, 12 frames, refused) fitted from the coarse curve left
-    a polyline RSS of 2,380 against 1,859, and the gate's polyline test
-    (``never_worse_f_test``) then took the bundle's shape, 3.2 degrees off.  Time ratio at 20
-    frames (1 px; seeds 1400, 2000, 2100): 2.53 -> 2.43, 2.17 -> 2.04, 2.24 -> 2.05; on the
+    own coarse spline to it.  The full reconstruction (on polylines whose 200-sample crossings
+    nothing has computed yet: about 0.027 s a scene at 20 frames, a tenth of the curve stage)
+    is made only where a fit with every pose fixed runs (a refused bundle, exact end points),
+    whose local minima need the better start: random 1205 (1 px, 12 frames, refused) fitted
+    from the coarse curve left a polyline RSS of 2,380 against 1,859, and the gate's polyline
+    test (``never_worse_f_test``) then took the bundle's shape, 3.2 degrees off.  Time ratio
+    at 20 frames (1 px; seeds 1400, 2000, 2100): 2.53 -> 2.43, 2.17 -> 2.04, 2.24 -> 2.05; on the
     bench's 12-frame scenes (curve_05 1100-1107, 3000-3007, never_worse 1200-1207,
     2100-2107) every count and rate the same.  Not for polylines only: nothing checks the
     bundle's answer there (no end-point answer, no gate), and from the coarse curve clothoid
