@@ -326,8 +326,8 @@ def test_longest_nondecreasing_run_is_a_longest_one():
 
 
 def _turn_deg(r1: np.ndarray, r2: np.ndarray) -> float:
-    """The rotation angle between two rotations (degrees)."""
-    return float(np.degrees(np.arccos(np.clip((np.trace(r1 @ r2.T) - 1.0) / 2.0, -1.0, 1.0))))
+    """The rotation angle between two rotations (degrees; ``bundle._max_angle_deg``)."""
+    return bd._max_angle_deg(r1[None], r2[None])
 
 
 def test_pose_search_leaves_the_current_basin_and_finds_a_far_pose(monkeypatch):

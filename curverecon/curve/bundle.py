@@ -1362,14 +1362,12 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
     scores[over] = np.inf
     best = np.argsort(scores, kind="stable")[:2]  # ties: the first pose (by score, index)
     # only sweep poses that beat the current one even on the coarse grid are refined
-    # ... and only outside the current pose's own basin (RESECT_SAME_DEG: the rotation
-    # angle between the two, from the trace of mms[j] mi^T)
-    cos_same = np.cos(np.radians(RESECT_SAME_DEG))
+    # ... and only outside the current pose's own basin (RESECT_SAME_DEG)
     starts = [
         (mms[j], np.append(poly[0] - (mms[j] @ a3)[:2], 0.0))
         for j in best
         if float(scores[j]) < RESECT_GAIN * current
-        and 0.5 * (float(np.sum(mms[j] * mi)) - 1.0) < cos_same
+        and _max_angle_deg(mms[j][None], mi[None]) > RESECT_SAME_DEG
     ]
     return starts
 
