@@ -211,30 +211,6 @@ def test_end_and_tangent_rows_equal_the_numpy_construction():
             assert not jtp[f, row, 3:].any()
 
 
-def test_polyline_jacobian_inputs_equal_the_matrix_products():
-    """``bundle_kernel.polyline_jacobian_inputs`` against NumPy's matrix products on a
-    simulated scene's true state: each polyline row's curve point (the forward rows' feet
-    ``N(u) P``, every frame's reverse samples in turn), its offset direction through its
-    frame's pose (d @ m[:2]) and that point in its frame's camera (m @ x)."""
-    prob, (ctrl, m, b), _ = _truth_problem(11, 7, "helix", False)
-    u = prob._all_foot_points(ctrl, m, b)
-    ps = prob._projected_spans(ctrl, m, b)
-    direc, _, _ = bk.forward_rows(ps, u, prob.q_all, prob.q_lo, prob.q_cnt)
-    xs = prob.rev_basis @ ctrl
-    rev_pts = (xs @ np.transpose(m[:, :2], (0, 2, 1)) + b[:, None, :2]).reshape(-1, 2)
-    rev_dir, _ = prob._to_polylines(rev_pts, prob.rev_fid, prob._rev_runs)
-    nus = bk.basis_rows(prob.basis.coef, u, prob.rev_basis, prob.n)
-    dirs, dm, yy = bk.polyline_jacobian_inputs(nus, ctrl, xs, direc, rev_dir, m, prob.rows_f)
-    x = np.vstack([prob.basis.values(u) @ ctrl, np.tile(xs, (prob.n, 1))])
-    want_dirs = np.vstack([direc, rev_dir])
-    mr = m[prob.rows_f]
-    assert len(dirs) == len(prob.rows_f) == len(x)
-    assert np.array_equal(dirs, want_dirs)
-    assert np.allclose(dm, np.einsum("ri,ric->rc", want_dirs, mr[:, :2]), rtol=0, atol=1e-14)
-    scale = np.abs(x).max()
-    assert np.allclose(yy, np.einsum("rij,rj->ri", mr, x), rtol=0, atol=1e-12 * scale)
-
-
 def test_sweep_distances_stop_each_pose_beyond_the_bound():
     """``bundle_kernel.sweep_distances`` (the pose sweep with each pose's scan stopped once
     its sum of squared distances exceeds the bound): the distances it measures are the k-d

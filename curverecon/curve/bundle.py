@@ -101,7 +101,6 @@ from curverecon.curve.bundle_kernel import (
     forward_rows,
     longest_nondecreasing,
     nearest_distances,
-    polyline_jacobian_inputs,
     polyline_normal_blocks,
     polyline_rows,
     segment_offsets,
@@ -901,12 +900,14 @@ class _Problem:
         dm = yy = _EMPTY3
         dirs = _EMPTY2
         if jac:
-            # every row's offset direction, that direction through its frame's pose and the
-            # row's curve point in its frame (bundle_kernel.polyline_jacobian_inputs)
+            # the Jacobian's products as before (NumPy's matrix products: the same rounding)
             nus = basis_rows(basis.coef, u, self.rev_basis, n)
-            dirs, dm, yy = polyline_jacobian_inputs(
-                nus, np.ascontiguousarray(ctrl), xs, direc, rev_dir, m, rows_f
-            )
+            x = nus[: len(u)] @ ctrl
+            xx = np.vstack([x, np.tile(xs, (n, 1))])
+            dirs = np.vstack([direc, rev_dir])
+            mr = m[rows_f]
+            dm = (dirs[:, None, :] @ mr[:, :2])[:, 0]
+            yy = (mr @ xx[:, :, None])[:, :, 0]
         # Huber, the weights and the Jacobian rows of every polyline row in one loop
         # (bundle_kernel.polyline_rows; the weights as the NumPy code applied them)
         res_p, dmw, jp_p = polyline_rows(

@@ -376,52 +376,6 @@ def basis_rows(coef, u, rev_basis, n):
 
 
 @numba.njit(**_JIT)
-def polyline_jacobian_inputs(nus, ctrl, xs, direc, rev_dir, m, rows):
-    """The per-row factors of the polyline rows' Jacobians (``bundle._Problem.evaluate``):
-    every row's offset direction ``dirs`` (the forward rows' ``direc``, then the reverse rows'
-    ``rev_dir``), ``dm`` = dirs through its frame's pose (dirs[r] @ m[f, :2]) and ``yy``, the
-    row's curve point in its frame's camera (m[f] @ x; x: the forward rows' feet ``nus @ ctrl``,
-    the reverse rows' samples ``xs``, every frame's in turn).  ``rows``: each row's frame.
-    One pass over the rows.  The NumPy version gathered a 3 x 3 pose per row and took two
-    stacked matrix products: 14 % of the evaluations' time (line profile of ``evaluate``, 20
-    frames, seeds 1400 and 2000); the same values to rounding."""
-    nq = direc.shape[0]
-    nr = rows.shape[0]
-    n_rev = xs.shape[0]
-    kk = nus.shape[1]
-    dirs = np.empty((nr, 2))
-    dm = np.empty((nr, 3))
-    yy = np.empty((nr, 3))
-    for i in range(nr):
-        f = rows[i]
-        if i < nq:
-            d0 = direc[i, 0]
-            d1 = direc[i, 1]
-            x0 = 0.0
-            x1 = 0.0
-            x2 = 0.0
-            for k in range(kk):
-                nk = nus[i, k]
-                if nk != 0.0:
-                    x0 += nk * ctrl[k, 0]
-                    x1 += nk * ctrl[k, 1]
-                    x2 += nk * ctrl[k, 2]
-        else:
-            d0 = rev_dir[i - nq, 0]
-            d1 = rev_dir[i - nq, 1]
-            t = (i - nq) % n_rev
-            x0 = xs[t, 0]
-            x1 = xs[t, 1]
-            x2 = xs[t, 2]
-        dirs[i, 0] = d0
-        dirs[i, 1] = d1
-        for c in range(3):
-            dm[i, c] = d0 * m[f, 0, c] + d1 * m[f, 1, c]
-            yy[i, c] = m[f, c, 0] * x0 + m[f, c, 1] * x1 + m[f, c, 2] * x2
-    return dirs, dm, yy
-
-
-@numba.njit(**_JIT)
 def polyline_rows(r_fw, rev_r, rows, fwd_w, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
     """The polyline rows of ``bundle._Problem.evaluate`` (forward rows, then every frame's
     reverse rows, frame-major; ``rows``: each row's frame) from their signed distances: Huber
