@@ -470,6 +470,28 @@ class CurveOptions:
     degrees off, bundle 2-3.6; dchi2 13.8 and 16.2, just over the limit), the Birge scaling
     alone left |error| / std at 2.3-3.2 and 5.8-19."""
 
+    restart_coarse_cost_ratio: float = 1.05
+    """The bundle from frame 0's other branch (``frame0_branch_dchi2``) stops after its coarse
+    stage when its cost there exceeds the first run's at the same stage by this factor: it is
+    no rival then.  Measured (1 px; seeds 1200-1207 at 12 frames, 1400-1403 at 20 frames): of
+    the second starts that went on to the end, every one that won or came within 2 of the
+    first run's final cost was at 0.13-1.008 times its coarse cost; those at 1.3-51 times ended
+    20 to 132,820 above it."""
+
+    rival_minima_std: bool = True
+    """With given end points: where another start of the curve bundle (frame 0's other pose
+    branch, a restart from a frame's polyline) ended in another minimum, the answer's std
+    (shape and ``curve3d``) include, in quadrature, the gap to that minimum weighted by its
+    probability ``1 / (1 + exp(dcost / 2))`` (the two minima as the only hypotheses, cost a
+    chi2): the RMS error of the answer when the data cannot tell the two apart.  Sharp-ends
+    seed 9105, 1 px, 12 frames: frame 0's two branches at costs 1883.2 and 1884.5, curves 11 px
+    apart at the middle for a std across the curve of 1.1 px; seed 1102 at 0.5 px: 1787.8
+    and 1789.9, the lower one the farther from the truth (8.0 against 5.4 px).  A minimum
+    20 above adds under 5e-5 of the gap squared."""
+
+    rival_warning_probability: float = 0.01
+    """A warning names that rival minimum (``rival_minima_std``) from this probability on."""
+
     variance_floor: float = 1e-30
     """Least variance factor of that test (noise-free end points: float rounding, about 1e-28;
     a positive floor only avoids dividing by zero)."""

@@ -66,7 +66,8 @@ def test_the_bundle_tries_frame_0s_other_branch():
 def test_a_second_start_back_on_the_first_branch_stops_after_its_coarse_stage(monkeypatch):
     """Fourier seed 1400, 20 frames, 1 px: frame 0's other branch is within
     ``frame0_branch_dchi2``, but the coarse stage's pose search brings frame 0 back to the first
-    start's branch (every frame's pose within a degree of the first start's coarse poses).  By
+    start's branch (every frame's pose within ``frame0_branch_same_deg`` of the first start's
+    coarse poses: 4.2 degrees at most, from the flipped poses' own section-4 curve).  By
     default that second start stops there and the first start's answer stays; run to its end
     (``frame0_branch_same_deg`` 0) it reaches the same minimum, give or take the cost's rough
     floor: the same poses to a fraction of a degree, both curves near the simulated one."""
@@ -79,7 +80,7 @@ def test_a_second_start_back_on_the_first_branch_stops_after_its_coarse_stage(mo
     first, second = results
     assert not np.isfinite(second.cost) and np.isfinite(first.cost)
     angles = _angles_deg(first.coarse_m, second.coarse_m)
-    assert angles.max() < 1.0
+    assert angles.max() < CurveOptions().frame0_branch_same_deg
     results.clear()
     full = reconstruct(
         scene.observations,
@@ -121,3 +122,62 @@ def test_a_second_start_back_on_the_first_branch_is_caught_at_its_first_pose_sea
     np.testing.assert_array_equal(early.curve3d, late.curve3d)
     np.testing.assert_array_equal(early.poses, late.poses)
     assert curve_error(early.curve3d, scene.curve_3d) < 0.005
+
+
+def _sharp_ends_9105():
+    """Sharp-ends seed 9105 (simulator, 12 frames, 1 px, 1 degree): frame 0's other branch at
+    an end-point chi2 7.8 above its own, within ``frame0_branch_dchi2``; the bundle from the
+    first branch ends with the curve 7 % of its length off, from the other 0.2 %, their costs
+    1.3 apart."""
+    return make_scene(
+        np.random.default_rng(9105), 12, 1.0, 1.0, with_curve=True, curve_family="sharp-ends"
+    )
+
+
+def _gap(points: np.ndarray, other: np.ndarray) -> np.ndarray:
+    """Each point's distance from the curve ``other`` or its mirror image (depth negated: the
+    same answer), whichever is nearer on average."""
+    from bench.noise_free_curves import distance_to
+
+    return min((distance_to(points, q) for q in (other, other * [1.0, 1.0, -1.0])), key=np.mean)
+
+
+def test_frame_0s_other_branch_starts_from_the_curve_of_its_own_poses(monkeypatch):
+    """The second start's curve is section 4's on the flipped poses.  The first start's curve
+    turned with frame 0 (as before) kept the other frames' view of the wrong curve: that start
+    went back to the first one's poses and stopped as a retrace, and curve3d stayed 7 % off."""
+    scene = _sharp_ends_9105()
+    results = _spy_bundles(monkeypatch)
+    rec = reconstruct(scene.observations)
+    first, second = results[:2]
+    assert not second.stopped and second.cost < first.cost
+    assert curve_error(rec.curve3d, scene.curve_3d) < 0.005
+    results.clear()
+    only_first = reconstruct(
+        scene.observations, options=ReconstructOptions(curve=CurveOptions(frame0_branch_dchi2=0))
+    )
+    assert curve_error(only_first.curve3d, scene.curve_3d) > 0.05
+    assert np.all(np.abs(rec.shape - scene.truth.shape) / rec.std < 3.0)
+
+
+def test_two_minima_that_fit_about_as_well_are_both_inside_the_std():
+    """The two starts' minima 1.3 apart in cost (a chi2): the data leave both open (the
+    other's probability 0.34), so the answer's std across the curve covers the other minimum's
+    curve (``CurveOptions.rival_minima_std``); without it the std (1 px) covers 6 % of it."""
+    scene = _sharp_ends_9105()
+
+    def run(**kw):
+        return reconstruct(scene.observations, options=ReconstructOptions(curve=CurveOptions(**kw)))
+
+    rec, plain = run(), run(rival_minima_std=False)
+    other = run(frame0_branch_dchi2=0.0)  # the other minimum alone: its curve 7 % off
+    assert curve_error(other.curve3d, scene.curve_3d) > 0.05
+    assert any("another minimum" in w for w in rec.warnings)
+    gap = _gap(rec.curve3d, other.curve3d)
+    assert np.median(gap) > 5.0 * np.median(plain.curve3d_normal_std)
+    assert np.mean(gap < 3.0 * rec.curve3d_normal_std) > 0.95
+    assert np.mean(gap < 3.0 * plain.curve3d_normal_std) < 0.2
+    # the same answer either way, and the truth inside both std
+    np.testing.assert_allclose(rec.curve3d, plain.curve3d)
+    truth_gap = _gap(rec.curve3d, scene.curve_3d)
+    assert np.all(truth_gap < 3.0 * rec.curve3d_normal_std)

@@ -250,6 +250,8 @@ class BundleResult:
     #: ``stopped``: the run ended there (``twin_m`` of :func:`bundle_adjust`), cost infinite.
     coarse_m: np.ndarray | None = None
     stopped: bool = False
+    #: the cost at the end of the coarse stage (its thinned polylines; comparable between runs)
+    coarse_cost: float = np.inf
 
     def curve_points(self, n: int = 200) -> np.ndarray:
         """(n, 3) points of the fitted curve in frame 0's camera coordinates, A first."""
@@ -1545,6 +1547,8 @@ def bundle_adjust(
     order_tol: float = 0.0,
     twin_m: np.ndarray | None = None,
     twin_deg: float = 0.0,
+    twin_cost: float = np.inf,
+    twin_cost_ratio: float = 1.0,
     twin_iter: int = 0,
 ) -> BundleResult:
     """Refine the poses and the 3-D curve jointly against every frame's polyline.
@@ -1573,6 +1577,9 @@ def bundle_adjust(
     twin_iter: with ``twin_m``, above 0: the coarse LM runs before the first pose search stop
         after this many iterations, and the twin test is also made after each pose search
         (``CurveOptions.frame0_branch_first_iter``).
+    twin_cost, twin_cost_ratio: the run also stops after its coarse stage (``stopped``) when
+        its cost there exceeds ``twin_cost_ratio`` times ``twin_cost`` (another run's
+        ``coarse_cost``; ``CurveOptions.restart_coarse_cost_ratio``).
 
     Stages: a coarse curve (``K_COARSE`` control points; with ``COARSE_POINTS`` set, on every
     polyline thinned to about that many points, weighted to stand for the full one) with the
@@ -1667,10 +1674,10 @@ def bundle_adjust(
     (ctrl, m, b), cost, total_it, _ = _lm_bundle(prob, (ctrl, m, b), **first)
     limit = RMS_LIMIT_SIGMA * sigma + RMS_LIMIT_PX
 
-    def twin_stop(ctrl, m, b) -> BundleResult:
+    def twin_stop(ctrl, m, b, at: float) -> BundleResult:
         rms = prob.residuals(ctrl, m, b, jac=False)[2]
         return BundleResult(
-            ctrl, m, b, sigma, rms, cost_start, np.inf, total_it, False, [], m.copy(), True
+            ctrl, m, b, sigma, rms, cost_start, np.inf, total_it, False, [], m.copy(), True, at
         )
 
     for rnd in range(int(RESECT_ROUNDS)):
@@ -1695,14 +1702,19 @@ def bundle_adjust(
         if not np.allclose(m[0], np.eye(3), atol=1e-12):
             ctrl, m, b = _regauge(ctrl, m, b)
         if early and _max_angle_deg(m, twin_m) < twin_deg:
-            return twin_stop(ctrl, m, b)
+            return twin_stop(ctrl, m, b, float(cost))
         (ctrl, m, b), cost, it, _ = _lm_bundle(prob, (ctrl, m, b), **coarse)
         total_it += it
         if not changed:
             break
     coarse_m = m.copy()
+    coarse_cost = float(cost)
     if twin_m is not None and _max_angle_deg(m, twin_m) < twin_deg:
-        return twin_stop(ctrl, m, b)
+        return twin_stop(ctrl, m, b, coarse_cost)
+    if coarse_cost > twin_cost_ratio * twin_cost:
+        # far above the other run at the same stage: no rival of it
+        # (CurveOptions.restart_coarse_cost_ratio)
+        return twin_stop(ctrl, m, b, coarse_cost)
     converged = True
     if k > k_coarse or not END_POLISH:
         # the full curve on the full polylines (the coarse stage's were thinned)
@@ -1763,7 +1775,17 @@ def bundle_adjust(
             crit2,
         )
     return BundleResult(
-        ctrl, m, b, sigma, rms, cost_start, cost, total_it, converged, coarse_m=coarse_m
+        ctrl,
+        m,
+        b,
+        sigma,
+        rms,
+        cost_start,
+        cost,
+        total_it,
+        converged,
+        coarse_m=coarse_m,
+        coarse_cost=coarse_cost,
     )
 
 
@@ -2486,6 +2508,7 @@ def refine_reconstruction(
     options=None,
     curve_frames: np.ndarray | None = None,
     fixed_start: Callable[[], np.ndarray | None] | None = None,
+    start_for: Callable[[np.ndarray, np.ndarray], np.ndarray | None] | None = None,
 ):
     """Run the curve bundle on a reconstruction and return the updated answer.
 
@@ -2528,6 +2551,11 @@ def refine_reconstruction(
     ``curve_start``).  That fit has local minima, so its start must be good, while the bundle
     itself starts well from a coarser curve (``curve.stage``: section 4's 60-sample curve of
     the branch search for the bundle, its full reconstruction made here only when needed).
+
+    ``start_for(rotations, translations)``: a start curve (frame 0's camera coordinates) for
+    other poses, for the bundle from frame 0's other pose branch
+    (``CurveOptions.frame0_branch_dchi2``); None, or a None result: ``curve_start`` turned with
+    frame 0.
     """
     from dataclasses import replace
 
@@ -2564,10 +2592,13 @@ def refine_reconstruction(
         made = fixed_start() if fixed_start is not None else None
         return np.asarray(curve_start if made is None else made, float)
 
+    flipped_start: dict = {}
+
     def frame0_other_branch():
         """(rotations, translations, start curve) with frame 0 on its other pose branch, the
-        start curve turned with it (X_cam = R_0 X_curve + t_0), or None when that branch's
-        end-point chi2 is more than ``o.frame0_branch_dchi2`` above frame 0's own."""
+        start curve that of those poses (``start_for``; else the start curve turned with frame
+        0, X_cam = R_0 X_curve + t_0), or None when that branch's end-point chi2 is more than
+        ``o.frame0_branch_dchi2`` above frame 0's own."""
         if (
             rec.branch_alternatives is None
             or rec.branch_alternative_chi2 is None
@@ -2581,11 +2612,25 @@ def refine_reconstruction(
         poses = np.array(rec.poses, float)
         poses[0] = rec.branch_alternatives[0]
         rot, tra = pose_rotations(poses), pose_translations(poses)
-        r0, t0 = rec.rotations()[0], rec.translations()[0]
-        start = (np.asarray(curve_start, float) - t0) @ r0 @ rot[0].T + tra[0]
-        return rot, tra, start
+        if "start" not in flipped_start:
+            # the curve of the flipped poses themselves where it can be made: the start curve
+            # turned with frame 0 keeps the other frames' view of it, and its bundle went back
+            # to the first start's poses (sharp-ends seed 9105, 1 px, 12 frames: other branch
+            # at chi2 + 7.8, stopped as a retrace, curve3d 7.1 % of its length off; from the
+            # flipped poses' own section-4 curve cost 1882.9 against 1884.5, 0.2 % off)
+            made = start_for(rot, tra) if start_for is not None else None
+            if made is None:
+                r0, t0 = rec.rotations()[0], rec.translations()[0]
+                made = (np.asarray(curve_start, float) - t0) @ r0 @ rot[0].T + tra[0]
+            flipped_start["start"] = np.asarray(made, float)
+        return rot, tra, flipped_start["start"]
+
+    # every completed start of the last run: the minima the answer's competes with
+    # (CurveOptions.rival_minima_std)
+    tried: list[BundleResult] = []
 
     def run(mask=None):
+        tried.clear()
         if flat:
             # no curve to start from: frame 0's polyline at depth 0, every pose searched
             br = bundle_from_frame(
@@ -2595,6 +2640,7 @@ def refine_reconstruction(
             br = bundle_adjust(
                 curves, rec.rotations(), rec.translations(), curve_start, polyline_mask=mask, **kw
             )
+            tried.append(br)
             flipped = frame0_other_branch()
             if flipped is not None:
                 # frame 0's other branch (CurveOptions.frame0_branch_dchi2): the lower cost wins
@@ -2607,8 +2653,12 @@ def refine_reconstruction(
                     twin_m=br.coarse_m,
                     twin_deg=o.frame0_branch_same_deg,
                     twin_iter=o.frame0_branch_first_iter,
+                    twin_cost=br.coarse_cost,
+                    twin_cost_ratio=o.restart_coarse_cost_ratio,
                     **kw,
                 )
+                if not other.stopped:
+                    tried.append(other)
                 if not other.stopped and other.cost < br.cost:
                     br = other
         if _restart(br.rms if mask is None else br.rms[mask], br.sigma) and not flat:
@@ -2617,6 +2667,7 @@ def refine_reconstruction(
             other = bundle_from_frame(
                 curves, rec.rotations(), rec.translations(), 0, polyline_mask=mask, **kw
             )
+            tried.append(other)
             if other.cost < br.cost:
                 br = other
         # still uneven or off: flat starts from other frames (each reference frame's polyline
@@ -2629,12 +2680,14 @@ def refine_reconstruction(
             other = bundle_from_frame(
                 curves, rec.rotations(), rec.translations(), ref, polyline_mask=mask, **kw
             )
+            tried.append(other)
             if other.cost < br.cost:
                 br = other
         return br
 
     w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / np.radians(tangent_sigma_deg)] * 2)
     inl = np.asarray(rec.inliers, bool)
+
     s2 = chi2_ep = None
     # the end-point fit's degrees of freedom: one per inlier frame (6 measurements, 5 pose
     # parameters) less the 4 of the shape
@@ -2911,6 +2964,32 @@ def refine_reconstruction(
     std = _shape_std(br, k, cov)
     stds = curve_point_std(prob, br.control, br.m, br.b, u_out, cov=cov)
     point_std, normal_std = (None, None) if stds is None else stds
+    rival = min((r for r in tried if r is not br), key=lambda r: r.cost, default=None)
+    if o.rival_minima_std and use_given and rival is not None:
+        # another start ended in another minimum about as low (CurveOptions.rival_minima_std):
+        # the data leave the two open, and the answer's RMS error includes the gap to the
+        # rival weighted by its probability p = 1 / (1 + exp(dcost / 2))
+        p_rival = 1.0 / (1.0 + np.exp(min(0.5 * (rival.cost - br.cost), 700.0)))
+        # up to the mirror image (depth negated: the same answer, an exact symmetry)
+        other = rival.curve_points(400)
+        gap = min(
+            (pl.distance_to_polyline(pts, q)[0] for q in (other, other * [1.0, 1.0, -1.0])),
+            key=lambda g: float(np.mean(g)),
+        )
+        r_shape = normalise(*shape_and_poses(rival)[:2])[0]
+        diff = np.asarray(r_shape, float) - np.asarray(shape_n, float)
+        diff[3] = (diff[3] + np.pi) % (2.0 * np.pi) - np.pi
+        if std is not None:
+            std = np.sqrt(std**2 + p_rival * diff**2)
+        if normal_std is not None:
+            normal_std = np.sqrt(normal_std**2 + p_rival * gap**2)
+            point_std = np.sqrt(point_std**2 + p_rival * gap**2)
+        if p_rival >= o.rival_warning_probability:
+            warnings.append(
+                f"another minimum of the curve bundle fits about as well (cost "
+                f"{rival.cost - br.cost:+.1f}, probability {p_rival:.2f}; its curve up to "
+                f"{float(np.max(gap)):.1f} px away): the std include the gap"
+            )
     limit = o.flag_rms_sigma * br.sigma + o.flag_rms_px
     bad = [int(i) for i in np.flatnonzero((br.rms > limit) & mask)]
     if bad:

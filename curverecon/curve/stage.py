@@ -129,6 +129,18 @@ def fit_curve(
             except CurveReconError:
                 return coarse_points
 
+    coarse = functools.partial(
+        reconstruct_curve, n_samples=o.search_samples, smooth=False, tangents=_ANY_TANGENTS
+    )
+    sub = subset_frames(n, o.curve_search_max_frames)
+
+    def start_for(rot: np.ndarray, tra: np.ndarray) -> np.ndarray | None:
+        """The branch search's coarse section-4 curve for other poses (on its frames)."""
+        try:
+            return coarse([obs.curves[i] for i in sub], rot[sub], tra[sub]).points
+        except CurveReconError:
+            return None
+
     rec, curve3d, info = refine_reconstruction(
         rec,
         obs,
@@ -141,6 +153,7 @@ def fit_curve(
         options=o,
         curve_frames=subset_frames(n, o.curve_search_max_frames) if fixed else None,
         fixed_start=fixed_start,
+        start_for=start_for,
     )
     return replace(rec, curve3d=curve3d, curve_bundle=info, warnings=list(rec.warnings) + warnings)
 
