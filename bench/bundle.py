@@ -123,7 +123,7 @@ def worst_angle_deg(shape: np.ndarray, truth: np.ndarray) -> float:
     return float(np.degrees(max(d.max(), p)))
 
 
-def _case(task: tuple) -> dict:
+def case(task: tuple) -> dict:
     """One scene of one measure (runs in a worker)."""
     warnings.filterwarnings("ignore")
     from bench.curve_end_to_end import curve_error, curve_error_up_to_rotation
@@ -248,7 +248,7 @@ def run(quick: bool = False) -> dict:
     if not quick:  # the long scenes first: they take longest
         tasks = [("time_1000", fam, SEED0 + 500) for fam in TIME_1000_FAMILIES] + tasks
     with get_context("fork").Pool(WORKERS) as pool:
-        results = pool.map(_case, tasks, chunksize=1)
+        results = pool.map(case, tasks, chunksize=1)
 
     def of(kind: str) -> list[dict]:
         return [r for r in results if r["kind"] == kind]

@@ -15,6 +15,13 @@ error (bias) and the spread of the errors over the draws, both in units of the m
 std, and the fraction of draws beyond 3 std; draws whose bundle the never-worse test refused
 are left out of the bias and spread (their std is the widened end-point one).
 
+``python -m bench.std_coverage curve SEED_FROM SEED_TO``: the bundle section's never_worse case
+itself (``bench.bundle``, on 2 workers) for every family and seed in the range; prints the
+fraction of ``curve3d`` points within 3 ``curve3d_normal_std`` of the true curve (the bench's
+``curve3d_normal_std_coverage_3sigma``) and their RMS |distance| / std, the shape's
+``std_coverage_3sigma``, and the scenes with the most points beyond.  Scenes whose run without
+the bundle is refused are left out, as in the bench.
+
 Findings (2026-11-27, at commit 720ca49; /tmp scripts beside this module for the parts that need
 the bundle's internals):
 
@@ -132,6 +139,35 @@ def scan(seeds: range) -> np.ndarray:
     return np.array(rows)
 
 
+def curve_scan(seeds: range) -> dict:
+    """The never_worse case of ``bench.bundle`` on every family and seed: the ``curve3d`` and
+    shape coverage over the scenes (those whose run without the bundle is refused left out)."""
+    from multiprocessing import get_context
+
+    from bench.bundle import WORKERS, case
+
+    tasks = [("never_worse", family, seed) for seed in seeds for family in FAMILIES]
+    with get_context("fork").Pool(WORKERS) as pool:
+        rows = [r for r in pool.map(case, tasks, chunksize=1) if "error" not in r]
+    zn = np.array([v for r in rows for v in r.get("curve_zn", [])])
+    z = np.array([v for r in rows for v in r["z_with"]])
+    worst = sorted(
+        (
+            (float(np.mean(np.array(r.get("curve_zn", [0.0])) >= 3.0)), r["family"], r["seed"])
+            for r in rows
+        ),
+        reverse=True,
+    )
+    return {
+        "scenes": len(rows),
+        "refused_without": len(tasks) - len(rows),
+        "curve_coverage": float(np.mean(zn < 3.0)),
+        "curve_z_rms": float(np.sqrt(np.mean(zn * zn))),
+        "shape_coverage": float(np.mean(z < 3.0)),
+        "worst": [w for w in worst[:5] if w[0] > 0.0],
+    }
+
+
 def draws(family: str, seed: int, count: int) -> dict:
     """Bias and spread over ``count`` noise draws of one geometry (units of the median std)."""
     sc = make_scene(
@@ -164,6 +200,15 @@ if __name__ == "__main__":
             f"above); RMS per parameter {np.round(np.sqrt(np.mean(z * z, axis=0)), 3)}; "
             f"cpu {time.process_time() - t0:.0f} s"
         )
+    elif sys.argv[1:2] == ["curve"]:
+        out = curve_scan(range(int(sys.argv[2]), int(sys.argv[3])))
+        print(
+            f"scenes {out['scenes']} ({out['refused_without']} left out): curve3d within 3 "
+            f"normal std {out['curve_coverage']:.4f} (RMS z {out['curve_z_rms']:.3f}); shape "
+            f"|error|/std < 3 {out['shape_coverage']:.4f}"
+        )
+        for frac, family, seed in out["worst"]:
+            print(f"  {family} {seed}: {100 * frac:.1f} % of its points beyond 3 std")
     elif sys.argv[1:2] == ["draws"]:
         out = draws(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]))
         print(f"accepted {out['accepted']} of {sys.argv[4]} draws")
