@@ -2496,6 +2496,17 @@ def polylines_reject_fixed_poses(
     return tail < 1.0 - level, tail
 
 
+def _gap_to_curve(points: np.ndarray, other: BundleResult) -> np.ndarray:
+    """Each point's distance (input units) from ``other``'s curve or its mirror image (depth
+    negated: the same answer, an exact symmetry of orthographic views), whichever is nearer
+    on average."""
+    curve = other.curve_points(400)
+    return min(
+        (pl.distance_to_polyline(points, q)[0] for q in (curve, curve * [1.0, 1.0, -1.0])),
+        key=lambda g: float(np.mean(g)),
+    )
+
+
 def refine_reconstruction(
     rec,
     obs,
@@ -2923,11 +2934,7 @@ def refine_reconstruction(
             # fixed-pose curve's std is the curve's alone given the end-point answer's poses,
             # which the refusal says are off (clothoid seed 1201, 1 px, 12 frames, a refused
             # noise draw: the curve 1.7 % of its length off, its std across the curve 0.04 %)
-            other = br.curve_points(400)
-            gap = min(
-                (pl.distance_to_polyline(curve3d, q)[0] for q in (other, other * [1.0, 1.0, -1.0])),
-                key=lambda g: float(np.mean(g)),
-            )
+            gap = _gap_to_curve(curve3d, br)
             out = replace(
                 out,
                 curve3d_std=np.sqrt(out.curve3d_std**2 + gap**2),
@@ -2970,12 +2977,7 @@ def refine_reconstruction(
         # the data leave the two open, and the answer's RMS error includes the gap to the
         # rival weighted by its probability p = 1 / (1 + exp(dcost / 2))
         p_rival = 1.0 / (1.0 + np.exp(min(0.5 * (rival.cost - br.cost), 700.0)))
-        # up to the mirror image (depth negated: the same answer, an exact symmetry)
-        other = rival.curve_points(400)
-        gap = min(
-            (pl.distance_to_polyline(pts, q)[0] for q in (other, other * [1.0, 1.0, -1.0])),
-            key=lambda g: float(np.mean(g)),
-        )
+        gap = _gap_to_curve(pts, rival)
         r_shape = normalise(*shape_and_poses(rival)[:2])[0]
         diff = np.asarray(r_shape, float) - np.asarray(shape_n, float)
         diff[3] = (diff[3] + np.pi) % (2.0 * np.pi) - np.pi
