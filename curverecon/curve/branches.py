@@ -61,7 +61,7 @@ def resolve_branches_with_curves(
         (reconstruction, curve result) - the input reconstruction if nothing changed.
     """
     o = o or CurveOptions()
-    search = _coarse(reconstruct_curve, o)
+    search = coarse_search(reconstruct_curve, o)
     limited = _limited(search)
     if not full:
         # the search's results stand for the reconstruction's (the same poses, coarser)
@@ -202,7 +202,7 @@ def _limited(search):
     return run
 
 
-def _coarse(reconstruct_curve, o: CurveOptions):
+def coarse_search(reconstruct_curve, o: CurveOptions):
     """A cheaper variant of ``reconstruct_curve`` for the branch search (fewer samples, no
     smoothing, fixed dummy end tangents so that the coplanarity check - irrelevant to
     ``frame_residual`` - does not estimate them from every polyline) when it accepts those
@@ -275,7 +275,7 @@ def refit_branches_with_curves(
         return rec, res
     ps, ts = float(point_sigma), math.radians(tangent_sigma_deg)
     w8 = np.array([1 / ps] * 4 + [1 / ts] * 2)
-    search = _limited(_coarse(reconstruct_curve, o))
+    search = _limited(coarse_search(reconstruct_curve, o))
     n = obs.n_frames
 
     def total(poses: np.ndarray, limit: float = np.inf) -> float:

@@ -2698,7 +2698,6 @@ def refine_reconstruction(
 
     w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / np.radians(tangent_sigma_deg)] * 2)
     inl = np.asarray(rec.inliers, bool)
-
     s2 = chi2_ep = None
     # the end-point fit's degrees of freedom: one per inlier frame (6 measurements, 5 pose
     # parameters) less the 4 of the shape

@@ -22,7 +22,11 @@ from dataclasses import replace
 import numpy as np
 
 from curverecon.curve import section4
-from curverecon.curve.branches import refit_branches_with_curves, resolve_branches_with_curves
+from curverecon.curve.branches import (
+    coarse_search,
+    refit_branches_with_curves,
+    resolve_branches_with_curves,
+)
 from curverecon.curve.bundle import refine_reconstruction
 from curverecon.curve.polyline import end_tangents
 from curverecon.errors import CurveReconError
@@ -129,9 +133,7 @@ def fit_curve(
             except CurveReconError:
                 return coarse_points
 
-    coarse = functools.partial(
-        reconstruct_curve, n_samples=o.search_samples, smooth=False, tangents=_ANY_TANGENTS
-    )
+    coarse = coarse_search(reconstruct_curve, o)
     sub = subset_frames(n, o.curve_search_max_frames)
 
     def start_for(rot: np.ndarray, tra: np.ndarray) -> np.ndarray | None:
@@ -151,7 +153,7 @@ def fit_curve(
         # curve3d's samples: section 4's default number (its start may be the coarser search's)
         n_out=None if res is None else section4.default_samples(obs.curves[0]),
         options=o,
-        curve_frames=subset_frames(n, o.curve_search_max_frames) if fixed else None,
+        curve_frames=sub if fixed else None,
         fixed_start=fixed_start,
         start_for=start_for,
     )
