@@ -74,3 +74,18 @@ def test_the_bundle_section_reports_every_key_the_issue_and_readme_read():
         "curve3d_normal_std_coverage_3sigma",
     }
     assert need <= keys, need - keys
+
+
+def test_a_scene_refused_without_polylines_still_counts_for_the_coverages():
+    """Helix 9114 (1 px, 12 frames): without polylines section 4 cannot place the curve on the
+    end-point answer's poses (refused); with them the bundle answers.  The never-worse case keeps
+    the answer with polylines (its shape and ``curve3d`` scored on its own std) and marks the
+    scene as having no pair, instead of dropping it from the coverages."""
+    from bench.bundle import case
+
+    out = case(("never_worse", "helix", 9114))
+    assert "error" not in out, out.get("error")
+    assert "section 4" in out["off_refused"]
+    assert "e_with" not in out and "e_without" not in out  # no pair to compare
+    assert len(out["z_with"]) == 4 and np.all(np.isfinite(out["z_with"]))
+    assert len(out["curve_zn"]) > 10 and np.all(np.isfinite(out["curve_zn"]))
