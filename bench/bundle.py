@@ -244,6 +244,14 @@ def case(task: tuple) -> dict:
     return out
 
 
+def time_ratio(rows: list[dict]) -> float | None:
+    """Median CPU time with polylines over the median without, of timed cases (2 decimals)."""
+    if not rows:
+        return None
+    ratio = np.median([r["with_s"] for r in rows]) / np.median([r["without_s"] for r in rows])
+    return round(float(ratio), 2)
+
+
 def run(quick: bool = False) -> dict:
     from curverecon.curve_families import FAMILIES
 
@@ -355,28 +363,12 @@ def run(quick: bool = False) -> dict:
         "polylines_only_angles_within_1deg_rate_truth_start": round(
             float(np.mean([r.get("angle_deg_truth_start", np.inf) < 1.0 for r in po])), 3
         ),
-        "bundle_time_ratio_20_frames": round(
-            float(np.median([r["with_s"] for r in tm]) / np.median([r["without_s"] for r in tm])),
-            2,
-        )
-        if tm
-        else None,
+        "bundle_time_ratio_20_frames": time_ratio(tm),
         "bundle_time_ratio_20_frames_by_seed": {
-            str(seed): round(
-                float(
-                    np.median([r["with_s"] for r in tm if r["seed"] == seed])
-                    / np.median([r["without_s"] for r in tm if r["seed"] == seed])
-                ),
-                2,
-            )
+            str(seed): time_ratio([r for r in tm if r["seed"] == seed])
             for seed in sorted({r["seed"] for r in tm})
         },
-        "bundle_time_ratio_1000_frames": round(
-            float(np.median([r["with_s"] for r in tk]) / np.median([r["without_s"] for r in tk])),
-            2,
-        )
-        if tk
-        else None,
+        "bundle_time_ratio_1000_frames": time_ratio(tk),
         "bundle_time_1000_frames_s": {
             "with_median": round(float(np.median([r["with_s"] for r in tk])), 2),
             "without_median": round(float(np.median([r["without_s"] for r in tk])), 2),
