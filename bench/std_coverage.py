@@ -1,4 +1,4 @@
-"""The curve bundle's shape std on more scenes than the bench's (issue 13, item 5; not part of
+"""The curve bundle's shape std on more scenes than the bench's (not part of
 ``make bench``).
 
 ``python -m bench.std_coverage scan SEED_FROM SEED_TO``: the scenes of the bundle section's
