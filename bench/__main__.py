@@ -304,10 +304,10 @@ def run_section(name: str, quick: bool) -> dict[str, Any]:
 
 def merge_section(out: Path, name: str, result: dict[str, Any]) -> None:
     """Add a section's keys to ``report.json`` (the others kept) and its table to REPORT.md,
-    and rewrite REPORT.md's "Issue targets" table (``bench.issue_targets``) from the merged keys."""
+    and rewrite REPORT.md's targets table (``bench.targets``) from the merged keys."""
     import json
 
-    from bench import issue_targets
+    from bench import targets
 
     out.mkdir(parents=True, exist_ok=True)
     path = out / "report.json"
@@ -318,7 +318,7 @@ def merge_section(out: Path, name: str, result: dict[str, Any]) -> None:
     md = out / "REPORT.md"
     text = md.read_text() if md.exists() else "# Benchmark report\n"
     head, *parts = text.split("\n## Section: ")
-    head = head.split("\n## Issue targets")[0]  # rewritten below from the merged keys
+    head = head.split(f"\n## {targets.TITLE}")[0]  # rewritten below from the merged keys
     kept = {p.split("\n", 1)[0]: p for p in parts}
     # a multi-line value (a failing test's output) goes below the table, in a code block
     long = {k: v for k, v in result.items() if isinstance(v, str) and "\n" in v}
@@ -328,8 +328,8 @@ def merge_section(out: Path, name: str, result: dict[str, Any]) -> None:
     blocks = "".join(f"\n`{k}`:\n\n```\n{v.strip()}\n```\n" for k, v in sorted(long.items()))
     kept[name] = f"{name}\n\n| key | value |\n|---|---|\n{rows}\n{blocks}"
     body = "".join(f"\n## Section: {kept[k].rstrip()}\n" for k in sorted(kept))
-    targets = issue_targets.markdown(doc)
-    md.write_text(head.rstrip("\n") + "\n\n" + targets + body)
+    table = targets.markdown(doc)
+    md.write_text(head.rstrip("\n") + "\n\n" + table + body)
     _log(f"merged section {name} into {path}")
 
 

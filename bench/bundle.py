@@ -1,4 +1,4 @@
-"""Bench section ``bundle`` (issue 13): the curve bundle on every curve family.
+"""Bench section ``bundle``: the curve bundle on every curve family.
 
 ``python -m bench --only bundle [--quick]`` (or ``python -m bench.bundle [--quick]``).
 
@@ -14,7 +14,7 @@ code), seeds from 1000 on (not the seeds the defaults were tuned on, 0-30).  Mea
   ``bundle_curve_within_half_percent_rate_by_family`` the fraction within 0.5 % of the length;
   ``..._up_to_rotation`` the same after the rotation about A that lays ``curve3d`` best on the
   true curve (``bench.curve_end_to_end.curve_error_up_to_rotation``: frame 0's tilt, which
-  only frame 0's own view measures, taken out; a diagnostic, not the issue's target);
+  only frame 0's own view measures, taken out; a diagnostic, not the target);
   ``..._truth_start`` the same with the bundle started at the true curve and poses (an oracle:
   the maximum-likelihood fit near the truth, :func:`truth_start_bundle`; where it misses,
   the data do not determine the curve that well, whatever the start or search).
@@ -24,8 +24,8 @@ code), seeds from 1000 on (not the seeds the defaults were tuned on, 0-30).  Mea
   (one std of the answer without polylines: the noise of the comparison).  The paired
   comparison: ``bundle_paired_worst_angle_deg`` (median worst-angle error with / without).
   A scene whose run without polylines is refused has no pair: it is left out of the rate and
-  counted in ``bundle_never_worse_without_refused``, and still scored below (until
-  2026-11-28 it was left out of the coverages too); one whose run with polylines is refused
+  counted in ``bundle_never_worse_without_refused``, and still scored below; one whose run
+  with polylines is refused
   is counted in ``bundle_never_worse_with_refused``.
 - ``std_coverage_3sigma``: the same scenes with polylines, fraction of (scene, parameter) pairs
   with |error| / std < 3 (the std the answer reports); ``curve3d_std_coverage_3sigma``: fraction
@@ -42,9 +42,8 @@ code), seeds from 1000 on (not the seeds the defaults were tuned on, 0-30).  Mea
 - ``bundle_time_ratio_20_frames``: 1 px, 20 frames: median over scenes of the reconstruction's
   CPU time with polylines over the median time of the same frames without polylines (each run
   timed after a garbage collection, so that neither pays for the other's garbage); the scenes:
-  every family at seeds 1400-1403 (until 2026-11-28 at 1400 alone, one scene a family: the
-  same ratio over one seed's six scenes ran from 1.8 to 4.0 on seeds 1400-2600,
-  docs/accuracy.md 2026-11-28); ``bundle_time_ratio_20_frames_by_seed`` the ratio per seed.
+  every family at seeds 1400-1403 (the ratio over one seed's six scenes runs from 1.8 to 4.0
+  on seeds 1400-2600); ``bundle_time_ratio_20_frames_by_seed`` the ratio per seed.
   ``bundle_time_ratio_1000_frames``: the same at 1,000 frames (1 px, 1 degree), median over
   ``TIME_1000_FAMILIES`` scenes (seeds 1500 on).  From ``CurveOptions.bundle_max_frames`` (200)
   frames on, the branch choice by the curve and the start curve work on

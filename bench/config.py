@@ -20,7 +20,7 @@ class Config:
     workers: int = 2
     budget_s: float = 620.0
     """Wall-clock budget of the main sections (seconds): 620 since the ``outliers`` section
-    (issue 12's random-tangent outlier scenes, about 4.5 minutes on two processes) joined the
+    (the random-tangent outlier scenes, about 4.5 minutes on two processes) joined the
     added sections, with the robustness rows cut from 100 to 50 scenes a fraction (about 180 s
     of the two workers' time), so that the other groups keep about the CPU time they had and
     ``make bench`` stays under 30 minutes (27.1 minutes at 800 s before the section; 800 since
@@ -43,7 +43,7 @@ class Config:
     # robustness (default pipeline at the headline cell, with outlier frames)
     outlier_fractions: tuple[float, ...] = (0.1, 0.3)
     robustness_scenes: int = 50
-    """Scenes per outlier fraction (15-40 degree tangent errors; the issue names no count and
+    """Scenes per outlier fraction (15-40 degree tangent errors; the target names no count and
     measures its keys on random tangents, ``bench.outliers``).  50 since that section joined
     (100 before, 2.65 s and 4.46 s a scene at 10 % and 30 %): success rates to about 6 %
     standard error near 80 %."""

@@ -1,4 +1,4 @@
-"""Curve accuracy end to end through the command (issue 4's figures; not part of `make bench`).
+"""Curve accuracy end to end through the command (not part of `make bench`).
 
 Usage: ``python -m bench.curve_end_to_end FRAMES NOISE full|poly SEED_FROM SEED_TO [-v] [ARGS]``
 

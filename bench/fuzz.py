@@ -1,4 +1,4 @@
-"""Fuzzing figures for ``make bench`` (issue 16): how many inputs the property-based tests fed to
+"""Fuzzing figures for ``make bench``: how many inputs the property-based tests fed to
 the command, and how many ended in a traceback (must be 0).
 
 Runs ``tests/test_fuzz.py`` under the "fuzz" hypothesis profile (randomised; ``--quick``: the

@@ -1,4 +1,4 @@
-"""The complete minimal solver for ``make bench`` (issue 12): ``python -m bench --only minimal``.
+"""The complete minimal solver for ``make bench``: ``python -m bench --only minimal``.
 
 Noise-free four-frame scenes from ``curverecon.simulate.make_scene`` (a random cubic curve and
 random free motion: uniformly random rotations; its alpha, beta, phi are whatever the curve
@@ -6,7 +6,7 @@ gives, not drawn from fixed ranges).  Two seed ranges: 0-19, the scenes the trac
 schedule was tuned on, and fresh ones from 500,000 on, never looked at while building the solver
 (seeds 100,000-100,045, 200,000-200,030 and 300,000-300,100 were diagnosed while replacing the
 squared lean system by the unsquared one, so they are not fresh any more).  The ``minimal_*``
-figures are over the fresh scenes inside the issue's ranges (alpha, beta in 5-85 degrees, phi in
+figures are over the fresh scenes inside the target's ranges (alpha, beta in 5-85 degrees, phi in
 5-175 degrees); ``minimal_truth_listed_rate_all_scenes`` counts every fresh scene.  Each scene:
 
 * ``solvers.minimal.solve``: is the truth among the real solutions (1e-6 relative in c, 1e-6
@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 FRESH = 500_000
 """First seed of the scenes never used while tuning."""
 RANGES_DEG = ((5.0, 85.0), (5.0, 85.0), (5.0, 175.0))
-"""The issue's scene ranges of alpha, beta, phi (degrees)."""
+"""The target's scene ranges of alpha, beta, phi (degrees)."""
 
 
 def _truth(scene) -> np.ndarray:  # type: ignore[no-untyped-def]
@@ -133,7 +133,7 @@ WORKERS = 2
 """Processes (one core each; every time is one process's, one BLAS thread): the fresh scenes
 are split between them by seed parity."""
 REQUIRED = 3000
-"""In-range fresh scenes the issue asks ``minimal_truth_listed_rate`` over."""
+"""In-range fresh scenes the target asks ``minimal_truth_listed_rate`` over."""
 BUDGET_S = 330.0
 """Seconds for the fresh scenes (each worker; a sixth of it for the tuned ones on one core, a
 fifth for the pipeline's): about 7 minutes in all.  At 0.17 s a solve the two workers reach

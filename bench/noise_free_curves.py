@@ -1,4 +1,4 @@
-"""Noise-free curve survey (issue 13, item 1): ``curve3d`` error per curve family.
+"""Noise-free curve survey: ``curve3d`` error per curve family.
 
 ``python -m bench.noise_free_curves FRAMES SEED0 COUNT [family,family,...]`` (pin it to one
 core: ``taskset -c 0``).  Not a ``make bench`` section: the scenes behind the figures of

@@ -1,10 +1,10 @@
-"""Issue 12's outlier keys: ``python -m bench --only outliers`` (or ``python -m bench.outliers``).
+"""The outlier keys: ``python -m bench --only outliers`` (or ``python -m bench.outliers``).
 
 ``success_rate_10pct_outliers`` and ``success_rate_30pct_outliers``: the default pipeline,
 without the truth, on the headline cell's scenes (20 frames, 1 px point noise, 1 degree tangent
 noise, chord 100-300 px) where 10 % or 30 % of the frames are outliers whose two tangent
 directions are replaced by independent uniformly random directions (the simulator's
-``outlier_model="random"``; issue 12 item 5).  Success as everywhere in the bench: worst angle
+``outlier_model="random"``).  Success as everywhere in the bench: worst angle
 error of alpha, beta, phi below ``bench.common.SUCCESS_DEG`` (5 degrees).  The per-scene work
 is ``bench.robustness.run_scenes`` (the main sections' robustness rows use the other model, 15-40
 degree errors, under ``report.json["robustness"]``); scenes come from spawn keys

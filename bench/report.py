@@ -155,13 +155,13 @@ def headline(cfg: Config, sections: dict[str, Any]) -> dict[str, Any]:
         "rmse_over_crlb_by_parameter": d["ratio"] if d and d.get("ratio") else None,
         "headline_scenes": d["n"] if d else 0,
         "success_rate_no_truth": success,
-        # issue 12: with exactly four frames the answer is the list of every real solution
+        # with exactly four frames the answer is the list of every real solution
         # (``alternatives``, with a warning that four frames cannot choose), so a four-frame
         # scene fails when the truth is not listed; from five frames on the answer itself must
-        # be the truth.  The first-answer-only rate of earlier reports stays beside it.
+        # be the truth.  The first-answer-only rate stays beside it.
         "noise_free_failure_rate": stab_all.get("failure_rate_four_frames_listed"),
         "noise_free_failure_rate_first_answer": stab_all.get("failure_rate"),
-        # the issue's key: over the 4-, 5- and 6-frame scenes together (truth among the
+        # the target's key: over the 4-, 5- and 6-frame scenes together (truth among the
         # answer and its alternatives to the threshold), weighted by their numbers
         "noise_free_truth_not_listed_rate": pooled_rate(
             sections["stability"]["default"], "failure_rate_truth_not_listed"

@@ -1,4 +1,4 @@
-"""Size figures for ``make bench`` (issue 16): reconstruction time and peak memory against the
+"""Size figures for ``make bench``: reconstruction time and peak memory against the
 number of frames, and a frame whose polyline has 2,000,000 points.
 
 Each case runs in a child process (``python -m bench.scale --case ...``), so that its peak
@@ -134,7 +134,7 @@ def run(quick: bool = False) -> dict:
         return {**{k: round(v[k], 2) for k in keys}, "error_std": v["error_std"]}
 
     return {
-        # issue 12's key: one whole reconstruction of 10,000 frames (seed 2), target 3 s
+        # the target's key: one whole reconstruction of 10,000 frames (seed 2), target 3 s
         "reconstruct_seconds_10000_frames": round(table[10_000]["seconds"], 2)
         if 10_000 in table
         else None,

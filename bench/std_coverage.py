@@ -1,4 +1,4 @@
-"""The curve bundle's shape std on more scenes than the bench's (issue 13, item 5; not part of
+"""The curve bundle's shape std on more scenes than the bench's (not part of
 ``make bench``).
 
 ``python -m bench.std_coverage scan SEED_FROM SEED_TO``: the scenes of the bundle section's
@@ -22,8 +22,8 @@ fraction of ``curve3d`` points within 3 ``curve3d_normal_std`` of the true curve
 ``std_coverage_3sigma``, and the scenes with the most points beyond.  Scenes whose run without
 the bundle is refused count (they have no pair for the never-worse rate only), as in the bench.
 
-Findings (2026-11-27, at commit 720ca49; /tmp scripts beside this module for the parts that need
-the bundle's internals):
+Findings at commit 720ca49 (helper scripts beside this module for the parts that need the
+bundle's internals):
 
 - Coverage of |error| / std < 3: bench seeds 1200-1203 0.979 (2 of 96: bezier 1201 c 3.53,
   random 1202 beta 3.92), 1204-1207 0.990 (1 of 96), so 1200-1207 0.984 (3 of 192); tuning
@@ -54,7 +54,7 @@ the bundle's internals):
   the truth, c and beta 3.6 and 4.3 std off): the end-point answer had alternatives, so the
   curve decided, and frame 9 fitted at 1.47 sigma RMS, just under the restart level (1.53).
 
-Later (2026-11-27, after commit b728435):
+From commit b728435 on:
 
 - The never-worse gate now also applies where the end-point answer has equally good
   alternatives, from the least chi2 of the answer and its alternatives

@@ -1,4 +1,4 @@
-"""The ``trace`` section of ``make bench`` (issue 14): images to observations to the 3-D curve.
+"""The ``trace`` section of ``make bench``: images to observations to the 3-D curve.
 
 Sequences: ``curverecon.trace.render.tumbling_scene`` (16 frames of 384 px, a curve of the
 families bezier, helix, wave in turn, 25 degrees of rotation a frame) drawn by

@@ -1,4 +1,4 @@
-"""The minimal problem: four frames, every solution (issue 12), as an unsquared system.
+"""The minimal problem: four frames, every solution, as an unsquared system.
 
 Four frames give four lean equations (``derivations.lean``, NOTES item 4) in the four unknowns
 (c, tan(alpha), tan(beta), cos(phi)).  This module turns them into the system the runtime's
@@ -37,7 +37,7 @@ Reduction (each step a fact checked below, on the lean polynomial's terms):
    (c' near c), and there the lean system's Jacobian at the truth is singular to 1e-9 relative
    and paths merged or stalled.  The unsquared system is regular there (its derivative in s_i
    is cp_i O~_i): on fresh noise-free scenes it lists the truth where the lean system did not
-   (README, "Four frames: the complete minimal solver").  Its equations are also of lower
+   (docs/accuracy.md, "Four frames: the complete minimal solver").  Its equations are also of lower
    degree (C^2 and degree 1 in A, B, P, m, against C^4 A^2 B^2 P^2), so a step costs less.
 
 The start system: random complex parameters (cp_i, dp_i, ep_i) for the four frames (seeded).
@@ -387,7 +387,7 @@ def minimal_system() -> PolynomialSystem:
         start_parameters=tuple(complex(z) for z in q0),
         start_solutions=tuple(tuple(complex(z) for z in row) for row in sols),
         doc=(
-            "The four-frame minimal problem (issue 12) in its unsquared form, reduced by the "
+            "The four-frame minimal problem in its unsquared form, reduced by the "
             "lean polynomial's symmetry: unknowns C = c^2, A = tan(alpha)^2, B = tan(beta)^2, "
             "P = cos(phi)^2, m = tan(alpha) tan(beta) cos(phi) (one unknown vector per orbit of "
             "four solutions in (tan alpha, tan beta, cos phi)) and per frame s_i = C tan(alpha) "

@@ -5,13 +5,13 @@
 # Template:   derivations/codegen/templates/module.py.jinja
 # SymPy:      1.14.0
 # -------------------------------------------------------------------------------------------------
-"""The four-frame minimal problem (issue 12) in its unsquared form, reduced by the lean
-polynomial's symmetry: unknowns C = c^2, A = tan(alpha)^2, B = tan(beta)^2, P = cos(phi)^2, m =
-tan(alpha) tan(beta) cos(phi) (one unknown vector per orbit of four solutions in (tan alpha, tan
-beta, cos phi)) and per frame s_i = C tan(alpha) tan(beta) sin(phi) sin(tau_i); parameters (cp,
-dp, ep) of each frame, all lengths divided by one common length.  START_SOLUTIONS are every
-solution at START_PARAMETERS, found by monodromy; curverecon.solvers.homotopy tracks them to any
-frames' parameters.
+"""The four-frame minimal problem in its unsquared form, reduced by the lean polynomial's symmetry:
+unknowns C = c^2, A = tan(alpha)^2, B = tan(beta)^2, P = cos(phi)^2, m = tan(alpha) tan(beta)
+cos(phi) (one unknown vector per orbit of four solutions in (tan alpha, tan beta, cos phi)) and
+per frame s_i = C tan(alpha) tan(beta) sin(phi) sin(tau_i); parameters (cp, dp, ep) of each
+frame, all lengths divided by one common length.  START_SOLUTIONS are every solution at
+START_PARAMETERS, found by monodromy; curverecon.solvers.homotopy tracks them to any frames'
+parameters.
 """
 
 from __future__ import annotations

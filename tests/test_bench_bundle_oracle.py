@@ -45,10 +45,10 @@ def test_bad_arguments_exit_2_with_one_line(argv, capsys):
     assert err[-1].startswith("python -m bench.bundle: error:")
 
 
-def test_the_bundle_section_reports_every_key_the_issue_and_readme_read():
+def test_the_bundle_section_reports_every_key_the_targets_and_readme_read():
     """The keys of ``bench.bundle.run``'s report, read from its source (running it takes minutes):
-    issue 13's named keys, and the paired comparison the README reads (a rename of a helper once
-    turned it into ``bundle_pairedworst_angle_deg`` unseen)."""
+    the curve bundle targets' named keys, and the paired comparison the README reads (a rename of
+    a helper once turned it into ``bundle_pairedworst_angle_deg`` unseen)."""
     import ast
     import inspect
 

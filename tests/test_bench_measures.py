@@ -110,15 +110,15 @@ def test_headline_tool_refuses_bad_arguments_in_one_line() -> None:
 
 
 def test_pooled_rate_weights_rows_by_their_scene_counts() -> None:
-    """The 4-, 5- and 6-frame rows pool into the issue's one rate by scene count (a plain mean
+    """The 4-, 5- and 6-frame rows pool into the target's one rate by scene count (a plain mean
     of the rates would weight 120 four-frame scenes like 432 six-frame ones)."""
     rows = [{"n": 120, "r": 0.0}, {"n": 40, "r": 0.25}, {"n": 432, "r": None}]
     assert pooled_rate(rows, "r") == 10 / 160
     assert pooled_rate([{"n": 3, "r": None}], "r") is None
 
 
-def test_outliers_section_reports_issue_12_keys_on_random_tangents() -> None:
-    """``python -m bench --only outliers``: the issue's two keys, measured on scenes whose
+def test_outliers_section_reports_the_outlier_keys_on_random_tangents() -> None:
+    """``python -m bench --only outliers``: the two outlier keys, measured on scenes whose
     outlier frames' tangents are random (2 and 6 of 20 frames), one scene each here."""
     from bench import outliers
 

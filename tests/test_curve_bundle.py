@@ -56,7 +56,7 @@ def test_recovers_from_perturbed_poses_and_a_flat_start():
 @pytest.mark.parametrize("seed", [5, 7])
 def test_lowers_the_curve_error_on_noisy_polylines(seed):
     """12 frames, 0.5 px on every polyline point, tangents from the polylines: the bundle's
-    curve is within 3 % of the length (the issue's target).  Not every scene: of seeds 0-29,
+    curve is within 3 % of the length (the target).  Not every scene: of seeds 0-29,
     8 and 18 end 7.7 % and 4.1 % off (``python -m bench.curve_end_to_end 12 0.5 poly 0 30 -v``,
     28 of 30 within 3 %)."""
     scene = make_scene(np.random.default_rng(seed), 12, 0.5, 0.5, with_curve=True)
@@ -240,7 +240,7 @@ def test_gauss_newton_floor_stop_agrees_with_a_tight_solve(monkeypatch):
     of the simulator's fourier curve (bench seed 1400, the scene the stop was tuned on) and a
     random curve of another seed.  The shapes agree within a tenth of their std; the curves
     within 0.3 of their std across the curve (median over the points): the cost is rough at the
-    floor and the fourier scene's final polish from the earlier stop settles 0.22 of that std
+    floor and the fourier scene's final polish from the floor stop settles 0.22 of that std
     (median; at most 0.46) from the tight solve's, the random scene's within 0.003."""
     import curverecon.curve.bundle as bd
 

@@ -1,4 +1,4 @@
-"""Noise-free frames with polylines give the exact shape and the 3-D curve (issue 13, item 1).
+"""Noise-free frames with polylines give the exact shape and the 3-D curve.
 
 Scenes: ``simulate.make_scene`` with every curve family (a 3-D curve built by
 ``curve_families``: a Bezier curve, curves from the Frenet equations, a Fourier series), moved

@@ -1,5 +1,5 @@
-"""The curve bundle does not keep a spline folded over itself (issue 13, item 5: honest
-curve3d uncertainty).
+"""The curve bundle does not keep a spline folded over itself (honest curve3d
+uncertainty).
 
 With each polyline point's foot the nearest point of the projected curve, a spline that runs
 forward, back and forward again along one stretch fits every polyline as well as the single

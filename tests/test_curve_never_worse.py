@@ -1,5 +1,5 @@
 """The curve bundle is never worse than the answer without polylines, and a polyline of
-another curve is flagged, not averaged in (issue 13, items 3 and 9).
+another curve is flagged, not averaged in.
 
 Scenes: ``simulate.make_scene`` with curve families built in 3-D (``curve_families``), 1 px on
 every image point and 1 degree on the tangents, end points and tangents given.  Shape error:
@@ -66,7 +66,7 @@ def test_a_polyline_of_another_curve_is_flagged_and_left_out():
 def test_reported_std_covers_the_errors():
     """1 px, 12 frames: the shape's errors are within 3 of its std, and the curve3d points'
     distances from the true curve (densely sampled, same random stream) within 3 of their
-    ``curve3d_std`` (honest uncertainty, issue 13 item 5)."""
+    ``curve3d_std`` (honest uncertainty)."""
     seed, family = 2, "clothoid"
     scene = make_scene(
         np.random.default_rng(seed), 12, 1.0, 1.0, with_curve=True, curve_family=family

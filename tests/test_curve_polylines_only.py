@@ -1,4 +1,4 @@
-"""Polylines only (issue 13, item 4): no A', B' or tangents given, the shape from the curve.
+"""Polylines only: no A', B' or tangents given, the shape from the curve.
 
 Scenes come from ``simulate.make_scene(..., with_curve=True)`` (3-D curves of
 ``curve_families`` moved and projected by the simulator); the frames keep only their

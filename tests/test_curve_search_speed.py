@@ -1,4 +1,4 @@
-"""The speed-ups of the branch search by the curve (issue 13, item 6) give the values of the
+"""The speed-ups of the branch search by the curve give the values of the
 constructions they replace: section 4's grid distances with pruned cells against a scan of all
 3 x 3 cells, its unbounded grid distances against a k-d tree, the median of the frame residuals
 without the far points' tree queries, the cache of validated polylines, and the duplicate joint

@@ -1,4 +1,4 @@
-"""The curve bundle's std of the shape is honest (issue 13, item 5).
+"""The curve bundle's std of the shape is honest.
 
 One scene (``simulate.make_scene``: a random 3-D curve of the ``random`` family moved and
 projected by the simulator, 12 frames, end points and tangents given) seen again under

@@ -255,7 +255,7 @@ def test_a_long_noisy_sequence_does_not_count_as_precise(monkeypatch) -> None:  
 
 
 def _random_outlier_scene(index: int, fraction: float, seed: int):  # type: ignore[no-untyped-def]
-    """20 frames, 1 px / 1 degree, outlier frames' tangents uniformly random (issue 12's model,
+    """20 frames, 1 px / 1 degree, outlier frames' tangents uniformly random (the random model,
     ``outlier_model="random"``): the bench's ``outliers`` section draws these."""
     return make(
         seed,

@@ -1,4 +1,4 @@
-"""Property-based fuzzing of every loader and entry point of the command (issue 16).
+"""Property-based fuzzing of every loader and entry point of the command.
 
 Strategies start from valid documents (a simulated scene, the bundled flat-curve examples) and
 mutate them: drop a key, retype a value, put NaN / infinity / huge numbers in, truncate the

@@ -1,4 +1,4 @@
-"""Property-based fuzzing of ``curverecon trace`` inputs (issues 14 and 16).
+"""Property-based fuzzing of ``curverecon trace`` inputs.
 
 Inputs: random bytes under image and video extensions, valid images truncated or with bytes
 flipped, files with the wrong extension, empty folders, tiny, long-and-thin and constant

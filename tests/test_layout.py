@@ -1,4 +1,4 @@
-"""The layout's promises (issue 15): one library call returns what the command writes, options
+"""The layout's promises: one library call returns what the command writes, options
 reach the stage that uses them, and no module imports another's private names."""
 
 from __future__ import annotations

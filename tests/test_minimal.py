@@ -1,4 +1,4 @@
-"""The complete minimal solver (issue 12): four frames, every solution.
+"""The complete minimal solver: four frames, every solution.
 
 Scenes come from ``curverecon.simulate.make_scene`` (3-D rotations of a 3-D curve, orthographic
 projection), never from inverting the solver; the solutions are checked against the frames by
@@ -89,7 +89,7 @@ def test_the_unsquared_system_holds_on_the_3d_construction(seed) -> None:
 
 @pytest.mark.parametrize("seed", [100006, 100017, 100023, 100039])
 def test_nearly_flat_curves_list_the_truth(seed) -> None:
-    """phi within 14 degrees of 0 or 180 degrees (in the issue's 5-175 range): the squared lean
+    """phi within 14 degrees of 0 or 180 degrees (in the bench's 5-175 range): the squared lean
     system had a near-double root at the truth and lost it on each of these scenes."""
     sc = make_scene(np.random.default_rng(seed), 4)
     truth = _truth(sc)

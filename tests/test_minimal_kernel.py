@@ -1,4 +1,4 @@
-"""The generated straight-line kernels of a parametric polynomial system (issue 12's speed).
+"""The generated straight-line kernels of a parametric polynomial system (the minimal solver).
 
 ``make derive`` writes ``generated/minimal_unsquared_kernel.py`` from the same SymPy system as
 the tables of ``generated/minimal_unsquared.py``: F(x; q) = W(q) u(x), F_x and F_t written out

@@ -1,4 +1,4 @@
-"""``curverecon trace`` (issue 14): tracing against rendered truth, end identity, hard frames
+"""``curverecon trace``: tracing against rendered truth, end identity, hard frames
 and every bad input.
 
 The truth is independent of the tracer: polylines projected from a 3-D curve
