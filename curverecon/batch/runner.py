@@ -27,14 +27,11 @@ from curverecon.errors import CurveReconError
 
 INSTALL_HINT = 'curverecon batch needs Dask, pandas and pyarrow: pip install "curverecon[batch]"'
 
-THREAD_ENV = {
-    "OMP_NUM_THREADS": "1",
-    "OPENBLAS_NUM_THREADS": "1",
-    "MKL_NUM_THREADS": "1",
-    "NUMBA_NUM_THREADS": "1",
-}
-"""Set in every local worker process before it imports NumPy or numba: the cluster already runs
-one task per core, more threads per task would only compete for the cores."""
+THREAD_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+"""Set in every local worker process before it imports NumPy: the cluster already runs one task
+per core, more threads per task would only compete for the cores.  numba's threads are set to
+one by each task (``numba.set_num_threads``): ``NUMBA_NUM_THREADS`` in the environment of a
+Dask worker conflicts with numba's own reading of it when a function compiles."""
 
 RETRIES = 2
 """Dask ``retries`` of a task whose exception escapes it (the task turns bad input into a row,
@@ -123,10 +120,7 @@ def _remove_stale_temporaries(out: Path) -> None:
 
 def _client(scheduler: str | None, workers: int | None, verbose: bool) -> Any:
     """A client of the cluster at ``scheduler``, or of a new local cluster (closed on exit)."""
-    import logging
-
-    import dask
-    from dask.distributed import Client, LocalCluster
+    from dask.distributed import Client
 
     if scheduler is not None:
         try:
@@ -136,26 +130,10 @@ def _client(scheduler: str | None, workers: int | None, verbose: bool) -> Any:
                 f"cannot connect to the scheduler at {scheduler}: {_one_line(exc)}"
             ) from None
     n = workers or os.cpu_count() or 1
-    try:
-        import bokeh  # noqa: F401
-
-        dashboard: str | None = ":0"
-    except ImportError:
-        dashboard = None
-    try:
-        with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
-            cluster = LocalCluster(
-                n_workers=n,
-                threads_per_worker=1,
-                processes=True,
-                env=THREAD_ENV,
-                dashboard_address=dashboard,
-                silence_logs=logging.ERROR,
-            )
-    except Exception as exc:  # a cluster that cannot start: one line, no traceback
-        raise CurveReconError(f"cannot start a local Dask cluster: {_one_line(exc)}") from None
+    cluster = local_cluster(n)
+    dashboard = cluster.dashboard_link if _has_bokeh() else None
     if verbose:
-        where = cluster.dashboard_link if dashboard else "none (pip install bokeh to get one)"
+        where = dashboard or "none (pip install bokeh to get one)"
         print(
             f"curverecon: batch: local cluster of {n} workers, dashboard: {where}",
             file=sys.stderr,
@@ -163,6 +141,36 @@ def _client(scheduler: str | None, workers: int | None, verbose: bool) -> Any:
         )
     client = Client(cluster)
     return _Closing(client, cluster)
+
+
+def local_cluster(n: int) -> Any:
+    """A ``LocalCluster`` of ``n`` worker processes of one thread each, quiet (the batch's
+    errors go into its summary, not into worker logs), the dashboard on a free port when bokeh
+    is installed."""
+    import logging
+
+    import dask
+    from dask.distributed import LocalCluster
+
+    try:
+        with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
+            return LocalCluster(
+                n_workers=n,
+                threads_per_worker=1,
+                processes=True,
+                env=THREAD_ENV,
+                dashboard_address=":0" if _has_bokeh() else None,
+                silence_logs=logging.CRITICAL,
+            )
+    except Exception as exc:  # a cluster that cannot start: one line, no traceback
+        raise CurveReconError(f"cannot start a local Dask cluster: {_one_line(exc)}") from None
+
+
+def _has_bokeh() -> bool:
+    """Whether the dashboard can be served (Dask's dashboard needs bokeh)."""
+    import importlib.util
+
+    return importlib.util.find_spec("bokeh") is not None
 
 
 class _Closing:
