@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from curverecon.batch.inputs import Job, check_out_dir, expand
-from curverecon.batch.task import COLUMNS, TEMP_SUFFIX, error_row, process
+from curverecon.batch.task import COLUMNS, TEMP_SUFFIX, done_row, error_row, process
 from curverecon.errors import CurveReconError
 
 INSTALL_HINT = 'curverecon batch needs Dask, pandas and pyarrow: pip install "curverecon[batch]"'
@@ -98,10 +98,22 @@ def run(
     not_before = _touch(out / STARTED_MARKER) if force else None
     if progress is None:
         progress = sys.stderr.isatty()
-    with ExitStack() as stack:
-        if client is None:
-            client = stack.enter_context(_client(scheduler, workers, verbose))
-        rows, skipped = _run_jobs(client, jobs, str(out), not_before, progress)
+    rows: list[dict[str, Any] | None] = [
+        error_row(j, j.problem, 0.0) if j.kind == "empty" else done_row(j, str(out), not_before)
+        for j in jobs
+    ]
+    todo = [i for i, row in enumerate(rows) if row is None]
+    skipped = sum(row is not None and row["status"] == "ok" for row in rows)
+    if todo:
+        with ExitStack() as stack:
+            if client is None:  # a local cluster no larger than the work
+                n = min(workers or os.cpu_count() or 1, len(todo))
+                client = stack.enter_context(_client(scheduler, n, verbose))
+            done = _run_jobs(client, [jobs[i] for i in todo], str(out), not_before, progress)
+        for i, row in zip(todo, done, strict=True):
+            rows[i] = row
+    for row in rows:
+        row.pop("skipped", None)
     frame = write_summary(out, rows)
     frame.attrs.update(skipped=skipped, seconds=round(time.perf_counter() - t0, 3))
     return frame
@@ -206,8 +218,8 @@ def _failure_message(exc: BaseException | None) -> str:
 
 def _run_jobs(
     client: Any, jobs: list[Job], out: str, not_before: float | None, progress: bool
-) -> tuple[list[dict[str, Any]], int]:
-    """Every job's row, in the jobs' order, and how many were already done."""
+) -> list[dict[str, Any]]:
+    """Every job's row, in the jobs' order."""
     from dask.distributed import as_completed
 
     rows: list[dict[str, Any] | None] = [None] * len(jobs)
@@ -222,7 +234,6 @@ def _run_jobs(
     )
     index = {f.key: i for i, f in enumerate(futures)}
     bar = _Progress(len(jobs), progress, client)
-    skipped = 0
     try:
         for future in as_completed(futures):
             i = index[future.key]
@@ -230,7 +241,6 @@ def _run_jobs(
                 row = future.result()
             else:
                 row = error_row(jobs[i], _failure_message(future.exception()))
-            skipped += bool(row.pop("skipped", False))
             rows[i] = row
             future.release()  # its result lives on a worker: one that dies must not redo it
             bar.update(row["status"] == "ok")
@@ -239,7 +249,7 @@ def _run_jobs(
         raise
     finally:
         bar.close()
-    return [r for r in rows if r is not None], skipped
+    return [r for r in rows if r is not None]
 
 
 class _Progress:

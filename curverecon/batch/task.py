@@ -114,6 +114,22 @@ def _limit_threads() -> None:
         pass
 
 
+def done_row(job: Job, out_dir: str, not_before: float | None = None) -> dict[str, Any] | None:
+    """The row of an input whose reconstruction is already there and current (see
+    :func:`process`), marked ``"skipped"``; None when the input is to be done."""
+    if job.kind == "empty":
+        return None
+    try:
+        threshold = input_mtime(job) if not_before is None else not_before
+    except OSError:
+        return None
+    doc = _existing(output_paths(job, out_dir)[0], threshold)
+    if doc is None:
+        return None
+    seconds = _number((doc.get(BATCH_KEY) or {}).get("seconds"))
+    return {**row_from_document(job, doc, seconds), "skipped": True}
+
+
 def process(job: Job, out_dir: str, not_before: float | None = None) -> dict[str, Any]:
     """Trace (images, video) and reconstruct one input; write its outputs; return its row.
 
@@ -127,14 +143,13 @@ def process(job: Job, out_dir: str, not_before: float | None = None) -> dict[str
         return round(time.perf_counter() - t0, 3)
 
     rec_path, obs_path = output_paths(job, out_dir)
-    try:
+    try:  # checked here again: Dask runs a task again when its worker died after it wrote
         if job.kind == "empty":
             raise CurveReconError(job.problem)
+        done = done_row(job, out_dir, not_before)
+        if done is not None:
+            return done
         threshold = input_mtime(job) if not_before is None else not_before
-        doc = _existing(rec_path, threshold)
-        if doc is not None:
-            seconds = _number((doc.get(BATCH_KEY) or {}).get("seconds"))
-            return {**row_from_document(job, doc, seconds), "skipped": True}
         _limit_threads()
         doc = _reconstruct(job, obs_path, threshold)
         seconds = elapsed()
