@@ -280,12 +280,15 @@ def main(argv: Sequence[str] | None = None) -> int:
             raise CurveReconError(
                 "a command is required: reconstruct, simulate, match-flat, trace or batch"
             )
-        handler = getattr(args, "handler", None) or {
-            "reconstruct": _cmd_reconstruct,
-            "simulate": _cmd_simulate,
-            "match-flat": _cmd_match_flat,
-            "trace": _cmd_trace,
-        }[args.command]
+        handler = (
+            getattr(args, "handler", None)
+            or {
+                "reconstruct": _cmd_reconstruct,
+                "simulate": _cmd_simulate,
+                "match-flat": _cmd_match_flat,
+                "trace": _cmd_trace,
+            }[args.command]
+        )
         with np.errstate(all="ignore"):
             return handler(args)
     except CurveReconError as exc:
