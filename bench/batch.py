@@ -9,7 +9,10 @@ and tangents (no polylines), written as observation files into a temporary folde
   (``curverecon.batch.runner.local_cluster``).  Before the clock starts, every worker runs one
   warm-up input (imports, numba's compiled functions loaded from the on-disk cache), as a
   long batch amortises them; ``batch_scaling_2_workers`` is their ratio (target >= 1.7; it
-  cannot reach 2 when other processes share the two cores).
+  cannot reach 2 when other processes share the two cores).  The workers' CPU seconds per
+  sequence (``time.process_time`` summed over the workers) show whether two workers spend more
+  CPU on a sequence than one: on a machine shared with other work the wall-clock scaling
+  measures the share of the cores the run got, the CPU seconds do not.
 - ``batch_overhead_seconds``: the wall time of the command ``curverecon batch ONE.json -o DIR``
   (a cluster of one worker started, run, closed) minus that of ``curverecon reconstruct
   ONE.json`` (both fresh processes, the numba cache warm; the smaller of two runs each).
@@ -78,16 +81,19 @@ def _timed_run(n_workers: int, inputs: Path, warm: Path, root: Path) -> dict:
     try:
         _warm(client, warm, root / f"warm{n_workers}")
         out = root / f"out{n_workers}"
+        cpu0 = sum(client.run(time.process_time).values())
         t0 = time.perf_counter()
         summary = run([inputs], out, client=client)
         seconds = time.perf_counter() - t0
+        cpu = sum(client.run(time.process_time).values()) - cpu0
         rss = client.run(resource.getrusage, resource.RUSAGE_SELF)
         peak_mb = max(r.ru_maxrss for r in rss.values()) / 1024.0
     finally:
         client.close()
         cluster.close()
     ok = int((summary["status"] == "ok").sum())
-    return {"seconds": seconds, "ok": ok, "n": len(summary), "peak_mb": peak_mb, "out": out}
+    n = len(summary)
+    return {"seconds": seconds, "cpu": cpu, "ok": ok, "n": n, "peak_mb": peak_mb, "out": out}
 
 
 def _command_seconds(args: list[str], repeats: int = 2) -> float:
@@ -133,6 +139,8 @@ def run(quick: bool = False) -> dict:
         "batch_sequences_per_second_1_worker": round(sps1, 3),
         "batch_sequences_per_second_2_workers": round(sps2, 3),
         "batch_scaling_2_workers": round(sps2 / sps1, 3),
+        "batch_worker_cpu_seconds_per_sequence_1_worker": round(one["cpu"] / n, 3),
+        "batch_worker_cpu_seconds_per_sequence_2_workers": round(two["cpu"] / n, 3),
         "batch_overhead_seconds": round(overhead["batch"] - overhead["plain"], 2),
         "batch_one_input_seconds": round(overhead["batch"], 2),
         "batch_plain_reconstruct_seconds": round(overhead["plain"], 2),

@@ -272,8 +272,10 @@ class _Progress:
         now = time.monotonic()
         if now - self.last > 0.5 or self.bar.n == self.bar.total:
             self.last = now
-            try:
-                running = sum(len(v) for v in self.client.processing().values())
+            try:  # tasks a worker holds beyond its threads are queued, not running
+                threads = self.client.nthreads()
+                processing = self.client.processing().items()
+                running = sum(min(len(keys), threads.get(w, 1)) for w, keys in processing)
             except Exception:  # a progress figure is not worth a failed batch
                 running = math.nan
             self.bar.set_postfix(failed=self.failed, running=running, refresh=False)
