@@ -5,8 +5,9 @@ see) and returns a small summary row.  Every file is written to a temporary name
 folder and then ``os.replace``d, so a worker killed mid-write leaves a ``.*.tmp`` file that no
 run reads, never a half-written output.  An input whose reconstruction is already there and not
 older than the input is not redone: its row comes from the file.  Bad input becomes a row with
-``status = "error"`` and the one-line message; nothing raises out of :func:`process` except the
-death of the worker itself (which Dask answers by running the task on another worker).
+``status = "error"`` and the one-line message, and so does an unexpected exception (a defect:
+"internal error: ..."); nothing leaves :func:`process` but its row, except the death of the
+worker itself (which Dask answers by running the task on another worker).
 """
 
 from __future__ import annotations
@@ -162,6 +163,8 @@ def process(job: Job, out_dir: str, not_before: float | None = None) -> dict[str
         return error_row(job, "not enough memory for this input", elapsed())
     except OSError as exc:
         return error_row(job, f"cannot read {job.input}: {exc.strerror or exc}", elapsed())
+    except Exception as exc:  # a defect, not bad input: recorded, not retried (it would recur)
+        return error_row(job, f"internal error: {type(exc).__name__}: {exc}", elapsed())
 
 
 def _reconstruct(job: Job, obs_path: Path, threshold: float) -> dict:
