@@ -179,6 +179,15 @@ def test_bad_arguments_exit_2_before_anything_starts(data, tmp_path, case, capsy
     assert not out.exists()
 
 
+def test_progress_bar_counts_inputs_done_failed_and_running(data, tmp_path, client, capsys):
+    broken = tmp_path / "broken.json"
+    broken.write_text("{")
+    summary = run([data / "alpha.json", broken], tmp_path / "out", client=client, progress=True)
+    assert summary["status"].tolist() == ["ok", "error"]
+    err = capsys.readouterr().err
+    assert "2/2" in err and "failed=1" in err and "running=0" in err
+
+
 def test_without_the_extra_the_command_says_what_to_install(data, tmp_path, monkeypatch, capsys):
     monkeypatch.setitem(sys.modules, "dask.distributed", None)
     status = main(["batch", str(data / "alpha.json"), "-o", str(tmp_path / "out")])
