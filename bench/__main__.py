@@ -3,7 +3,7 @@
 Usage::
 
     python -m bench [--quick] [--out DIR] [--workers N] [--budget SECONDS] [--full-counts]
-    python -m bench --only bundle|fuzz|minimal|outliers|scale|trace [--quick]
+    python -m bench --only batch|bundle|fuzz|minimal|outliers|scale|trace [--quick]
 
 Writes ``REPORT.md``, ``report.json`` and PNG plots into ``--out`` (default ``bench/``).  The
 speed section runs first in this process (no worker busy); then the scene experiments run on
@@ -280,6 +280,7 @@ def run_extra_sections(out: Path) -> None:
 
 
 EXTRA_SECTIONS = {
+    "batch": "bench.batch",
     "bundle": "bench.bundle",
     "fuzz": "bench.fuzz",
     "minimal": "bench.minimal",

@@ -1,4 +1,4 @@
-"""Command line: ``curverecon reconstruct | simulate | match-flat | trace``.
+"""Command line: ``curverecon reconstruct | simulate | match-flat | trace | batch``.
 
 Bad input exits with status 2 and one line ``curverecon: error: <message>`` on stderr.
 """
@@ -131,6 +131,10 @@ def build_parser() -> argparse.ArgumentParser:
     flat = sub.add_parser("match-flat", help="match points of a planar curve between two views")
     flat.add_argument("input", help="curverecon.flat-views/1 JSON file")
     flat.add_argument("-o", "--output", required=True, help="curverecon.matches/1 JSON")
+
+    from curverecon.batch.cli import register as register_batch  # light: Dask is imported later
+
+    register_batch(sub)
     return parser
 
 
@@ -274,14 +278,17 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = parser.parse_args(argv)
         if args.command is None:
             raise CurveReconError(
-                "a command is required: reconstruct, simulate, match-flat or trace"
+                "a command is required: reconstruct, simulate, match-flat, trace or batch"
             )
-        handler = {
-            "reconstruct": _cmd_reconstruct,
-            "simulate": _cmd_simulate,
-            "match-flat": _cmd_match_flat,
-            "trace": _cmd_trace,
-        }[args.command]
+        handler = (
+            getattr(args, "handler", None)
+            or {
+                "reconstruct": _cmd_reconstruct,
+                "simulate": _cmd_simulate,
+                "match-flat": _cmd_match_flat,
+                "trace": _cmd_trace,
+            }[args.command]
+        )
         with np.errstate(all="ignore"):
             return handler(args)
     except CurveReconError as exc:
