@@ -131,8 +131,13 @@ def done_row(job: Job, out_dir: str, not_before: float | None = None) -> dict[st
     return {**row_from_document(job, doc, seconds), "skipped": True}
 
 
-def process(job: Job, out_dir: str, not_before: float | None = None) -> dict[str, Any]:
+def process(
+    job: Job, out_dir: str, not_before: float | None = None, limit_threads: bool = True
+) -> dict[str, Any]:
     """Trace (images, video) and reconstruct one input; write its outputs; return its row.
+
+    ``limit_threads``: one numba thread (a cluster worker, which shares the cores with the
+    others); False where the input runs alone in the calling process.
 
     ``not_before``: redo the input unless its reconstruction was written at this time or later
     (``--force``: the run's start, so that a task Dask runs again after a worker died does not
@@ -151,7 +156,8 @@ def process(job: Job, out_dir: str, not_before: float | None = None) -> dict[str
         if done is not None:
             return done
         threshold = input_mtime(job) if not_before is None else not_before
-        _limit_threads()
+        if limit_threads:
+            _limit_threads()
         doc = _reconstruct(job, obs_path, threshold)
         seconds = elapsed()
         doc[BATCH_KEY] = {"input": job.input, "seconds": seconds}
