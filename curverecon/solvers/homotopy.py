@@ -344,6 +344,13 @@ def _sparse_rows(exponents: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndar
 # from process to process, and on a scene with a near-double root (seed 600,125) a different
 # set of solutions.
 _JIT = {"cache": True, "nogil": True, "fastmath": {"contract", "arcp", "nsz"}}
+_JIT_STEP = {**_JIT, "_nrt": False}
+"""The tracker's steps (``_track_path`` and what it calls for each try): no reference counting
+of their array arguments (they allocate nothing; ``_track_core`` owns every array).  With it,
+a call per try cost 20 % more time a minimal solve than the single kernel they were cut from
+(median per-scene 27 against 23 ms, process time, seeds 700,000-700,039); without it the
+same time within 2 % and the same endpoints bit for bit.  Not numba's ``inline="always"``:
+inlined, the steps changed the endpoints in the last bits on every scene."""
 
 
 @numba.njit(**_JIT)
@@ -919,7 +926,7 @@ def _track_core(
 
     Each path: :func:`_track_path` (predictor, corrector, step control) from t = 0 to 1, then
     :func:`_polish_end` at t = 1; ``s`` is the scratch all of them share
-    (:func:`_tracker_scratch`)."""
+    (:func:`_tracker_scratch`, allocated once)."""
     s = _tracker_scratch(n_eq, x_start.shape[1], q0.shape[0], int(opts[8]))
     for p in range(x_start.shape[0]):
         x = x_start[p].copy()
@@ -982,7 +989,7 @@ def _tracker_scratch(n_eq, n_var, n_par, n_hermite):
     )
 
 
-@numba.njit(**_JIT)
+@numba.njit(**_JIT_STEP)
 def _track_path(
     coefficients,
     coefficients_t,
@@ -1011,7 +1018,8 @@ def _track_path(
     max_steps, divergence = int(opts[5]), opts[6]
     n_hermite = int(opts[8])  # 0: RK4 predictor; else Hermite on this many past points
     tol_grow = opts[9]
-    y = s[9]
+    q, dq, f, ft, jac, k1, k2, k3, k4, y, dx, tangent, lu, rhs, rhs2 = s[:15]
+    th, xh, vh, wts, z, col = s[15:]
     w_at = -1.0
     wt_at = -1.0
     t = 0.0
@@ -1027,9 +1035,11 @@ def _track_path(
         good = True
         if n_hermite > 0 and nh >= 2:
             if not tabled:  # the history changed: its nodes' divided differences
-                _hermite_table(s[15], nh, s[19], s[20])
+                _hermite_table(th, nh, z, col)
                 tabled = True
-            w_at = _predict_hermite(coefficients, w, q0, q1, d, t, h, nh, w_at, s)
+            w_at = _predict_hermite(
+                coefficients, w, q0, q1, d, t, h, nh, w_at, q, dq, y, xh, vh, wts, z, col
+            )
         else:
             good, w_at, wt_at = _predict_rk4(
                 coefficients_t,
@@ -1046,7 +1056,18 @@ def _track_path(
                 w_at,
                 wt_at,
                 plan,
-                s,
+                q,
+                dq,
+                f,
+                ft,
+                jac,
+                k1,
+                k2,
+                k3,
+                k4,
+                y,
+                lu,
+                rhs,
             )
         first = 0.0
         scale = 0.0
@@ -1063,11 +1084,21 @@ def _track_path(
                 wt_at,
                 opts,
                 plan,
-                s,
+                q,
+                dq,
+                f,
+                ft,
+                jac,
+                y,
+                dx,
+                tangent,
+                lu,
+                rhs,
+                rhs2,
             )
         if good:
             if n_hermite > 0:
-                nh = _push_history(t, h, x, nh, n_hermite, s)
+                nh = _push_history(t, h, x, nh, n_hermite, k1, y, tangent, th, xh, vh)
                 tabled = False
             for i in range(x.shape[0]):
                 x[i] = y[i]
@@ -1091,12 +1122,11 @@ def _track_path(
     return OK, n_steps, t
 
 
-@numba.njit(**_JIT)
-def _predict_hermite(coefficients, w, q0, q1, d, t, h, nh, w_at, s):
-    """Hermite predictor: y (``s[9]``) is the interpolant of the history's ``nh`` points
-    (whose ``_hermite_table`` is in ``s``) at t + h; W at t + h for the corrector.  Returns the
-    t at which ``w`` holds W."""
-    q, dq, y, xh, vh, wts, z, col = s[0], s[1], s[9], s[16], s[17], s[18], s[19], s[20]
+@numba.njit(**_JIT_STEP)
+def _predict_hermite(coefficients, w, q0, q1, d, t, h, nh, w_at, q, dq, y, xh, vh, wts, z, col):
+    """Hermite predictor: y is the interpolant at t + h of the history's ``nh`` points (xh,
+    tangents vh; ``z``, ``col`` their ``_hermite_table``, ``wts`` scratch); W at t + h for the
+    corrector (q, dq: the parameters there).  Returns the t at which ``w`` holds W."""
     _hermite_at(nh, t + h, z, col, wts)
     for i in range(y.shape[0]):
         acc = 0.0 + 0.0j
@@ -1110,7 +1140,7 @@ def _predict_hermite(coefficients, w, q0, q1, d, t, h, nh, w_at, s):
     return w_at
 
 
-@numba.njit(**_JIT)
+@numba.njit(**_JIT_STEP)
 def _predict_rk4(
     coefficients_t,
     residual_jacobian_t,
@@ -1126,13 +1156,23 @@ def _predict_rk4(
     w_at,
     wt_at,
     plan,
-    s,
+    q,
+    dq,
+    f,
+    ft,
+    jac,
+    k1,
+    k2,
+    k3,
+    k4,
+    y,
+    lu,
+    rhs,
 ):
-    """RK4 predictor on dx/dt = -F_x^-1 F_t from x at t: y (``s[9]``) at t + h, the stages in
-    k1-k4 (k1, the tangent at x, starts the Hermite history).  Returns (whether every stage's
-    solve succeeded, the t of W in ``w``, the t of Wt in ``wt``)."""
-    q, dq, f, ft, jac = s[0], s[1], s[2], s[3], s[4]
-    k1, k2, k3, k4, y, lu, rhs = s[5], s[6], s[7], s[8], s[9], s[12], s[13]
+    """RK4 predictor on dx/dt = -F_x^-1 F_t from x at t: y at t + h, the stages in k1-k4 (k1,
+    the tangent at x, starts the Hermite history); q, dq, f, ft, jac, lu, rhs scratch.
+    Returns (whether every stage's solve succeeded, the t of W in ``w``, the t of Wt in
+    ``wt``)."""
     n_var = x.shape[0]
     for stage in range(4):
         if stage == 0:
@@ -1168,7 +1208,7 @@ def _predict_rk4(
     return True, w_at, wt_at
 
 
-@numba.njit(**_JIT)
+@numba.njit(**_JIT_STEP)
 def _correct(
     coefficient_rates,
     residual_jacobian,
@@ -1181,15 +1221,23 @@ def _correct(
     wt_at,
     opts,
     plan,
-    s,
+    q,
+    dq,
+    f,
+    ft,
+    jac,
+    y,
+    dx,
+    tangent,
+    lu,
+    rhs,
+    rhs2,
 ):
-    """Newton corrector of y (``s[9]``) at t + h = ``t_next`` (W there is already in ``w``; q,
-    dq in ``s`` are at ``w_at``).  With the Hermite predictor each iteration also solves for the
-    tangent dx/dt = -F_x^-1 F_t with the same elimination: the last one is the accepted point's
-    tangent (``s[11]``).  Returns (converged, the first update's norm, 1 + |y| before the
-    corrector, the t of Wt in ``wt``)."""
-    q, dq, f, ft, jac, y, dx, tangent = s[0], s[1], s[2], s[3], s[4], s[9], s[10], s[11]
-    lu, rhs, rhs2 = s[12], s[13], s[14]
+    """Newton corrector of y at t + h = ``t_next`` (W there is already in ``w``; q, dq are at
+    ``w_at``; f, ft, jac, dx, lu, rhs, rhs2 scratch).  With the Hermite predictor each
+    iteration also solves for the tangent dx/dt = -F_x^-1 F_t with the same elimination: the
+    last one is the accepted point's tangent (``tangent``).  Returns (converged, the first
+    update's norm, 1 + |y| before the corrector, the t of Wt in ``wt``)."""
     tol_pred, tol_corr, n_corr = opts[3], opts[4], int(opts[7])
     n_hermite = int(opts[8])
     estimate = opts[10] > 0.0 and n_hermite > 0
@@ -1237,12 +1285,11 @@ def _correct(
     return good, first, scale, wt_at
 
 
-@numba.njit(**_JIT)
-def _push_history(t, h, x, nh, n_hermite, s):
+@numba.njit(**_JIT_STEP)
+def _push_history(t, h, x, nh, n_hermite, k1, y, tangent, th, xh, vh):
     """The accepted point y at t + h and its tangent join the Hermite history (the oldest of
     ``n_hermite`` points leaves it); the path's first step first enters its start x at t with
     the RK4 step's k1.  Returns the history's new number of points."""
-    k1, y, tangent, th, xh, vh = s[5], s[9], s[11], s[15], s[16], s[17]
     n_var = x.shape[0]
     if nh == 0:  # the path's start and its tangent (the RK4 step's k1)
         th[0] = t
@@ -1264,7 +1311,7 @@ def _push_history(t, h, x, nh, n_hermite, s):
     return nh + 1
 
 
-@numba.njit(**_JIT)
+@numba.njit(**_JIT_STEP)
 def _polish_end(coefficients, residual_jacobian, solve_pair, w, q0, q1, d, x, plan, s):
     """Final Newton polish of a path's endpoint x at t = 1 (at most three iterations)."""
     q, dq, f, jac, dx, lu, rhs = s[0], s[1], s[2], s[4], s[10], s[12], s[13]
