@@ -926,6 +926,11 @@ def refine_batch(
     Returns:
         shapes (K, 4), poses (K, N, 5), residuals (K, N, 6) standardised, chi2 (K,),
         iterations (K,), converged (K,) bool.
+
+    An iteration, on the starts still active (:class:`_Batch`, :class:`_Step`): the damped
+    step (:func:`_damped_step`), the stopping tests (:func:`_stop_tests`), the trial point
+    (:func:`_try_step`), lambda and the switch to Newton (:func:`_update_damping`), the
+    accepted points taken (:func:`_take_accepted`).
     """
     meas = _measurements(obs)
     w8 = _weights(point_sigma, tangent_sigma)
@@ -933,179 +938,316 @@ def refine_batch(
         w8 = w8[None, :] * np.sqrt(np.asarray(frame_weights, float))[:, None]
     g = np.array(shapes, dtype=float, ndmin=2)
     p = np.array(poses, dtype=float, ndmin=3)
-    k = g.shape[0]
     if newton_phase and p.shape[1] >= PROFILE_FRAMES:
         return _profile_batch(g, p, meas, w8, max_iter, xtol, ftol)
-    long = p.shape[1] >= LONG_FRAMES
-    shrink = LONG_SHRINK if long else 1.0 / 3.0
-    r, ja = _lin_aug(g, p, meas, w8)
-    chi2 = np.einsum("kna,kna->k", r, r)
-    lam = np.full(k, 1e-3)
-    # Gauss-Newton while far from a minimum (convex model, short steps: the start's basin is
-    # kept); Newton with embedded pose steps once a Gauss-Newton step predicts little
-    newton = np.zeros(k, dtype=bool)
-    done = np.zeros(k, dtype=bool)
-    converged = np.zeros(k, dtype=bool)
-    iters = np.zeros(k, dtype=int)
-    # Each start's normal blocks are kept with its point: a rejected step changes only lambda,
-    # and the next iteration solves the same blocks with more damping (``stale`` marks the
-    # starts whose point moved, whose blocks are built again).
-    stale = np.ones(k, dtype=bool)
-    blocks: tuple[np.ndarray, ...] = ()
+    b = _Batch.start(g, p, meas, w8, newton_phase, pose_iterations)
+    tol = max(ftol, 0.5 * LONG_STEP_STD**2 / p.shape[1]) if b.long else ftol
     for it in range(max_iter):
-        act = np.flatnonzero(~done)
+        dropping = it >= drop_after and drop_factor is not None
+        act = b.active(drop_factor if dropping else None, act_floor)
         if act.size == 0:
             break
-        if it >= drop_after and drop_factor is not None and act.size > 1:
-            # give up on starts far worse than the best one (they are not the answer)
-            hopeless = chi2[act] > drop_factor * (np.min(chi2) + act_floor)
-            done[act[hopeless]] = True
-            act = act[~hopeless]
-            if act.size == 0:
-                break
-        ka = act.size
-        full = ka == k
-        if not blocks or (full and stale.all()):
-            blocks = _normal_blocks(g, p, r, ja, w8, newton)
-        else:
-            rb = act[stale[act]]
-            if rb.size:
-                new = _normal_blocks(g[rb], p[rb], r[rb], ja[rb], w8, newton[rb])
-                for cache, value in zip(blocks, new, strict=True):
-                    cache[rb] = value
-        # The active starts' state: the arrays themselves when all are active (the common
-        # case: no index arithmetic, no copies), else copies; written back below.
-        if full:
-            iters += 1
-            ga, pa, lama, c2, nwt, ba = g, p, lam, chi2, newton.copy(), blocks
-        else:
-            iters[act] += 1
-            ga, pa, lama, c2, nwt = g[act], p[act], lam[act], chi2[act], newton[act]
-            ba = tuple(b[act] for b in blocks)
-        # Newton (or Gauss-Newton) model; an indefinite damped model gets more damping at once
-        check = bool(nwt.any())  # a damped Gauss-Newton matrix is positive definite
-        dg, dl, predicted, pd = _damped_solve(*ba, lama, check)
-        saddle = None  # where the Newton model was indefinite (None: nowhere)
-        indefinite = ~((predicted > 0) & pd)
-        if indefinite.any():
-            for _ in range(12):
-                bad = indefinite & (lama <= 1e12)
-                if not bad.any():
-                    break
-                saddle = bad if saddle is None else saddle | bad
-                lama = np.where(bad, np.maximum(lama * 10.0, 1e-4), lama)
-                dg2, dl2, pred2, pd2 = _damped_solve(*ba, lama, check)
-                dg = np.where(bad[:, None], dg2, dg)
-                dl = np.where(bad[:, None, None], dl2, dl)
-                predicted = np.where(bad, pred2, predicted)
-                pd = np.where(bad, pd2, pd)
-                indefinite = ~((predicted > 0) & pd)
-        step = np.maximum(
-            (np.abs(dg) / np.maximum(np.abs(ga), 1.0)).max(axis=1),
-            (np.abs(dl) / np.maximum(np.abs(pa), 1.0)).reshape(ka, -1).max(axis=1),
+        s = _damped_step(b, act)
+        _stop_tests(b, s, xtol, tol)
+        _try_step(b, s)
+        _update_damping(b, s)
+        _take_accepted(b, s)
+    if b.long:
+        b.polish_poses()
+    return b.g, b.p, b.r, b.chi2, b.iters, b.converged
+
+
+@dataclass
+class _Batch:
+    """``refine_batch``'s K starts: their points (shape g, poses p, residuals r, Jacobian ja,
+    chi2), damping lambda, which are in the Newton phase, done, converged, their iterations,
+    and their normal blocks (:func:`_normal_blocks`), kept with the point: a rejected step
+    changes only lambda, and the next iteration solves the same blocks with more damping
+    (``stale`` marks the starts whose point moved, whose blocks are built again)."""
+
+    g: np.ndarray
+    p: np.ndarray
+    r: np.ndarray
+    ja: np.ndarray
+    chi2: np.ndarray
+    lam: np.ndarray
+    newton: np.ndarray
+    done: np.ndarray
+    converged: np.ndarray
+    iters: np.ndarray
+    stale: np.ndarray
+    blocks: tuple[np.ndarray, ...]
+    meas: np.ndarray
+    w8: np.ndarray
+    long: bool
+    shrink: float
+    newton_phase: bool
+    pose_iterations: int
+
+    @classmethod
+    def start(
+        cls,
+        g: np.ndarray,
+        p: np.ndarray,
+        meas: np.ndarray,
+        w8: np.ndarray,
+        newton_phase: bool,
+        pose_iterations: int,
+    ) -> _Batch:
+        """The starts at their start points: Gauss-Newton while far from a minimum (convex
+        model, short steps: the start's basin is kept); Newton with embedded pose steps once a
+        Gauss-Newton step predicts little."""
+        k = g.shape[0]
+        long = p.shape[1] >= LONG_FRAMES
+        r, ja = _lin_aug(g, p, meas, w8)
+        return cls(
+            g=g,
+            p=p,
+            r=r,
+            ja=ja,
+            chi2=np.einsum("kna,kna->k", r, r),
+            lam=np.full(k, 1e-3),
+            newton=np.zeros(k, dtype=bool),
+            done=np.zeros(k, dtype=bool),
+            converged=np.zeros(k, dtype=bool),
+            iters=np.zeros(k, dtype=int),
+            stale=np.ones(k, dtype=bool),
+            blocks=(),
+            meas=meas,
+            w8=w8,
+            long=long,
+            shrink=LONG_SHRINK if long else 1.0 / 3.0,
+            newton_phase=newton_phase,
+            pose_iterations=pose_iterations,
         )
-        huge = lama > 1e12
-        tol = max(ftol, 0.5 * LONG_STEP_STD**2 / p.shape[1]) if long else ftol
-        small = (step < xtol) | (predicted <= tol * np.maximum(c2, 1e-300)) | huge
-        # neither a tiny damped step near a saddle nor an indefinite model is convergence
-        small &= ~(indefinite if saddle is None else indefinite | saddle) | huge
-        if small.any():
-            converged[act[small & ~huge]] = True
-            done[act[small]] = True
-        g_new, p_new = ga + dg, pa + dl
-        ok = np.isfinite(g_new).all(axis=1) & np.isfinite(p_new).reshape(ka, -1).all(axis=1)
-        ok &= (g_new[:, 0] > 0) & ~(small | indefinite)
-        # Only the starts that take a trial step are evaluated (``mv``): a start that stops or
-        # whose model was indefinite keeps its point and chi2, and cannot accept anything.
-        every = bool(ok.all())
-        mv = None if every else np.flatnonzero(ok)
-        if every or mv.size:
-            if not every:
-                g_new, p_new = g_new[mv], p_new[mv]
-            r_new, ja_new = _lin_aug(g_new, p_new, meas, w8)
-            if long:
-                rows = act if every else act[mv]
-                _keep_poses_that_fit(
-                    g_new, p_new, r_new, ja_new, pa if every else pa[mv], r[rows], meas, w8
-                )
-            if pose_iterations > 0 and check:
-                f_new = (r_new * r_new).sum(axis=-1)
-                nm = nwt if every else nwt[mv]
-                if nm.any():
-                    # variable projection: the poses follow the new shape (the curved valley)
-                    p_new, r_new, ja_new, f_new = _pose_steps(
-                        g_new,
-                        p_new,
-                        r_new,
-                        ja_new,
-                        f_new,
-                        meas,
-                        w8,
-                        pose_iterations,
-                        1e-6,
-                        lama if every else lama[mv],
-                        nm,
-                    )
-                c2m = f_new.sum(axis=-1)  # (as before, not the einsum: same rounding)
-            else:
-                c2m = np.einsum("kna,kna->k", r_new, r_new)
-            if every:
-                chi2_new = c2m
-                accept = c2m < c2
-            else:
-                chi2_new = c2.copy()
-                chi2_new[mv] = c2m
-                accept = np.zeros(ka, dtype=bool)
-                accept[mv] = c2m < c2[mv]
-        else:
-            accept = ok  # nothing moved: all False
-        # Nielsen's damping update (the accepted and the rejected branch only where taken)
-        if accept.all():
-            rho = (c2 - chi2_new) / np.maximum(predicted, 1e-300)
-            rho = np.minimum(np.maximum(rho, 0.0), 1.0)
-            lam_new = np.maximum(lama * np.maximum(shrink, 1.0 - (2.0 * rho - 1.0) ** 3), 1e-15)
-        elif accept.any():
-            rho = (c2 - chi2_new) / np.maximum(predicted, 1e-300)
-            rho = np.minimum(np.maximum(rho, 0.0), 1.0)
-            factor = np.maximum(shrink, 1.0 - (2.0 * rho - 1.0) ** 3)
-            lam_new = np.where(accept, np.maximum(lama * factor, 1e-15), lama * 4.0)
-        else:
-            lam_new = lama * 4.0
-        if newton_phase and not nwt.all():
-            # With thousands of frames a rejected Gauss-Newton step that predicted little also
-            # switches: its joint step moves a few frames near a fold far off (chi2 28,277 ->
-            # 124,805 for a predicted decrease of 95 at 30,000 frames), and each rejection only
-            # raised lambda (8 rejections); Newton's embedded per-frame pose steps keep the
-            # frames that gain (the same fit took 18 -> 9 iterations).
-            switch = ~nwt & (accept | long) & (predicted <= NEWTON_SWITCH * c2)
-            if switch.any():  # a new model: trust it afresh
-                lam_new[switch] = np.minimum(lam_new[switch], 1e-3)
-                newton[act[switch]] = True
-        moved = accept | (switch if newton_phase and not nwt.all() else False)
-        if full:
-            lam = lam_new
-            stale = moved  # a new array each iteration (a new model: its blocks built again)
-        else:
-            lam[act] = lam_new
-            stale[act] = moved
-        if not accept.any():
-            continue
-        if full and every and accept.all():  # the new arrays replace the old ones
-            g, p, r, ja, chi2 = g_new, p_new, r_new, ja_new, chi2_new
-            continue
-        sel = accept if every else accept[mv]  # the accepted among the evaluated starts
-        acc = act[sel] if every else act[mv[sel]]
-        g[acc], p[acc], r[acc], ja[acc] = g_new[sel], p_new[sel], r_new[sel], ja_new[sel]
-        chi2[acc] = chi2_new[accept]
-    if long:
-        # the stop leaves a few frames short of their pose optimum (``LONG_STEP_STD``): every
-        # frame's pose polished for its start's shape (a frame keeps only steps that lower it)
-        for j in range(k):
-            pj, _ = optimise_poses(g[j], p[j], meas, w8, 10)
-            rj, jj = _lin_aug(g[j : j + 1], pj[None], meas, w8)
-            p[j], r[j], ja[j] = pj, rj[0], jj[0]
-            chi2[j] = float(np.sum(rj * rj))
-    return g, p, r, chi2, iters, converged
+
+    def active(self, drop_factor: float | None, act_floor: float) -> np.ndarray:
+        """The starts not done; given ``drop_factor``, those far worse than the best one are
+        given up first (they are not the answer)."""
+        act = np.flatnonzero(~self.done)
+        if act.size > 1 and drop_factor is not None:
+            hopeless = self.chi2[act] > drop_factor * (np.min(self.chi2) + act_floor)
+            self.done[act[hopeless]] = True
+            act = act[~hopeless]
+        return act
+
+    def update_blocks(self, act: np.ndarray) -> None:
+        """The normal blocks of the active starts whose point moved, built again."""
+        full = act.size == self.g.shape[0]
+        if not self.blocks or (full and self.stale.all()):
+            self.blocks = _normal_blocks(self.g, self.p, self.r, self.ja, self.w8, self.newton)
+            return
+        rb = act[self.stale[act]]
+        if rb.size:
+            new = _normal_blocks(
+                self.g[rb], self.p[rb], self.r[rb], self.ja[rb], self.w8, self.newton[rb]
+            )
+            for cache, value in zip(self.blocks, new, strict=True):
+                cache[rb] = value
+
+    def polish_poses(self) -> None:
+        """Long sequences: the stop leaves a few frames short of their pose optimum
+        (``LONG_STEP_STD``): every frame's pose polished for its start's shape (a frame keeps
+        only steps that lower it)."""
+        for j in range(self.g.shape[0]):
+            pj, _ = optimise_poses(self.g[j], self.p[j], self.meas, self.w8, 10)
+            rj, jj = _lin_aug(self.g[j : j + 1], pj[None], self.meas, self.w8)
+            self.p[j], self.r[j], self.ja[j] = pj, rj[0], jj[0]
+            self.chi2[j] = float(np.sum(rj * rj))
+
+
+@dataclass
+class _Step:
+    """One iteration of ``refine_batch`` on its active starts ``act``: their state (``full``,
+    every start active: the batch's arrays themselves, no index arithmetic, no copies; else
+    copies, written back by :func:`_take_accepted`), the damped step, and its trial point."""
+
+    act: np.ndarray
+    full: bool
+    g: np.ndarray
+    p: np.ndarray
+    lam: np.ndarray
+    chi2: np.ndarray
+    newton: np.ndarray
+    blocks: tuple[np.ndarray, ...]
+    check: bool
+    dg: np.ndarray | None = None
+    dl: np.ndarray | None = None
+    predicted: np.ndarray | None = None
+    saddle: np.ndarray | None = None
+    """Where the Newton model was indefinite (None: nowhere)."""
+    indefinite: np.ndarray | None = None
+    small: np.ndarray | None = None
+    every: bool = False
+    """Every active start takes a trial step (else ``moving`` lists those that do)."""
+    moving: np.ndarray | None = None
+    g_new: np.ndarray | None = None
+    p_new: np.ndarray | None = None
+    r_new: np.ndarray | None = None
+    ja_new: np.ndarray | None = None
+    chi2_new: np.ndarray | None = None
+    accept: np.ndarray | None = None
+    lam_new: np.ndarray | None = None
+    switch: np.ndarray | None = None
+
+
+def _damped_step(b: _Batch, act: np.ndarray) -> _Step:
+    """The active starts' damped step on the Newton (or Gauss-Newton) model; an indefinite
+    damped model gets more damping at once."""
+    b.update_blocks(act)
+    if act.size == b.g.shape[0]:
+        b.iters += 1
+        s = _Step(act, True, b.g, b.p, b.lam, b.chi2, b.newton.copy(), b.blocks, False)
+    else:
+        b.iters[act] += 1
+        s = _Step(
+            act,
+            False,
+            b.g[act],
+            b.p[act],
+            b.lam[act],
+            b.chi2[act],
+            b.newton[act],
+            tuple(x[act] for x in b.blocks),
+            False,
+        )
+    s.check = bool(s.newton.any())  # a damped Gauss-Newton matrix is positive definite
+    dg, dl, predicted, pd = _damped_solve(*s.blocks, s.lam, s.check)
+    indefinite = ~((predicted > 0) & pd)
+    if indefinite.any():
+        for _ in range(12):
+            bad = indefinite & (s.lam <= 1e12)
+            if not bad.any():
+                break
+            s.saddle = bad if s.saddle is None else s.saddle | bad
+            s.lam = np.where(bad, np.maximum(s.lam * 10.0, 1e-4), s.lam)
+            dg2, dl2, pred2, pd2 = _damped_solve(*s.blocks, s.lam, s.check)
+            dg = np.where(bad[:, None], dg2, dg)
+            dl = np.where(bad[:, None, None], dl2, dl)
+            predicted = np.where(bad, pred2, predicted)
+            pd = np.where(bad, pd2, pd)
+            indefinite = ~((predicted > 0) & pd)
+    s.dg, s.dl, s.predicted, s.indefinite = dg, dl, predicted, indefinite
+    return s
+
+
+def _stop_tests(b: _Batch, s: _Step, xtol: float, tol: float) -> None:
+    """Starts whose step or predicted decrease is negligible are done (converged unless lambda
+    ran away); neither a tiny damped step near a saddle nor an indefinite model is
+    convergence."""
+    step = np.maximum(
+        (np.abs(s.dg) / np.maximum(np.abs(s.g), 1.0)).max(axis=1),
+        (np.abs(s.dl) / np.maximum(np.abs(s.p), 1.0)).reshape(s.act.size, -1).max(axis=1),
+    )
+    huge = s.lam > 1e12
+    small = (step < xtol) | (s.predicted <= tol * np.maximum(s.chi2, 1e-300)) | huge
+    small &= ~(s.indefinite if s.saddle is None else s.indefinite | s.saddle) | huge
+    if small.any():
+        b.converged[s.act[small & ~huge]] = True
+        b.done[s.act[small]] = True
+    s.small = small
+
+
+def _try_step(b: _Batch, s: _Step) -> None:
+    """The trial points and whether they lower chi2 (``s.accept``).  Only the starts that take
+    a trial step are evaluated: a start that stops or whose model was indefinite keeps its
+    point and chi2, and cannot accept anything."""
+    g_new, p_new = s.g + s.dg, s.p + s.dl
+    ka = s.act.size
+    ok = np.isfinite(g_new).all(axis=1) & np.isfinite(p_new).reshape(ka, -1).all(axis=1)
+    ok &= (g_new[:, 0] > 0) & ~(s.small | s.indefinite)
+    s.every = every = bool(ok.all())
+    s.moving = mv = None if every else np.flatnonzero(ok)
+    if not (every or mv.size):
+        s.accept = ok  # nothing moved: all False
+        return
+    if not every:
+        g_new, p_new = g_new[mv], p_new[mv]
+    r_new, ja_new = _lin_aug(g_new, p_new, b.meas, b.w8)
+    if b.long:
+        rows = s.act if every else s.act[mv]
+        pa = s.p if every else s.p[mv]
+        _keep_poses_that_fit(g_new, p_new, r_new, ja_new, pa, b.r[rows], b.meas, b.w8)
+    if b.pose_iterations > 0 and s.check:
+        f_new = (r_new * r_new).sum(axis=-1)
+        nm = s.newton if every else s.newton[mv]
+        if nm.any():
+            # variable projection: the poses follow the new shape (the curved valley)
+            p_new, r_new, ja_new, f_new = _pose_steps(
+                g_new,
+                p_new,
+                r_new,
+                ja_new,
+                f_new,
+                b.meas,
+                b.w8,
+                b.pose_iterations,
+                1e-6,
+                s.lam if every else s.lam[mv],
+                nm,
+            )
+        c2m = f_new.sum(axis=-1)  # (as before, not the einsum: same rounding)
+    else:
+        c2m = np.einsum("kna,kna->k", r_new, r_new)
+    if every:
+        s.chi2_new = c2m
+        s.accept = c2m < s.chi2
+    else:
+        s.chi2_new = s.chi2.copy()
+        s.chi2_new[mv] = c2m
+        s.accept = np.zeros(ka, dtype=bool)
+        s.accept[mv] = c2m < s.chi2[mv]
+    s.g_new, s.p_new, s.r_new, s.ja_new = g_new, p_new, r_new, ja_new
+
+
+def _update_damping(b: _Batch, s: _Step) -> None:
+    """Nielsen's damping update (the accepted and the rejected branch only where taken), and
+    the switch to Newton; written to the batch (lambda, the Newton phase, stale blocks)."""
+    accept, lama, c2 = s.accept, s.lam, s.chi2
+    if accept.all():
+        rho = (c2 - s.chi2_new) / np.maximum(s.predicted, 1e-300)
+        rho = np.minimum(np.maximum(rho, 0.0), 1.0)
+        lam_new = np.maximum(lama * np.maximum(b.shrink, 1.0 - (2.0 * rho - 1.0) ** 3), 1e-15)
+    elif accept.any():
+        rho = (c2 - s.chi2_new) / np.maximum(s.predicted, 1e-300)
+        rho = np.minimum(np.maximum(rho, 0.0), 1.0)
+        factor = np.maximum(b.shrink, 1.0 - (2.0 * rho - 1.0) ** 3)
+        lam_new = np.where(accept, np.maximum(lama * factor, 1e-15), lama * 4.0)
+    else:
+        lam_new = lama * 4.0
+    switching = b.newton_phase and not s.newton.all()
+    if switching:
+        # With thousands of frames a rejected Gauss-Newton step that predicted little also
+        # switches: its joint step moves a few frames near a fold far off (chi2 28,277 ->
+        # 124,805 for a predicted decrease of 95 at 30,000 frames), and each rejection only
+        # raised lambda (8 rejections); Newton's embedded per-frame pose steps keep the
+        # frames that gain (the same fit took 18 -> 9 iterations).
+        switch = ~s.newton & (accept | b.long) & (s.predicted <= NEWTON_SWITCH * c2)
+        if switch.any():  # a new model: trust it afresh
+            lam_new[switch] = np.minimum(lam_new[switch], 1e-3)
+            b.newton[s.act[switch]] = True
+    moved = accept | (switch if switching else False)
+    if s.full:
+        b.lam = lam_new
+        b.stale = moved  # a new array each iteration (a new model: its blocks built again)
+    else:
+        b.lam[s.act] = lam_new
+        b.stale[s.act] = moved
+
+
+def _take_accepted(b: _Batch, s: _Step) -> None:
+    """The accepted trial points replace the starts' points."""
+    accept = s.accept
+    if not accept.any():
+        return
+    if s.full and s.every and accept.all():  # the new arrays replace the old ones
+        b.g, b.p, b.r, b.ja, b.chi2 = s.g_new, s.p_new, s.r_new, s.ja_new, s.chi2_new
+        return
+    sel = accept if s.every else accept[s.moving]  # the accepted among the evaluated starts
+    acc = s.act[sel] if s.every else s.act[s.moving[sel]]
+    b.g[acc], b.p[acc], b.r[acc] = s.g_new[sel], s.p_new[sel], s.r_new[sel]
+    b.ja[acc] = s.ja_new[sel]
+    b.chi2[acc] = s.chi2_new[accept]
 
 
 def _profile_batch(

@@ -727,10 +727,80 @@ def _refine_candidates(
     """The ML part of :func:`search_start` from polished grid minima ``xs`` (gamma, alpha, beta,
     phi) with reduced costs ``fs``: short batched refinement of the best distinct ones (and
     ``extra`` shapes), the best distinct refined to convergence, branch switching, restarts."""
-    n = obs.n_frames
-    few = n < 12
+    pr = _Problem(obs, obs.measurements(), point_sigma, tangent_sigma)
+    shapes, grid_cost = _start_shapes(obs, xs, fs, extra, n_candidates)
+    g, p, r, _, _, _ = pr.refine(
+        shapes, poses_from_branches(obs, shapes), max_iter=15, drop_factor=3.0
+    )
+    chosen = _distinct_best(g, p, r, n_final)
+    fits = _Fits(*pr.refine(g[chosen], p[chosen], max_iter=40, drop_factor=3.0))
+    _switch_and_refit(pr, fits)
+    _restart_around_best(pr, fits, n_restarts, n_restart_centres, o)
+    out = []
+    for k, i in enumerate(chosen):
+        shape_n, poses_n = normalise(fits.g[k], fits.p[k])
+        fc = np.sum(fits.r[k] * fits.r[k], axis=1)
+        res = RefineResult(
+            shape_n,
+            poses_n,
+            float(fits.chi2[k]),
+            fc,
+            fits.r[k],
+            None,
+            int(fits.iters[k]),
+            bool(fits.conv[k]),
+        )
+        out.append(Candidate(res, robust_cost(fc), grid_cost[i]))
+    out.sort(key=lambda cand: cand.robust_cost)
+    return out
+
+
+@dataclass(frozen=True)
+class _Problem:
+    """What every refinement of :func:`_refine_candidates` fits: the frames, their
+    measurements and noise."""
+
+    obs: Observations
+    meas: np.ndarray
+    point_sigma: float
+    tangent_sigma: float
+
+    @property
+    def w8(self) -> np.ndarray:
+        """The residuals' weights (1 / sigma) for ``switch_branches``."""
+        return np.array([1.0 / self.point_sigma] * 4 + [1.0 / self.tangent_sigma] * 2)
+
+    def refine(self, shapes: np.ndarray, poses: np.ndarray, **kwargs) -> tuple[np.ndarray, ...]:
+        """``refine_batch`` from these starts on the frames (keyword arguments passed on)."""
+        return refine_batch(
+            self.meas, shapes, poses, self.point_sigma, self.tangent_sigma, **kwargs
+        )
+
+
+@dataclass
+class _Fits:
+    """Refined candidates as ``refine_batch`` returns them: shapes g (K, 4), poses p (K, N, 5),
+    residuals r (K, N, 6), chi2, iterations and convergence (K,)."""
+
+    g: np.ndarray
+    p: np.ndarray
+    r: np.ndarray
+    chi2: np.ndarray
+    iters: np.ndarray
+    conv: np.ndarray
+
+    def robust_costs(self) -> np.ndarray:
+        """Every candidate's robust cost (:func:`robust_cost` of its frames' chi2)."""
+        return np.array([robust_cost(f) for f in np.sum(self.r * self.r, axis=2)])
+
+
+def _start_shapes(
+    obs: Observations, xs: np.ndarray, fs: np.ndarray, extra: list[np.ndarray], n_candidates: int
+) -> tuple[np.ndarray, list[float]]:
+    """The start shapes (c, alpha, beta, phi) of the ``n_candidates`` best distinct minima (all
+    four parameters within 1e-3 rad of a kept one: the same), best first, then ``extra``; and
+    each one's grid cost (NaN for ``extra``)."""
     order = np.argsort(fs, kind="stable")
-    # distinct minima (all four parameters within 1e-3 rad of a kept one: the same), best first
     keep = np.zeros(order.size, bool)
     for j, i in enumerate(order):
         if np.count_nonzero(keep) >= n_candidates:
@@ -744,12 +814,12 @@ def _refine_candidates(
     for e in extra:
         starts.append(e)
         grid_cost.append(float("nan"))
-    shapes = np.array(starts)
-    poses = poses_from_branches(obs, shapes)
-    meas = obs.measurements()
-    g, p, r, chi2, _, _ = refine_batch(
-        meas, shapes, poses, point_sigma, tangent_sigma, max_iter=15, drop_factor=3.0
-    )
+    return np.array(starts), grid_cost
+
+
+def _distinct_best(g: np.ndarray, p: np.ndarray, r: np.ndarray, n_final: int) -> list[int]:
+    """The ``n_final`` best (lowest robust cost) refined starts with distinct normalised
+    shapes (``shape_distance`` above 1e-3)."""
     fchi2 = np.sum(r * r, axis=2)
     rc = np.array([robust_cost(f) for f in fchi2])
     order = np.argsort(rc, kind="stable")
@@ -760,115 +830,129 @@ def _refine_candidates(
             break
         if all(shape_distance(normed[i], normed[j]) > 1e-3 for j in chosen):
             chosen.append(int(i))
-    g, p, r, chi2, iters, conv = refine_batch(
-        meas, g[chosen], p[chosen], point_sigma, tangent_sigma, max_iter=40, drop_factor=3.0
+    return chosen
+
+
+def _switch_and_refit(pr: _Problem, fits: _Fits) -> None:
+    """Branch switching: a frame may sit on the wrong solution of (10) (sign of tau, root);
+    every branch is tried per frame with the shape fixed, and the candidates refitted where
+    that helps (in place)."""
+    p_sw = switch_branches(pr.obs, fits.g, fits.p, pr.w8)
+    changed = np.any(p_sw != fits.p, axis=(1, 2))
+    if not changed.any():
+        return
+    g2, p2, r2, chi22, it2, conv2 = pr.refine(
+        fits.g[changed], p_sw[changed], max_iter=40, drop_factor=3.0
     )
-    # Branch switching: a frame may sit on the wrong solution of (10) (sign of tau, root);
-    # try every branch per frame with the shape fixed and refit where that helps.
-    w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / tangent_sigma] * 2)
-    p_sw = switch_branches(obs, g, p, w8)
-    changed = np.any(p_sw != p, axis=(1, 2))
-    if changed.any():
-        g2, p2, r2, chi22, it2, conv2 = refine_batch(
-            meas,
-            g[changed],
-            p_sw[changed],
-            point_sigma,
-            tangent_sigma,
-            max_iter=40,
-            drop_factor=3.0,
-        )
-        better = chi22 < chi2[changed]
-        idx = np.flatnonzero(changed)[better]
-        g[idx], p[idx], r[idx], chi2[idx] = g2[better], p2[better], r2[better], chi22[better]
-        iters[idx] += it2[better]
-        conv[idx] = conv2[better]
-    # Local restarts around the best candidates (few frames: many shallow minima nearby).
+    better = chi22 < fits.chi2[changed]
+    idx = np.flatnonzero(changed)[better]
+    fits.g[idx], fits.p[idx], fits.r[idx] = g2[better], p2[better], r2[better]
+    fits.chi2[idx] = chi22[better]
+    fits.iters[idx] += it2[better]
+    fits.conv[idx] = conv2[better]
+
+
+def _restart_around_best(
+    pr: _Problem,
+    fits: _Fits,
+    n_restarts: int | None,
+    n_restart_centres: int | None,
+    o: SearchOptions,
+) -> None:
+    """Local restarts around the best candidates (few frames: many shallow minima nearby); the
+    best restart replaces the worst candidate (in place) if its robust cost is lower than the
+    best one's.
+
+    That needs it below the best one's by a relative 1e-9: impossible (costs are >= 0) once the
+    best fit is exact (noise-free data, or 4 frames, where every refined start fits exactly) -
+    the restarts are then skipped.  They are ranked by the robust cost (as the candidates are):
+    with outlier frames the raw chi2 can prefer a wrong shape that spreads the outliers' misfit
+    over all frames."""
+    n = pr.obs.n_frames
+    few = n < 12
     dof = max(n - 4, 1)
-    implausible = np.min(chi2) > dof + 5.0 * np.sqrt(2.0 * dof) + 10.0
-    near_exact = np.min(chi2) < o.near_exact_chi2 * dof  # nearly noise-free: search harder
+    implausible = np.min(fits.chi2) > dof + 5.0 * np.sqrt(2.0 * dof) + 10.0
+    near_exact = np.min(fits.chi2) < o.near_exact_chi2 * dof  # nearly noise-free: search harder
     if n_restarts is None:
         n_restarts = (
             o.restarts_implausible
             if implausible or near_exact
             else (o.restarts_few if few else o.restarts)
         )
-    # A restart replaces a candidate only if its robust cost is below the best one's by a
-    # relative 1e-9: impossible (costs are >= 0) once the best fit is exact (noise-free data,
-    # or 4 frames, where every refined start fits exactly) - the restarts are then skipped.
-    rc = np.array([robust_cost(f) for f in np.sum(r * r, axis=2)])
-    if n_restarts > 0 and np.min(rc) > o.exact_cost:
-        # ranked by the robust cost (as the candidates are): with outlier frames the raw chi2
-        # can prefer a wrong shape that spreads the outliers' misfit over all frames
-        rng = np.random.default_rng(12345)
-        if n_restart_centres is None:
-            n_restart_centres = 3 if (few or implausible) else 2
-        top = np.argsort(rc, kind="stable")[:n_restart_centres]
-        starts = []
-        spread = np.where(np.arange(n_restarts) % 2 == 0, 1.0, 2.5)[:, None]
-        for k in top:
-            pert = g[k] + spread * rng.normal(size=(n_restarts, 4)) * np.array(
-                [0.04 * g[k][0], 0.06, 0.06, 0.1]
-            )
-            pert[:, 0] = np.abs(pert[:, 0])
-            starts.append(pert)
-        starts = np.concatenate(starts)
-        sp = poses_from_branches(obs, starts)
-        # Plausible noisy data: the restarts are screened by Gauss-Newton alone (cheap
-        # iterations that keep a start's basin); the ``o.restart_finalists`` best by robust cost
-        # are then refined from their starts as every restart is otherwise (Newton phase, to
-        # convergence): the same results whenever the best restart is among them.
-        # Implausible or nearly noise-free data (a missed minimum, an exact fit to find): no
-        # screening.
-        fin = np.arange(len(starts))
-        if not (implausible or near_exact):
-            _, _, r3, _, _, _ = refine_batch(
-                meas,
-                starts,
-                sp,
-                point_sigma,
-                tangent_sigma,
-                max_iter=o.screen_iterations,
-                ftol=o.screen_ftol,
-                drop_factor=3.0,
-                newton_phase=False,
-            )
-            rc3 = np.array([robust_cost(f) for f in np.sum(r3 * r3, axis=2)])
-            fin = np.sort(np.argsort(rc3, kind="stable")[: o.restart_finalists])
-        g3, p3, r3, chi23, it3, conv3 = refine_batch(
-            meas,
-            starts[fin],
-            sp[fin],
-            point_sigma,
-            tangent_sigma,
-            max_iter=40,
+    rc = fits.robust_costs()
+    if not (n_restarts > 0 and np.min(rc) > o.exact_cost):
+        return
+    if n_restart_centres is None:
+        n_restart_centres = 3 if (few or implausible) else 2
+    starts = _restart_starts(fits, rc, n_restarts, n_restart_centres)
+    best, best_cost = _best_restart(pr, starts, not (implausible or near_exact), o)
+    k_worst = int(np.argmax(rc))
+    if best_cost < np.min(rc) - 1e-9 * (1 + np.min(rc)):
+        fits.g[k_worst], fits.p[k_worst], fits.r[k_worst] = best.g[0], best.p[0], best.r[0]
+        fits.chi2[k_worst] = best.chi2[0]
+        fits.iters[k_worst], fits.conv[k_worst] = best.iters[0], best.conv[0]
+
+
+def _restart_starts(fits: _Fits, rc: np.ndarray, n_restarts: int, n_centres: int) -> np.ndarray:
+    """``n_restarts`` random shapes around each of the ``n_centres`` best candidates (by
+    robust cost), alternately at 1 and 2.5 times the spread (seeded: the same every call)."""
+    rng = np.random.default_rng(12345)
+    top = np.argsort(rc, kind="stable")[:n_centres]
+    starts = []
+    spread = np.where(np.arange(n_restarts) % 2 == 0, 1.0, 2.5)[:, None]
+    for k in top:
+        pert = fits.g[k] + spread * rng.normal(size=(n_restarts, 4)) * np.array(
+            [0.04 * fits.g[k][0], 0.06, 0.06, 0.1]
+        )
+        pert[:, 0] = np.abs(pert[:, 0])
+        starts.append(pert)
+    return np.concatenate(starts)
+
+
+def _best_restart(
+    pr: _Problem, starts: np.ndarray, screen: bool, o: SearchOptions
+) -> tuple[_Fits, float]:
+    """The best restart (robust cost) refined to convergence, branch switching included, and
+    its robust cost.
+
+    ``screen`` (plausible noisy data): the restarts are screened by Gauss-Newton alone (cheap
+    iterations that keep a start's basin); the ``o.restart_finalists`` best by robust cost are
+    then refined from their starts as every restart is otherwise (Newton phase, to
+    convergence): the same results whenever the best restart is among them.  Implausible or
+    nearly noise-free data (a missed minimum, an exact fit to find): no screening."""
+    sp = poses_from_branches(pr.obs, starts)
+    fin = np.arange(len(starts))
+    if screen:
+        _, _, r3, _, _, _ = pr.refine(
+            starts,
+            sp,
+            max_iter=o.screen_iterations,
+            ftol=o.screen_ftol,
             drop_factor=3.0,
+            newton_phase=False,
         )
         rc3 = np.array([robust_cost(f) for f in np.sum(r3 * r3, axis=2)])
-        j = int(np.argmin(rc3))
-        p_sw = switch_branches(obs, g3[j], p3[j], w8)
-        if np.any(p_sw != p3[j]):
-            g4, p4, r4, chi24, it4, conv4 = refine_batch(
-                meas, g3[j : j + 1], p_sw[None], point_sigma, tangent_sigma, max_iter=40
-            )
-            rc4 = robust_cost(np.sum(r4[0] * r4[0], axis=1))
-            if rc4 < rc3[j]:
-                g3[j], p3[j], r3[j], chi23[j], conv3[j] = g4[0], p4[0], r4[0], chi24[0], conv4[0]
-                rc3[j] = rc4
-        k_worst = int(np.argmax(rc))
-        if rc3[j] < np.min(rc) - 1e-9 * (1 + np.min(rc)):
-            g[k_worst], p[k_worst], r[k_worst], chi2[k_worst] = g3[j], p3[j], r3[j], chi23[j]
-            iters[k_worst], conv[k_worst] = it3[j], conv3[j]
-    out = []
-    for k, i in enumerate(chosen):
-        shape_n, poses_n = normalise(g[k], p[k])
-        fc = np.sum(r[k] * r[k], axis=1)
-        res = RefineResult(
-            shape_n, poses_n, float(chi2[k]), fc, r[k], None, int(iters[k]), bool(conv[k])
-        )
-        out.append(Candidate(res, robust_cost(fc), grid_cost[i]))
-    out.sort(key=lambda cand: cand.robust_cost)
-    return out
+        fin = np.sort(np.argsort(rc3, kind="stable")[: o.restart_finalists])
+    g3, p3, r3, chi23, it3, conv3 = pr.refine(starts[fin], sp[fin], max_iter=40, drop_factor=3.0)
+    rc3 = np.array([robust_cost(f) for f in np.sum(r3 * r3, axis=2)])
+    j = int(np.argmin(rc3))
+    best = _Fits(
+        g3[j : j + 1],
+        p3[j : j + 1],
+        r3[j : j + 1],
+        chi23[j : j + 1],
+        it3[j : j + 1],
+        conv3[j : j + 1],
+    )
+    p_sw = switch_branches(pr.obs, g3[j], p3[j], pr.w8)
+    if np.any(p_sw != p3[j]):
+        g4, p4, r4, chi24, it4, conv4 = pr.refine(g3[j : j + 1], p_sw[None], max_iter=40)
+        rc4 = robust_cost(np.sum(r4[0] * r4[0], axis=1))
+        if rc4 < rc3[j]:
+            best.g[0], best.p[0], best.r[0] = g4[0], p4[0], r4[0]
+            best.chi2[0], best.conv[0] = chi24[0], conv4[0]
+            rc3[j] = rc4
+    return best, rc3[j]
 
 
 def shape_distance(a: np.ndarray, b: np.ndarray) -> float:

@@ -344,6 +344,13 @@ def _sparse_rows(exponents: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndar
 # from process to process, and on a scene with a near-double root (seed 600,125) a different
 # set of solutions.
 _JIT = {"cache": True, "nogil": True, "fastmath": {"contract", "arcp", "nsz"}}
+_JIT_STEP = {**_JIT, "_nrt": False}
+"""The tracker's steps (``_track_path`` and what it calls for each try): no reference counting
+of their array arguments (they allocate nothing; ``_track_core`` owns every array).  With it,
+a call per try cost 20 % more time a minimal solve than the single kernel they were cut from
+(median per-scene 27 against 23 ms, process time, seeds 700,000-700,039); without it the
+same time within 2 % and the same endpoints bit for bit.  Not numba's ``inline="always"``:
+inlined, the steps changed the endpoints in the last bits on every scene."""
 
 
 @numba.njit(**_JIT)
@@ -915,218 +922,409 @@ def _track_core(
     F_x alone (one right-hand side): most rejected tries end there.  dW/dt and F_t, for the
     tangent, come from the second iteration on (the last iteration's tangent is the accepted
     point's): 0.1 + 0.8 x 0.25 us against 0.37 for W with dW/dt, and 0.15 against 0.22 for the
-    first iteration's F, F_x."""
-    h0, hmax, hmin, tol_pred, tol_corr, max_steps, divergence = (
-        opts[0],
-        opts[1],
-        opts[2],
-        opts[3],
-        opts[4],
-        int(opts[5]),
-        opts[6],
-    )
-    n_corr = int(opts[7])
-    n_hermite = int(opts[8])  # 0: RK4 predictor; else Hermite on this many past points
-    tol_grow = opts[9]
-    estimate = opts[10] > 0.0 and n_hermite > 0
-    order = opts[11]  # the order the estimate assumes (1: linear, 2: quadratic convergence)
-    quad_until = opts[12]  # ... up to this t (linear beyond: near-double roots at t = 1)
-    n_paths, n_var = x_start.shape
-    n_par = q0.shape[0]
-    q = np.empty(n_par, np.complex128)
-    dq = np.empty(n_par, np.complex128)
-    f = np.empty(n_eq, np.complex128)
-    ft = np.empty(n_eq, np.complex128)
-    jac = np.empty((n_eq, n_var), np.complex128)
-    k1 = np.empty(n_var, np.complex128)
-    k2 = np.empty(n_var, np.complex128)
-    k3 = np.empty(n_var, np.complex128)
-    k4 = np.empty(n_var, np.complex128)
-    y = np.empty(n_var, np.complex128)
-    dx = np.empty(n_var, np.complex128)
-    tangent = np.empty(n_var, np.complex128)
-    lu = np.empty((n_eq, n_var), np.complex128)
-    rhs = np.empty(n_eq, np.complex128)
-    rhs2 = np.empty(n_eq, np.complex128)
-    # the Hermite predictor's history: the last accepted points (t, x, dx/dt), oldest first
-    n_hist = max(n_hermite, 1)
-    th = np.empty(n_hist)
-    xh = np.empty((n_hist, n_var), np.complex128)
-    vh = np.empty((n_hist, n_var), np.complex128)
-    wts = np.empty(2 * n_hist)
-    z = np.empty(2 * n_hist + n_hist * (2 * n_hist - 1))  # hermite_scratch(n_hist)
-    col = np.empty((2 * n_hist, 2 * n_hist))  # _hermite_table of the current history
-    for p in range(n_paths):
+    first iteration's F, F_x.
+
+    Each path: :func:`_track_path` (predictor, corrector, step control) from t = 0 to 1, then
+    :func:`_polish_end` at t = 1; ``s`` is the scratch all of them share
+    (:func:`_tracker_scratch`, allocated once)."""
+    s = _tracker_scratch(n_eq, x_start.shape[1], q0.shape[0], int(opts[8]))
+    for p in range(x_start.shape[0]):
         x = x_start[p].copy()
-        w_at = -1.0
-        wt_at = -1.0
-        t = 0.0
-        h = h0
-        n_ok = 0
-        n_steps = 0
-        nh = 0
-        tabled = False
-        st = OK
-        while t < 1.0:
-            if n_steps >= max_steps:
-                st = TOO_MANY_STEPS
-                break
-            if h > 1.0 - t:
-                h = 1.0 - t
-            good = True
-            if n_hermite > 0 and nh >= 2:
-                # Hermite predictor: the interpolant of the last points, at t + h
-                if not tabled:  # the history changed: its nodes' divided differences
-                    _hermite_table(th, nh, z, col)
-                    tabled = True
-                _hermite_at(nh, t + h, z, col, wts)
-                for i in range(n_var):
-                    acc = 0.0 + 0.0j
-                    for j in range(nh):
-                        acc += wts[2 * j] * xh[j, i] + wts[2 * j + 1] * vh[j, i]
-                    y[i] = acc
-                if t + h != w_at:  # the corrector's W at t + h (Wt when a tangent is needed)
-                    _params_at(q0, q1, d, t + h, q, dq)
-                    coefficients(q, w)
-                    w_at = t + h
-            else:
-                # RK4 predictor on dx/dt = -F_x^-1 F_t
-                for stage in range(4):
-                    if stage == 0:
-                        ts = t
-                        for i in range(n_var):
-                            y[i] = x[i]
-                    elif stage == 1:
-                        ts = t + 0.5 * h
-                        for i in range(n_var):
-                            y[i] = x[i] + 0.5 * h * k1[i]
-                    elif stage == 2:
-                        ts = t + 0.5 * h
-                        for i in range(n_var):
-                            y[i] = x[i] + 0.5 * h * k2[i]
-                    else:
-                        ts = t + h
-                        for i in range(n_var):
-                            y[i] = x[i] + h * k3[i]
-                    if ts != w_at:  # W and Wt at ts (stages 2 and 3 share one; stage 1
-                        # reuses the last accepted step's stage 4)
-                        _params_at(q0, q1, d, ts, q, dq)
-                        coefficients_t(q, dq, w, wt)
-                        w_at = ts
-                        wt_at = ts
-                    residual_jacobian_t(y, w, wt, f, jac, ft)
-                    kk = k1 if stage == 0 else (k2 if stage == 1 else (k3 if stage == 2 else k4))
-                    if not solve_pair(jac, ft, ft, kk, kk, lu, rhs, rhs, plan, False):
-                        good = False
-                        break
-                    for i in range(n_var):
-                        kk[i] = -kk[i]
-                if good:
-                    for i in range(n_var):
-                        y[i] = x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-            first = 0.0
-            if good:
-                # Newton corrector at t + h (W at t + h is already in w).  With the Hermite
-                # predictor each iteration also solves for the tangent dx/dt = -F_x^-1 F_t with
-                # the same elimination: the last one is the accepted point's tangent.
-                scale = 1.0 + _norm(y)
-                good = False
-                prev = 0.0
-                fresh = False  # has an iteration given the tangent?
-                for it in range(n_corr):
-                    if n_hermite > 0 and it > 0:
-                        if wt_at != w_at:  # q, dq are at w_at
-                            coefficient_rates(q, dq, wt)
-                            wt_at = w_at
-                        residual_jacobian_t(y, w, wt, f, jac, ft)
-                        if not solve_pair(jac, f, ft, dx, tangent, lu, rhs, rhs2, plan, True):
-                            break
-                        fresh = True
-                    else:
-                        residual_jacobian(y, w, f, jac)
-                        if not solve_pair(jac, f, f, dx, dx, lu, rhs, rhs, plan, False):
-                            break
-                    nd = _norm(dx)
-                    if it == 0:
-                        first = nd
-                        if nd > tol_pred * scale:
-                            break
-                    if it > 0 and nd > 0.5 * prev:
-                        break
-                    for i in range(n_var):
-                        y[i] -= dx[i]
-                    if it > 0:  # the update after this one, estimated
-                        nxt = nd * (nd / prev) ** (order if t + h <= quad_until else 1.0)
-                    if nd <= tol_corr * scale or (estimate and it > 0 and nxt <= tol_corr * scale):
-                        good = True
-                        break
-                    prev = nd
-                if good and n_hermite > 0 and not fresh:  # converged in one iteration (rare)
-                    if wt_at != w_at:
-                        coefficient_rates(q, dq, wt)
-                        wt_at = w_at
-                    residual_jacobian_t(y, w, wt, f, jac, ft)
-                    good = solve_pair(jac, f, ft, dx, tangent, lu, rhs, rhs2, plan, True)
-            if good:
-                if n_hermite > 0:
-                    if nh == 0:  # the path's start and its tangent (the RK4 step's k1)
-                        th[0] = t
-                        for i in range(n_var):
-                            xh[0, i] = x[i]
-                            vh[0, i] = k1[i]
-                        nh = 1
-                    if nh == n_hermite:
-                        for j in range(nh - 1):
-                            th[j] = th[j + 1]
-                            for i in range(n_var):
-                                xh[j, i] = xh[j + 1, i]
-                                vh[j, i] = vh[j + 1, i]
-                        nh -= 1
-                    th[nh] = t + h
-                    tabled = False
-                    for i in range(n_var):
-                        xh[nh, i] = y[i]
-                        vh[nh, i] = -tangent[i]
-                    nh += 1
-                for i in range(n_var):
-                    x[i] = y[i]
-                t = t + h
-                n_steps += 1
-                if n_hermite > 0:
-                    if first <= tol_grow * scale:
-                        h = min(2.0 * h, hmax)
-                else:
-                    n_ok += 1
-                    if n_ok >= 2:
-                        h = min(2.0 * h, hmax)
-                        n_ok = 0
-                if _norm(x) > divergence:
-                    st = DIVERGED
-                    break
-            else:
-                h *= 0.5
-                n_ok = 0
-                if h < hmin:
-                    st = STEP_TOO_SMALL
-                    break
-        # final Newton polish at t = 1
+        st, n_steps, t = _track_path(
+            coefficients,
+            coefficients_t,
+            coefficient_rates,
+            residual_jacobian,
+            residual_jacobian_t,
+            solve_pair,
+            w,
+            wt,
+            q0,
+            q1,
+            d,
+            x,
+            opts,
+            plan,
+            s,
+        )
         if st == OK:
-            _params_at(q0, q1, d, 1.0, q, dq)
-            coefficients(q, w)
-            w_at = -1.0
-            for _ in range(3):
-                residual_jacobian(x, w, f, jac)
-                if not solve_pair(jac, f, f, dx, dx, lu, rhs, rhs, plan, False):
-                    break
-                for i in range(n_var):
-                    x[i] -= dx[i]
-                if _norm(dx) <= 1e-15 * (1.0 + _norm(x)):
-                    break
-        for i in range(n_var):
+            _polish_end(coefficients, residual_jacobian, solve_pair, w, q0, q1, d, x, plan, s)
+        for i in range(x.shape[0]):
             x_end[p, i] = x[i]
         status[p] = st
         steps[p] = n_steps
         t_end[p] = t
+
+
+@numba.njit(**_JIT)
+def _tracker_scratch(n_eq, n_var, n_par, n_hermite):
+    """The tracker's scratch, one tuple for every path: q, dq, F, F_t, F_x, the RK4 stages
+    k1-k4, the predicted point y, the Newton update dx, the tangent, the linear solve's
+    scratch (lu, rhs, rhs2), and the Hermite predictor's history: the last accepted points
+    (t, x, dx/dt), oldest first, the interpolant's weights and the divided differences of
+    its nodes (``hermite_scratch``, ``_hermite_table``)."""
+    n_hist = max(n_hermite, 1)
+    return (
+        np.empty(n_par, np.complex128),
+        np.empty(n_par, np.complex128),
+        np.empty(n_eq, np.complex128),
+        np.empty(n_eq, np.complex128),
+        np.empty((n_eq, n_var), np.complex128),
+        np.empty(n_var, np.complex128),
+        np.empty(n_var, np.complex128),
+        np.empty(n_var, np.complex128),
+        np.empty(n_var, np.complex128),
+        np.empty(n_var, np.complex128),
+        np.empty(n_var, np.complex128),
+        np.empty(n_var, np.complex128),
+        np.empty((n_eq, n_var), np.complex128),
+        np.empty(n_eq, np.complex128),
+        np.empty(n_eq, np.complex128),
+        np.empty(n_hist),
+        np.empty((n_hist, n_var), np.complex128),
+        np.empty((n_hist, n_var), np.complex128),
+        np.empty(2 * n_hist),
+        np.empty(2 * n_hist + n_hist * (2 * n_hist - 1)),
+        np.empty((2 * n_hist, 2 * n_hist)),
+    )
+
+
+@numba.njit(**_JIT_STEP)
+def _track_path(
+    coefficients,
+    coefficients_t,
+    coefficient_rates,
+    residual_jacobian,
+    residual_jacobian_t,
+    solve_pair,
+    w,
+    wt,
+    q0,
+    q1,
+    d,
+    x,
+    opts,
+    plan,
+    s,
+):
+    """One path from ``x`` (updated in place) at t = 0 to t = 1: predicted (Hermite once the
+    history holds two points, RK4 before and with ``opts[8]`` = 0), corrected by Newton's method
+    and accepted, or the step halved.  Returns (status, accepted steps, t reached).
+
+    ``w_at``, ``wt_at``: the t at which W and Wt in ``w``, ``wt`` were last evaluated (-1: not
+    yet); ``nh`` the Hermite history's points, ``tabled`` whether its divided differences are
+    up to date."""
+    h, hmax, hmin = opts[0], opts[1], opts[2]
+    max_steps, divergence = int(opts[5]), opts[6]
+    n_hermite = int(opts[8])  # 0: RK4 predictor; else Hermite on this many past points
+    tol_grow = opts[9]
+    q, dq, f, ft, jac, k1, k2, k3, k4, y, dx, tangent, lu, rhs, rhs2 = s[:15]
+    th, xh, vh, wts, z, col = s[15:]
+    w_at = -1.0
+    wt_at = -1.0
+    t = 0.0
+    n_ok = 0
+    n_steps = 0
+    nh = 0
+    tabled = False
+    while t < 1.0:
+        if n_steps >= max_steps:
+            return TOO_MANY_STEPS, n_steps, t
+        if h > 1.0 - t:
+            h = 1.0 - t
+        good = True
+        if n_hermite > 0 and nh >= 2:
+            if not tabled:  # the history changed: its nodes' divided differences
+                _hermite_table(th, nh, z, col)
+                tabled = True
+            w_at = _predict_hermite(
+                coefficients, w, q0, q1, d, t, h, nh, w_at, q, dq, y, xh, vh, wts, z, col
+            )
+        else:
+            good, w_at, wt_at = _predict_rk4(
+                coefficients_t,
+                residual_jacobian_t,
+                solve_pair,
+                w,
+                wt,
+                q0,
+                q1,
+                d,
+                x,
+                t,
+                h,
+                w_at,
+                wt_at,
+                plan,
+                q,
+                dq,
+                f,
+                ft,
+                jac,
+                k1,
+                k2,
+                k3,
+                k4,
+                y,
+                lu,
+                rhs,
+            )
+        first = 0.0
+        scale = 0.0
+        if good:
+            good, first, scale, wt_at = _correct(
+                coefficient_rates,
+                residual_jacobian,
+                residual_jacobian_t,
+                solve_pair,
+                w,
+                wt,
+                t + h,
+                w_at,
+                wt_at,
+                opts,
+                plan,
+                q,
+                dq,
+                f,
+                ft,
+                jac,
+                y,
+                dx,
+                tangent,
+                lu,
+                rhs,
+                rhs2,
+            )
+        if good:
+            if n_hermite > 0:
+                nh = _push_history(t, h, x, nh, n_hermite, k1, y, tangent, th, xh, vh)
+                tabled = False
+            for i in range(x.shape[0]):
+                x[i] = y[i]
+            t = t + h
+            n_steps += 1
+            if n_hermite > 0:
+                if first <= tol_grow * scale:
+                    h = min(2.0 * h, hmax)
+            else:
+                n_ok += 1
+                if n_ok >= 2:
+                    h = min(2.0 * h, hmax)
+                    n_ok = 0
+            if _norm(x) > divergence:
+                return DIVERGED, n_steps, t
+        else:
+            h *= 0.5
+            n_ok = 0
+            if h < hmin:
+                return STEP_TOO_SMALL, n_steps, t
+    return OK, n_steps, t
+
+
+@numba.njit(**_JIT_STEP)
+def _predict_hermite(coefficients, w, q0, q1, d, t, h, nh, w_at, q, dq, y, xh, vh, wts, z, col):
+    """Hermite predictor: y is the interpolant at t + h of the history's ``nh`` points (xh,
+    tangents vh; ``z``, ``col`` their ``_hermite_table``, ``wts`` scratch); W at t + h for the
+    corrector (q, dq: the parameters there).  Returns the t at which ``w`` holds W."""
+    _hermite_at(nh, t + h, z, col, wts)
+    for i in range(y.shape[0]):
+        acc = 0.0 + 0.0j
+        for j in range(nh):
+            acc += wts[2 * j] * xh[j, i] + wts[2 * j + 1] * vh[j, i]
+        y[i] = acc
+    if t + h != w_at:  # the corrector's W at t + h (Wt when a tangent is needed)
+        _params_at(q0, q1, d, t + h, q, dq)
+        coefficients(q, w)
+        w_at = t + h
+    return w_at
+
+
+@numba.njit(**_JIT_STEP)
+def _predict_rk4(
+    coefficients_t,
+    residual_jacobian_t,
+    solve_pair,
+    w,
+    wt,
+    q0,
+    q1,
+    d,
+    x,
+    t,
+    h,
+    w_at,
+    wt_at,
+    plan,
+    q,
+    dq,
+    f,
+    ft,
+    jac,
+    k1,
+    k2,
+    k3,
+    k4,
+    y,
+    lu,
+    rhs,
+):
+    """RK4 predictor on dx/dt = -F_x^-1 F_t from x at t: y at t + h, the stages in k1-k4 (k1,
+    the tangent at x, starts the Hermite history); q, dq, f, ft, jac, lu, rhs scratch.
+    Returns (whether every stage's solve succeeded, the t of W in ``w``, the t of Wt in
+    ``wt``)."""
+    n_var = x.shape[0]
+    for stage in range(4):
+        if stage == 0:
+            ts = t
+            for i in range(n_var):
+                y[i] = x[i]
+        elif stage == 1:
+            ts = t + 0.5 * h
+            for i in range(n_var):
+                y[i] = x[i] + 0.5 * h * k1[i]
+        elif stage == 2:
+            ts = t + 0.5 * h
+            for i in range(n_var):
+                y[i] = x[i] + 0.5 * h * k2[i]
+        else:
+            ts = t + h
+            for i in range(n_var):
+                y[i] = x[i] + h * k3[i]
+        if ts != w_at:  # W and Wt at ts (stages 2 and 3 share one; stage 1
+            # reuses the last accepted step's stage 4)
+            _params_at(q0, q1, d, ts, q, dq)
+            coefficients_t(q, dq, w, wt)
+            w_at = ts
+            wt_at = ts
+        residual_jacobian_t(y, w, wt, f, jac, ft)
+        kk = k1 if stage == 0 else (k2 if stage == 1 else (k3 if stage == 2 else k4))
+        if not solve_pair(jac, ft, ft, kk, kk, lu, rhs, rhs, plan, False):
+            return False, w_at, wt_at
+        for i in range(n_var):
+            kk[i] = -kk[i]
+    for i in range(n_var):
+        y[i] = x[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+    return True, w_at, wt_at
+
+
+@numba.njit(**_JIT_STEP)
+def _correct(
+    coefficient_rates,
+    residual_jacobian,
+    residual_jacobian_t,
+    solve_pair,
+    w,
+    wt,
+    t_next,
+    w_at,
+    wt_at,
+    opts,
+    plan,
+    q,
+    dq,
+    f,
+    ft,
+    jac,
+    y,
+    dx,
+    tangent,
+    lu,
+    rhs,
+    rhs2,
+):
+    """Newton corrector of y at t + h = ``t_next`` (W there is already in ``w``; q, dq are at
+    ``w_at``; f, ft, jac, dx, lu, rhs, rhs2 scratch).  With the Hermite predictor each
+    iteration also solves for the tangent dx/dt = -F_x^-1 F_t with the same elimination: the
+    last one is the accepted point's tangent (``tangent``).  Returns (converged, the first
+    update's norm, 1 + |y| before the corrector, the t of Wt in ``wt``)."""
+    tol_pred, tol_corr, n_corr = opts[3], opts[4], int(opts[7])
+    n_hermite = int(opts[8])
+    estimate = opts[10] > 0.0 and n_hermite > 0
+    order = opts[11]  # the order the estimate assumes (1: linear, 2: quadratic convergence)
+    quad_until = opts[12]  # ... up to this t (linear beyond: near-double roots at t = 1)
+    first = 0.0
+    scale = 1.0 + _norm(y)
+    good = False
+    prev = 0.0
+    fresh = False  # has an iteration given the tangent?
+    for it in range(n_corr):
+        if n_hermite > 0 and it > 0:
+            if wt_at != w_at:  # q, dq are at w_at
+                coefficient_rates(q, dq, wt)
+                wt_at = w_at
+            residual_jacobian_t(y, w, wt, f, jac, ft)
+            if not solve_pair(jac, f, ft, dx, tangent, lu, rhs, rhs2, plan, True):
+                break
+            fresh = True
+        else:
+            residual_jacobian(y, w, f, jac)
+            if not solve_pair(jac, f, f, dx, dx, lu, rhs, rhs, plan, False):
+                break
+        nd = _norm(dx)
+        if it == 0:
+            first = nd
+            if nd > tol_pred * scale:
+                break
+        if it > 0 and nd > 0.5 * prev:
+            break
+        for i in range(y.shape[0]):
+            y[i] -= dx[i]
+        if it > 0:  # the update after this one, estimated
+            nxt = nd * (nd / prev) ** (order if t_next <= quad_until else 1.0)
+        if nd <= tol_corr * scale or (estimate and it > 0 and nxt <= tol_corr * scale):
+            good = True
+            break
+        prev = nd
+    if good and n_hermite > 0 and not fresh:  # converged in one iteration (rare)
+        if wt_at != w_at:
+            coefficient_rates(q, dq, wt)
+            wt_at = w_at
+        residual_jacobian_t(y, w, wt, f, jac, ft)
+        good = solve_pair(jac, f, ft, dx, tangent, lu, rhs, rhs2, plan, True)
+    return good, first, scale, wt_at
+
+
+@numba.njit(**_JIT_STEP)
+def _push_history(t, h, x, nh, n_hermite, k1, y, tangent, th, xh, vh):
+    """The accepted point y at t + h and its tangent join the Hermite history (the oldest of
+    ``n_hermite`` points leaves it); the path's first step first enters its start x at t with
+    the RK4 step's k1.  Returns the history's new number of points."""
+    n_var = x.shape[0]
+    if nh == 0:  # the path's start and its tangent (the RK4 step's k1)
+        th[0] = t
+        for i in range(n_var):
+            xh[0, i] = x[i]
+            vh[0, i] = k1[i]
+        nh = 1
+    if nh == n_hermite:
+        for j in range(nh - 1):
+            th[j] = th[j + 1]
+            for i in range(n_var):
+                xh[j, i] = xh[j + 1, i]
+                vh[j, i] = vh[j + 1, i]
+        nh -= 1
+    th[nh] = t + h
+    for i in range(n_var):
+        xh[nh, i] = y[i]
+        vh[nh, i] = -tangent[i]
+    return nh + 1
+
+
+@numba.njit(**_JIT_STEP)
+def _polish_end(coefficients, residual_jacobian, solve_pair, w, q0, q1, d, x, plan, s):
+    """Final Newton polish of a path's endpoint x at t = 1 (at most three iterations)."""
+    q, dq, f, jac, dx, lu, rhs = s[0], s[1], s[2], s[4], s[10], s[12], s[13]
+    _params_at(q0, q1, d, 1.0, q, dq)
+    coefficients(q, w)
+    for _ in range(3):
+        residual_jacobian(x, w, f, jac)
+        if not solve_pair(jac, f, f, dx, dx, lu, rhs, rhs, plan, False):
+            break
+        for i in range(x.shape[0]):
+            x[i] -= dx[i]
+        if _norm(dx) <= 1e-15 * (1.0 + _norm(x)):
+            break
 
 
 @numba.njit(**_JIT)
