@@ -286,6 +286,7 @@ EXTRA_SECTIONS = {
     "minimal": "bench.minimal",
     "outliers": "bench.outliers",
     "scale": "bench.scale",
+    "start": "bench.start",
     "trace": "bench.trace",
 }
 """Sections with a module of their own (``run(quick) -> dict`` of report keys); each also runs

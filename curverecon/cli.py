@@ -1,6 +1,10 @@
 """Command line: ``curverecon reconstruct | simulate | match-flat | trace | batch``.
 
 Bad input exits with status 2 and one line ``curverecon: error: <message>`` on stderr.
+
+Building the parser imports neither NumPy nor the pipeline (``--help`` answers at once); each
+command imports what it uses.  A command is a ``_Command`` in ``COMMANDS``: its name, its help,
+a function adding its arguments and its handler.
 """
 
 from __future__ import annotations
@@ -8,17 +12,28 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import NamedTuple
 
-import numpy as np
-
-from curverecon.curve_families import FAMILIES as CURVE_FAMILIES
+from curverecon.batch import cli as batch_cli  # light: Dask and pandas load when it runs
 from curverecon.errors import CurveReconError
-from curverecon.simulate import OUTLIER_MODELS
 
 MAX_SIMULATED_FRAMES = 10_000_000
 """``simulate --frames`` above this would need more memory than a machine has (about 1 kB a
 frame with polylines)."""
+
+SCENE_FAMILIES = ("bezier", "helix", "clothoid", "fourier", "sharp-ends", "random")
+"""Families of JSON scenes (``curverecon.curve_families.FAMILIES``, named here so that the
+parser does not import NumPy; tests/test_cli.py checks that both lists agree)."""
+
+IMAGE_FAMILIES = ("bezier", "helix", "wave", "loop")
+"""Families of rendered scenes (``--images``; ``curverecon.trace.render.FAMILIES``)."""
+
+FAMILIES = tuple(dict.fromkeys(SCENE_FAMILIES + IMAGE_FAMILIES))
+"""Every family ``simulate --family`` accepts; each scene kind refuses the ones it cannot draw."""
+
+OUTLIER_MODELS = ("gross", "random")
+"""``curverecon.simulate.OUTLIER_MODELS``."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -32,15 +47,7 @@ def _warn(message: str) -> None:
     print(f"curverecon: warning: {message}", file=sys.stderr)
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
-        prog="curverecon",
-        description="Recover a rigid smooth 3-D curve from orthographic images in which only two "
-        "points A, B and the tangents there are traced (after M. A. Klopotek, section 3).",
-    )
-    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
-
-    rec = sub.add_parser("reconstruct", help="reconstruct shape and poses from observations")
+def _add_reconstruct(rec: argparse.ArgumentParser) -> None:
     rec.add_argument("input", help="curverecon.observations/1 JSON file")
     rec.add_argument("-o", "--output", required=True, help="curverecon.reconstruction/1 JSON")
     rec.add_argument("--method", choices=["auto", "linear"], default="auto")
@@ -69,7 +76,8 @@ def build_parser() -> argparse.ArgumentParser:
         "against every frame's polyline, then take the shape from the fitted curve (default on)",
     )
 
-    sim = sub.add_parser("simulate", help="write a synthetic scene (and its truth)")
+
+def _add_simulate(sim: argparse.ArgumentParser) -> None:
     sim.add_argument("-o", "--output", required=True, help="scene (observations) JSON")
     sim.add_argument("--truth", help="write the truth to this JSON file")
     sim.add_argument("--frames", type=int, default=20)
@@ -87,10 +95,15 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--seed", type=int, default=0)
     sim.add_argument("--with-curve", action="store_true", help="also write projected polylines")
     sim.add_argument(
-        "--curve-family",
-        choices=list(CURVE_FAMILIES),
+        "--family",
+        choices=list(FAMILIES),
         default="bezier",
-        help="the kind of 3-D curve drawn (default bezier: the original random cubic curves)",
+        help=f"the kind of 3-D curve drawn (default bezier: random cubic curves); JSON scenes: "
+        f"{', '.join(SCENE_FAMILIES)}; rendered scenes (--images): {', '.join(IMAGE_FAMILIES)} "
+        "(loop often crosses itself)",
+    )
+    sim.add_argument(  # the former name of --family, kept for existing scripts
+        "--curve-family", dest="family", choices=list(FAMILIES), help=argparse.SUPPRESS
     )
     sim.add_argument(
         "--images",
@@ -100,12 +113,6 @@ def build_parser() -> argparse.ArgumentParser:
     )
     sim.add_argument("--image-size", type=int, default=384, help="frame side in pixels (--images)")
     sim.add_argument(
-        "--family",
-        default="bezier",
-        help="curve of the rendered scene (--images): bezier, helix, wave or loop (often crosses "
-        "itself)",
-    )
-    sim.add_argument(
         "--step", type=float, default=25.0, help="rotation per frame, degrees (--images)"
     )
     sim.add_argument("--grey-noise", type=float, default=8.0, help="image noise sd (--images)")
@@ -114,7 +121,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--gradient", type=float, default=60.0, help="background rise in grey levels (--images)"
     )
 
-    tr = sub.add_parser("trace", help="trace the curve in images or a video into observations")
+
+def _add_trace(tr: argparse.ArgumentParser) -> None:
     tr.add_argument(
         "inputs", nargs="+", metavar="INPUT", help="image files, one folder or one video"
     )
@@ -128,14 +136,10 @@ def build_parser() -> argparse.ArgumentParser:
         "--quiet", action="store_true", help="no progress bar (shown only on a terminal anyway)"
     )
 
-    flat = sub.add_parser("match-flat", help="match points of a planar curve between two views")
+
+def _add_match_flat(flat: argparse.ArgumentParser) -> None:
     flat.add_argument("input", help="curverecon.flat-views/1 JSON file")
     flat.add_argument("-o", "--output", required=True, help="curverecon.matches/1 JSON")
-
-    from curverecon.batch.cli import register as register_batch  # light: Dask is imported later
-
-    register_batch(sub)
-    return parser
 
 
 def _cmd_reconstruct(args: argparse.Namespace) -> int:
@@ -168,11 +172,14 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from curverecon.io import observations_to_dict, write_json
     from curverecon.simulate import make_scene, truth_to_dict
 
     if args.frames < 1:
         raise CurveReconError("--frames must be at least 1")
+    _check_family(args.family, bool(args.images))
     if args.images:
         return _simulate_images(args)
     if args.frames > MAX_SIMULATED_FRAMES:
@@ -197,7 +204,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         outlier_fraction=args.outlier_fraction,
         outlier_model=args.outlier_model,
         with_curve=args.with_curve,
-        curve_family=args.curve_family,
+        curve_family=args.family,
     )
     write_json(args.output, observations_to_dict(scene.observations))
     if args.truth:
@@ -205,19 +212,27 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _check_family(family: str, images: bool) -> None:
+    """Refuse a family the chosen scene kind (rendered images or a JSON scene) cannot draw."""
+    if images and family not in IMAGE_FAMILIES:
+        raise CurveReconError(
+            f"--family {family} draws JSON scenes only (without --images); "
+            f"rendered scenes: {', '.join(IMAGE_FAMILIES)}"
+        )
+    if not images and family not in SCENE_FAMILIES:
+        raise CurveReconError(
+            f"--family {family} draws rendered scenes only (with --images); "
+            f"JSON scenes: {', '.join(SCENE_FAMILIES)}"
+        )
+
+
 def _simulate_images(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from curverecon.io import observations_to_dict, write_json
     from curverecon.simulate import truth_to_dict
-    from curverecon.trace.render import (
-        FAMILIES,
-        RenderOptions,
-        render_scene,
-        tumbling_scene,
-        write_images,
-    )
+    from curverecon.trace.render import RenderOptions, render_scene, tumbling_scene, write_images
 
-    if args.family not in FAMILIES:
-        raise CurveReconError(f"--family must be one of {', '.join(FAMILIES)}")
     if not 32 <= args.image_size <= 8192:
         raise CurveReconError("--image-size must be between 32 and 8192")
     if args.frames > 10_000:
@@ -271,26 +286,54 @@ def _cmd_match_flat(args: argparse.Namespace) -> int:
     return 0
 
 
+class _Command(NamedTuple):
+    """One subcommand: its help line, the function adding its arguments, its handler."""
+
+    help: str
+    add_arguments: Callable[[argparse.ArgumentParser], None]
+    run: Callable[[argparse.Namespace], int]
+
+
+COMMANDS: dict[str, _Command] = {
+    "reconstruct": _Command(
+        "reconstruct shape and poses from observations", _add_reconstruct, _cmd_reconstruct
+    ),
+    "simulate": _Command("write a synthetic scene (and its truth)", _add_simulate, _cmd_simulate),
+    "trace": _Command(
+        "trace the curve in images or a video into observations", _add_trace, _cmd_trace
+    ),
+    "match-flat": _Command(
+        "match points of a planar curve between two views", _add_match_flat, _cmd_match_flat
+    ),
+    "batch": _Command(batch_cli.HELP, batch_cli.add_arguments, batch_cli.command),
+}
+"""The subcommands, in the order ``--help`` lists them."""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="curverecon",
+        description="Recover a rigid smooth 3-D curve from orthographic images in which only two "
+        "points A, B and the tangents there are traced (after M. A. Klopotek, section 3).",
+    )
+    sub = parser.add_subparsers(dest="command", parser_class=_Parser)
+    for name, command in COMMANDS.items():
+        command.add_arguments(sub.add_parser(name, help=command.help))
+    return parser
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``curverecon`` console script; returns the exit status."""
     try:
         parser = build_parser()
         args = parser.parse_args(argv)
         if args.command is None:
-            raise CurveReconError(
-                "a command is required: reconstruct, simulate, match-flat, trace or batch"
-            )
-        handler = (
-            getattr(args, "handler", None)
-            or {
-                "reconstruct": _cmd_reconstruct,
-                "simulate": _cmd_simulate,
-                "match-flat": _cmd_match_flat,
-                "trace": _cmd_trace,
-            }[args.command]
-        )
+            names = list(COMMANDS)
+            raise CurveReconError(f"a command is required: {', '.join(names[:-1])} or {names[-1]}")
+        import numpy as np
+
         with np.errstate(all="ignore"):
-            return handler(args)
+            return COMMANDS[args.command].run(args)
     except CurveReconError as exc:
         print(f"curverecon: error: {exc}", file=sys.stderr)
         return 2

@@ -29,8 +29,8 @@ MIN_TANGENT_TO_NORMAL_DEG = 3.0
 OUTLIER_MODELS = ("gross", "random")
 """``make_scene``'s outlier models: "gross", a 15-40 degree error on one or both tangent angles
 of an outlier frame (the default, the original stream); "random", both tangent directions of an
-outlier frame replaced by independent uniformly random directions in the image plane (issue 12's
-robustness model)."""
+outlier frame replaced by independent uniformly random directions in the image plane (the
+robustness model of a tracker that lost the curve)."""
 
 
 @dataclass

@@ -9,6 +9,7 @@ import sys
 import numpy as np
 import pytest
 
+from curverecon.cli import COMMANDS, main
 from curverecon.errors import CurveReconError
 from curverecon.io import observations_from_dict, observations_to_dict
 from curverecon.pipeline import reconstruct
@@ -177,3 +178,30 @@ def test_simulate_then_reconstruct(tmp_path):
     assert abs(rec["c"] / tru["c"] - 1) < 0.05
     for key in ("alpha_deg", "beta_deg", "phi_deg"):
         assert abs(rec[key] - tru[key]) < 5.0
+
+
+def test_every_command_has_its_help(capsys):
+    with pytest.raises(SystemExit) as done:
+        main(["--help"])
+    assert done.value.code == 0
+    listing = capsys.readouterr().out
+    for name, command in COMMANDS.items():
+        assert name in listing and command.help in listing
+        with pytest.raises(SystemExit) as done:
+            main([name, "--help"])
+        assert done.value.code == 0
+        assert f"usage: curverecon {name}" in capsys.readouterr().out
+
+
+def test_the_former_family_option_is_hidden(capsys):
+    with pytest.raises(SystemExit):
+        main(["simulate", "--help"])
+    text = capsys.readouterr().out
+    assert "--family" in text and "--curve-family" not in text
+    assert "clothoid" in text and "loop" in text
+
+
+def test_a_missing_command_names_every_command(capsys):
+    assert main([]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and all(name in err[0] for name in COMMANDS)

@@ -104,10 +104,46 @@ def test_curve_families_are_consistent_3d_curves(family):
     assert abs(alpha - t.alpha) < 0.01 and abs(beta - t.beta) < 0.01 and abs(phi - t.phi) < 0.01
 
 
-def test_simulate_command_curve_family(tmp_path):
-    out = str(tmp_path / "s.json")
-    assert main(["simulate", "-o", out, "--with-curve", "--curve-family", "helix"]) == 0
-    assert main(["simulate", "-o", out, "--with-curve", "--curve-family", "spiral"]) == 2
+def test_simulate_command_family(tmp_path):
+    out = tmp_path / "s.json"
+    assert main(["simulate", "-o", str(out), "--with-curve", "--family", "helix"]) == 0
+    helix = out.read_text()
+    assert main(["simulate", "-o", str(out), "--with-curve", "--family", "bezier"]) == 0
+    assert out.read_text() != helix
+    # the former name of the option draws the same scene
+    assert main(["simulate", "-o", str(out), "--with-curve", "--curve-family", "helix"]) == 0
+    assert out.read_text() == helix
+    assert main(["simulate", "-o", str(out), "--with-curve", "--family", "spiral"]) == 2
+    assert main(["simulate", "-o", str(out), "--with-curve", "--curve-family", "spiral"]) == 2
+
+
+@pytest.mark.parametrize("family", ["wave", "loop"])
+def test_a_rendered_only_family_is_refused_for_json_scenes(tmp_path, capsys, family):
+    out = tmp_path / "s.json"
+    assert main(["simulate", "-o", str(out), "--family", family]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("curverecon: error: --family " + family)
+    assert "--images" in err[0] and not out.exists()
+
+
+@pytest.mark.parametrize("family", ["clothoid", "fourier", "sharp-ends", "random"])
+def test_a_json_only_family_is_refused_for_rendered_scenes(tmp_path, capsys, family):
+    out, images = tmp_path / "s.json", tmp_path / "img"
+    args = ["simulate", "-o", str(out), "--images", str(images), "--frames", "3"]
+    assert main([*args, "--family", family]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("curverecon: error: --family " + family)
+    assert not out.exists() and not images.exists()
+
+
+def test_the_command_offers_every_family_either_scene_kind_draws():
+    from curverecon.cli import FAMILIES, IMAGE_FAMILIES, OUTLIER_MODELS, SCENE_FAMILIES
+    from curverecon.trace import render
+
+    assert SCENE_FAMILIES == curve_families.FAMILIES
+    assert IMAGE_FAMILIES == render.FAMILIES
+    assert set(FAMILIES) == set(SCENE_FAMILIES) | set(IMAGE_FAMILIES)
+    assert OUTLIER_MODELS == simulate.OUTLIER_MODELS
 
 
 def _line_angle_error_deg(observed: np.ndarray, true3: np.ndarray) -> np.ndarray:

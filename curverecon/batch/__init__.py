@@ -21,6 +21,7 @@ def run(
     workers: int | None = None,
     force: bool = False,
     *,
+    scheduler: str | None = None,
     progress: bool | None = None,
     verbose: bool = False,
 ) -> pandas.DataFrame:
@@ -36,6 +37,7 @@ def run(
         client=client,
         workers=workers,
         force=force,
+        scheduler=scheduler,
         progress=progress,
         verbose=verbose,
     )

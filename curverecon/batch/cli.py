@@ -12,15 +12,16 @@ EXIT_SOME_FAILED = 3
 bad arguments (before anything runs)."""
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
-    """Add ``batch`` to the command's subparsers (its handler in ``handler``)."""
-    p = subparsers.add_parser(
-        "batch",
-        help="trace and reconstruct many sequences on a Dask cluster (docs/batch.md)",
-        description="Each INPUT is an observation file, a video, a folder of frames (one "
+HELP = "trace and reconstruct many sequences on a Dask cluster (docs/batch.md)"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The ``batch`` subcommand's description and arguments."""
+    p.description = (
+        "Each INPUT is an observation file, a video, a folder of frames (one "
         "sequence) or a folder of those (a batch). Outputs per input <name>.reconstruction.json "
         "(and <name>.observations.json when traced), and summary.csv / summary.parquet. "
-        "Exit 0: all succeeded; 3: some failed; 2: bad arguments.",
+        "Exit 0: all succeeded; 3: some failed; 2: bad arguments."
     )
     p.add_argument("inputs", nargs="*", metavar="INPUT", help="observation files, videos, folders")
     p.add_argument("-o", "--output", required=True, metavar="OUT_DIR", help="output folder")
@@ -34,7 +35,6 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--quiet", action="store_true", help="no progress bar (shown only on a terminal anyway)"
     )
-    p.set_defaults(handler=command)
 
 
 def command(args: argparse.Namespace) -> int:
