@@ -12,7 +12,7 @@ EXIT_SOME_FAILED = 3
 bad arguments (before anything runs)."""
 
 
-HELP = "trace and reconstruct many sequences on a Dask cluster (docs/batch.md)"
+HELP = "trace and reconstruct many sequences on a Dask cluster"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
