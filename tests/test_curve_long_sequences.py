@@ -1,4 +1,4 @@
-"""The curve stage on long sequences (issue 13, item 6): linear in the frames.
+"""The curve stage on long sequences: linear in the frames.
 
 From ``CurveOptions.bundle_max_frames`` frames on (end points and tangents given) the branch
 choice by the curve and the start curve use ``curve_search_max_frames`` frames spread over the

@@ -1,5 +1,5 @@
 """The curve bundle is never worse than the answer without polylines, and a polyline of
-another curve is flagged, not averaged in (issue 13, items 3 and 9).
+another curve is flagged, not averaged in.
 
 Scenes: ``simulate.make_scene`` with curve families built in 3-D (``curve_families``), 1 px on
 every image point and 1 degree on the tangents, end points and tangents given.  Shape error:
@@ -66,7 +66,7 @@ def test_a_polyline_of_another_curve_is_flagged_and_left_out():
 def test_reported_std_covers_the_errors():
     """1 px, 12 frames: the shape's errors are within 3 of its std, and the curve3d points'
     distances from the true curve (densely sampled, same random stream) within 3 of their
-    ``curve3d_std`` (honest uncertainty, issue 13 item 5)."""
+    ``curve3d_std`` (honest uncertainty)."""
     seed, family = 2, "clothoid"
     scene = make_scene(
         np.random.default_rng(seed), 12, 1.0, 1.0, with_curve=True, curve_family=family
@@ -98,7 +98,7 @@ def test_reported_std_covers_the_errors():
 
 
 def test_gate_reference_is_the_best_of_the_answer_and_its_alternatives():
-    """``bundle.gate_reference_chi2``: the least chi2 among the answer and its equally good
+    """``gate.gate_reference_chi2``: the least chi2 among the answer and its equally good
     alternatives (non-finite ones ignored); the answer's own with the option off."""
     from curverecon.curve.bundle import gate_reference_chi2
     from curverecon.model.reconstruction import Alternative
@@ -143,7 +143,7 @@ def test_the_gate_holds_where_the_end_points_have_alternatives():
 
 
 def test_never_worse_limit_is_the_99_percent_point_with_an_estimated_variance():
-    """``bundle.never_worse_limit``: with the variance factor estimated from ``dof`` degrees of
+    """``gate.never_worse_limit``: with the variance factor estimated from ``dof`` degrees of
     freedom, (chi2 with 4 dof) / (s2 from a chi2 with ``dof``) stays below the limit with the
     probability of ``never_worse_dchi2`` under chi2_4 (99 %; checked by drawing both, seeded),
     and the limit falls to ``never_worse_dchi2`` itself as dof grows."""

@@ -1,4 +1,4 @@
-"""Polylines only (issue 13, item 4): no A', B' or tangents given, the shape from the curve.
+"""Polylines only: no A', B' or tangents given, the shape from the curve.
 
 Scenes come from ``simulate.make_scene(..., with_curve=True)`` (3-D curves of
 ``curve_families`` moved and projected by the simulator); the frames keep only their
@@ -14,7 +14,7 @@ curve's).  Checked against the simulator's truth:
 - at 0.5 px the angles' errors are within 3 of the std the answer reports (seeds not used for
   tuning);
 - a frame left on a wrong pose branch is searched again against the curve the other frames
-  fit (``bundle.resect_uneven_frames``).
+  fit (``joint.resect_uneven_frames``).
 """
 
 from __future__ import annotations

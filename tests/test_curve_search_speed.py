@@ -1,4 +1,4 @@
-"""The speed-ups of the branch search by the curve (issue 13, item 6) give the values of the
+"""The speed-ups of the branch search by the curve give the values of the
 constructions they replace: section 4's grid distances with pruned cells against a scan of all
 3 x 3 cells, its unbounded grid distances against a k-d tree, the median of the frame residuals
 without the far points' tree queries, the cache of validated polylines, and the duplicate joint
@@ -282,7 +282,7 @@ def test_without_the_joint_refits_the_bundle_is_not_refused_for_a_worse_optimum(
     never-worse gate then refused the bundle's shape and the answer stayed there (curve 8 %
     off).  Without them (the default) the bundle's shape is accepted: every angle within
     2.5 degrees, the curve within 1.5 % (1.1 %) of its length.  (Since the bundle's pose
-    search leaves out starts in the current pose's own basin, ``bundle.RESECT_SAME_DEG``,
+    search leaves out starts in the current pose's own basin, ``pose_search.RESECT_SAME_DEG``,
     the path with the refits reaches an accepted shape here too, 0.7 %: the refits are off
     for their time and because the bundle refits every pose itself.)"""
     from bench.curve_end_to_end import curve_error
