@@ -259,7 +259,7 @@ def test_gauss_newton_floor_stop_agrees_with_a_tight_solve(monkeypatch):
     monkeypatch.setattr(lm, "_model_decrease", counting)
     fast = [reconstruct(sc.observations) for sc in scenes]
     assert sum(fired) >= 2
-    lm_run = lm._lm_bundle
+    lm_run = lm.lm_bundle
 
     def tight(prob, state, max_iter, lam=1e-3, rel_tol=lm.REL_TOL):
         if rel_tol == lm.REL_TOL:  # the full-curve runs (the coarse ones pass their own)
@@ -267,7 +267,7 @@ def test_gauss_newton_floor_stop_agrees_with_a_tight_solve(monkeypatch):
         return lm_run(prob, state, max_iter, lam, rel_tol)
 
     monkeypatch.setattr(lm, "LM_STOP_DCHI2", -np.inf)
-    monkeypatch.setattr(lm, "_lm_bundle", tight)
+    monkeypatch.setattr(lm, "lm_bundle", tight)
     slow = [reconstruct(sc.observations) for sc in scenes]
     for a, b in zip(fast, slow, strict=True):
         assert a.estimator == b.estimator == "curve-bundle"

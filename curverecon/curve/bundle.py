@@ -4,7 +4,7 @@ when never worse than the end points' answer (:func:`refine_reconstruction`).
 The curve stage reads as a sequence of modules:
 
 - ``curve.spline``: the curve model (a clamped cubic B-spline), a fit's result and its shape;
-- ``curve.residuals``: the residual model (``_Problem``: residual rows, Jacobians, the normal
+- ``curve.residuals``: the residual model (``Problem``: residual rows, Jacobians, the normal
   equations in blocks);
 - ``curve.lm``: the solvers (Levenberg-Marquardt with a Schur complement on the poses);
 - ``curve.pose_search``: every frame's pose searched again against a fixed curve;
@@ -49,10 +49,10 @@ from curverecon.curve.joint import (
 from curverecon.curve.residuals import SIGMA_FLOOR
 from curverecon.curve.section4 import noise_level
 from curverecon.curve.spline import (
+    Basis,
     BundleResult,
-    _arc_parameters,
-    _Basis,
-    _error,
+    arc_parameters,
+    bundle_error,
     fit_spline,
     shape_and_poses,
 )
@@ -246,7 +246,7 @@ def _prepared(
     o = options if options is not None else CurveOptions()
     curves = obs.curves
     if curves is None:
-        raise _error("the curve bundle needs a polyline in every frame")
+        raise bundle_error("the curve bundle needs a polyline in every frame")
     flat = curve_start is None
     if flat:
         curve_start = flat_start(curves[0])
@@ -379,8 +379,8 @@ def _accepted_answer(run: CurveRun, br: BundleResult, verdict, mask: np.ndarray,
     rec, o, warnings = run.rec, run.o, run.warnings
     k = br.control.shape[0]
     # curve samples equally spaced in 3-D arc length, in the curve frame
-    u_out = _arc_parameters(br.control, int(run.n_out) if run.n_out is not None else 200)
-    pts = _Basis(len(br.control)).values(u_out) @ br.control
+    u_out = arc_parameters(br.control, int(run.n_out) if run.n_out is not None else 200)
+    pts = Basis(len(br.control)).values(u_out) @ br.control
     # normalise changes the curve frame by rotations (no change in camera coordinates) and,
     # for phi < 0, by the mirror image z -> -z (camera depth negated; A stays at z = 0)
     curve3d = pts * [1.0, 1.0, -1.0] if verdict.shape[3] < 0 else pts

@@ -4,8 +4,8 @@ polylines (:func:`fit_curve_fixed_poses`, and the answer built on it, :func:`fix
 The curve's ends and end tangent lines are pinned (:func:`_pinned_map`): truncated-SVD
 Gauss-Newton, knot spans halved while the information criterion improves; for exact end points
 from ``CurveOptions.exact_start_control_points``, a folded fit refitted from its own points in a
-polyline's order (:func:`_unfolded_points`), and the feet searched in the polylines' order
-(``_Problem._ordered_feet``); a fit left above the noise-free target, some frame's RMS over
+polyline's order (:func:`unfolded_points`), and the feet searched in the polylines' order
+(``Problem._ordered_feet``); a fit left above the noise-free target, some frame's RMS over
 ``CurveOptions.exact_restart_rms`` of its polyline's length, run again from
 ``exact_restart_control_points`` and the lower misfit kept.
 """
@@ -19,9 +19,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from curverecon.curve import polyline as pl
-from curverecon.curve.lm import MAX_ITER, _gauss_newton_tsvd
-from curverecon.curve.residuals import SMOOTH_WEIGHT, _bic, _longest_nondecreasing, _Problem
-from curverecon.curve.spline import _arc_parameters, _Basis
+from curverecon.curve.lm import MAX_ITER, gauss_newton_tsvd
+from curverecon.curve.residuals import SMOOTH_WEIGHT, Problem, bic, nondecreasing_mask
+from curverecon.curve.spline import Basis, arc_parameters
 from curverecon.curve.uncertainty import curve_point_std
 
 if TYPE_CHECKING:
@@ -51,7 +51,7 @@ def _pinned_start(
     if u is None:
         s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
         u = s / s[-1]
-    nb = _Basis(k).values(u)  # (M, K)
+    nb = Basis(k).values(u)  # (M, K)
     # x(u) = nb @ (base + (D p).reshape(K, 3)) = points
     a_mat = np.einsum("mk,kcp->mcp", nb, d.reshape(k, 3, -1)).reshape(-1, d.shape[1])
     rhs = (pts - nb @ base).reshape(-1)
@@ -60,7 +60,7 @@ def _pinned_start(
     return p
 
 
-def _folded(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, tol: float) -> bool:
+def is_folded(prob: Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, tol: float) -> bool:
     """Whether the fitted curve has folded over itself: in more than half of the frames whose
     polylines are fitted some polyline point's nearest foot steps back along the curve (against
     the polyline's order) by more than ``tol`` sigma of the projected curve's arc length from
@@ -85,7 +85,7 @@ def _folded(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, tol:
         arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(proj, axis=0), axis=1))])
         sf = np.interp(uf, prob.u_grid, arc)
         if np.any(np.diff(uf) < 0.0):
-            keep = _longest_nondecreasing(uf)
+            keep = nondecreasing_mask(uf)
             bad, idx = np.flatnonzero(~keep), np.flatnonzero(keep)
             v = np.interp(bad, idx, sf[idx])
             if np.any(np.abs(sf[bad] - v) > limit):
@@ -99,8 +99,8 @@ def _folded(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, tol:
     return count > len(used) // 2
 
 
-def _unfolded_points(
-    prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, mask: np.ndarray
+def unfolded_points(
+    prob: Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, mask: np.ndarray
 ) -> np.ndarray | None:
     """The fitted curve's points in the order of one frame's polyline, or None if the curve
     has not folded.
@@ -157,9 +157,9 @@ def fit_curve_fixed_poses(
     answer's); start: (M, 3) a curve near the answer.  The number of control points grows from
     ``k_start`` by halving every knot span (K -> 2 K - 3, at most ``k_max``) while the
     information criterion
-    (:func:`_bic`) improves and some frame's RMS distance exceeds ``resolution`` times its
+    (:func:`bic`) improves and some frame's RMS distance exceeds ``resolution`` times its
     polyline's length.  ``unfold``: at each number of control points, up to this many refits
-    from the fitted curve's points in a polyline's order (:func:`_unfolded_points`) when the
+    from the fitted curve's points in a polyline's order (:func:`unfolded_points`) when the
     fit has folded, each kept if it lowers the cost.  Returns (control points (K, 3),
     weighted cost, per-frame RMS px).
     """
@@ -171,12 +171,12 @@ def fit_curve_fixed_poses(
     best = None
     k = max(int(k_start), 4)
     while True:
-        prob = _Problem(polys, sigma, k, None, None, 1.0, 1.0)
+        prob = Problem(polys, sigma, k, None, None, 1.0, 1.0)
         prob.poly_w = mask.astype(float)
         prob.smooth_weight = smooth_weight
         prob.rev_weight = [w * reverse_factor for w in prob.rev_weight]
         # from the second number of control points on, the fit starts at the last optimum:
-        # every foot searched on its polyline neighbours' stretch (_Problem._ordered_feet)
+        # every foot searched on its polyline neighbours' stretch (Problem._ordered_feet)
         prob.ordered_feet = bool(unfold) and best is not None
         base, d = _pinned_map(k, a, bpt, ta, tb)
         flat = [j for j in range(3 * k) if j != 2]
@@ -187,7 +187,7 @@ def fit_curve_fixed_poses(
             # the knots of k = 2 k_old - 3 contain the old ones: the old curve exactly, so the
             # refined fit starts at the old optimum and can only improve on it
             u = np.linspace(0.0, 1.0, 20 * k)
-            p0 = _pinned_start(_Basis(len(best[0])).values(u) @ best[0], k, base, d, u)
+            p0 = _pinned_start(Basis(len(best[0])).values(u) @ best[0], k, base, d, u)
 
         def ctrl_of(p: np.ndarray, base=base, d=d, k=k) -> np.ndarray:
             return base + (d @ p).reshape(k, 3)
@@ -196,15 +196,15 @@ def fit_curve_fixed_poses(
             r, j, rms = prob.residuals(ctrl_of(p), m, b, jac=jac, poses=False)
             return r, (j @ d_red if jac else None), rms
 
-        p, cost = _gauss_newton_tsvd(residual, p0, max_iter, rcond, abs_tol)
+        p, cost = gauss_newton_tsvd(residual, p0, max_iter, rcond, abs_tol)
         for _ in range(unfold):
             # a fold (the spline running forward, back and forward again over one stretch of
             # the curve: invisible in every image) is a local minimum the steps do not leave;
             # refitted to the curve's own points in the order of a polyline, the fold is gone
-            pts = _unfolded_points(prob, ctrl_of(p), m, b, mask)
+            pts = unfolded_points(prob, ctrl_of(p), m, b, mask)
             if pts is None:
                 break
-            p2, cost2 = _gauss_newton_tsvd(
+            p2, cost2 = gauss_newton_tsvd(
                 residual, _pinned_start(pts, k, base, d), max_iter, rcond, abs_tol
             )
             if not cost2 < cost:
@@ -212,12 +212,12 @@ def fit_curve_fixed_poses(
             p, cost = p2, cost2
         if unfold and not prob.ordered_feet:
             # then polished with every foot on its polyline neighbours' stretch of the curve
-            # (a crossing in some image otherwise holds the fit near it, _Problem._ordered_feet)
+            # (a crossing in some image otherwise holds the fit near it, Problem._ordered_feet)
             prob.ordered_feet, prob._last = True, None
-            p, cost = _gauss_newton_tsvd(residual, p, max_iter, rcond, abs_tol)
+            p, cost = gauss_newton_tsvd(residual, p, max_iter, rcond, abs_tol)
         ctrl = ctrl_of(p)
         rms = prob.residuals(ctrl, m, b, jac=False)[2]
-        crit = _bic(prob, rms, d.shape[1])
+        crit = bic(prob, rms, d.shape[1])
         if best is not None and crit >= best[1]:
             break
         best = (ctrl, crit, cost, rms)
@@ -348,17 +348,17 @@ def fixed_pose_answer(
             flagged = [int(i) for i in sel[np.flatnonzero(bad)]]
             run.flag_warning(flagged, np.bincount(sel, rms, minlength=n))
             mask = ~bad
-            dense = _Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 400)) @ ctrl
+            dense = Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 400)) @ ctrl
             ctrl, _, rms = _fit_fixed_restarted(run, ff, mask, dense, k_start, exact)
     k = ctrl.shape[0]
     rms_all = rms
     if run.curve_frames is not None:  # every frame's distance from the curve (one evaluation)
-        rms_all = _Problem(ff.polys_all, sigma, k, None, None, 1.0, 1.0).residuals(
+        rms_all = Problem(ff.polys_all, sigma, k, None, None, 1.0, 1.0).residuals(
             ctrl, ff.m_all, ff.bb_all, jac=False
         )[2]
-    u = _arc_parameters(ctrl, run.n_out or 200)
-    curve3d = _Basis(k).values(u) @ ctrl
-    prob = _Problem(ff.polys, sigma, k, None, None, 1.0, 1.0)
+    u = arc_parameters(ctrl, run.n_out or 200)
+    curve3d = Basis(k).values(u) @ ctrl
+    prob = Problem(ff.polys, sigma, k, None, None, 1.0, 1.0)
     prob.poly_w = mask.astype(float)
     prob.smooth_weight = o.fixed_pose_smooth_weight
     a3, b3, ta3, tb3 = ff.ends3d

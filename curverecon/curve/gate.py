@@ -75,10 +75,10 @@ def polylines_reject_fixed_poses(
     the curve fitted with every pose fixed and its ends pinned (:func:`fit_curve_fixed_poses`,
     per-frame RMS ``rms_fixed`` px) against the bundle (``rms_bundle``; both on the frames
     whose polylines the fits use).  ``counts``: polyline points of those frames (each less 2,
-    as :func:`_bic` counts them); ``k``: the bundle's control points.  The bundle has 5 N + 4
+    as :func:`bic` counts them); ``k``: the bundle's control points.  The bundle has 5 N + 4
     more parameters than the pinned fixed-pose curve (3 K - 1 + 5 (N - 1) against
     2 + 3 (K - 4)), the noise level is the bundle's own RSS over its residual degrees of
-    freedom (scale-free, like :func:`_bic`).  Returns (rejected at ``level``, the upper-tail
+    freedom (scale-free, like :func:`bic`).  Returns (rejected at ``level``, the upper-tail
     probability)."""
     from scipy.stats import f
 

@@ -4,12 +4,12 @@ polyline (:func:`bundle_adjust`), and the polylines-only refits (:func:`resect_u
 
 Stages of :func:`bundle_adjust`, each a function here: a coarse curve (``K_COARSE`` control
 points; with ``COARSE_POINTS`` set, on polylines thinned to about that many points that stand for
-the full ones, ``_Problem.stand_for``) with the start poses; every frame's pose searched again
+the full ones, ``Problem.stand_for``) with the start poses; every frame's pose searched again
 against that curve (``pose_search``; a regauge when frame 0's own pose moves); the coarse fit
 again (:func:`_coarse_rounds`); then the full curve; then a polish with robust ends (``END_POLISH``:
 a traced end hooked back along the line of sight ends its polyline at the fold); a folded curve
 refitted with its feet in the polylines' order (:func:`_full_stage`); then, where the polyline
-residuals cluster along the curve (``_Problem.span_misfit``: a bend or wiggle the spline misses),
+residuals cluster along the curve (``Problem.span_misfit``: a bend or wiggle the spline misses),
 every knot span halved while Akaike's criterion improves (:func:`_grow_knots`;
 ``CurveOptions.bundle_max_control_points``, ``bundle_misfit_z``).  A flat start searches every
 frame's pose against the flat curve before the first fit (``resect_first``): the end-point
@@ -27,12 +27,12 @@ import numpy as np
 
 from curverecon.curve import lm
 from curverecon.curve import polyline as pl
-from curverecon.curve.fixed_poses import _folded, _unfolded_points
+from curverecon.curve.fixed_poses import is_folded, unfolded_points
 from curverecon.curve.lm import MAX_ITER
-from curverecon.curve.pose_search import _max_angle_deg, _regauge, _resect_all
-from curverecon.curve.residuals import SIGMA_FLOOR, SMOOTH_WEIGHT, _bic, _Problem, _thinned
+from curverecon.curve.pose_search import max_angle_deg, regauge, resect_all
+from curverecon.curve.residuals import SIGMA_FLOOR, SMOOTH_WEIGHT, Problem, bic, thinned
 from curverecon.curve.section4 import noise_level
-from curverecon.curve.spline import BundleResult, _Basis, _error, _oriented_to, fit_spline
+from curverecon.curve.spline import Basis, BundleResult, bundle_error, fit_spline, oriented_to
 from curverecon.options import CurveOptions
 
 #: Control points of the curve's cubic B-spline (default; fewer for short polylines).
@@ -53,7 +53,7 @@ END_POLISH = True
 K_COARSE = 6
 
 
-#: Polyline points (about) of the coarse stage and its pose search (:func:`_thinned`; 0: all,
+#: Polyline points (about) of the coarse stage and its pose search (:func:`thinned`; 0: all,
 #: the default).  Off, after measuring it on: a 6-point curve and the poses' basin need no 150
 #: points per frame, and at 40 the stage's LM runs and pose searches took half the time (bench
 #: time_20, seed 1400: coarse LM 0.52 s -> 0.25 s of the bundle's 1.27 s; time_20 ratio 2.89 ->
@@ -90,7 +90,7 @@ RMS_LIMIT_SIGMA = 3.0
 RMS_LIMIT_PX = 1.0
 
 
-#: Parts of every knot span in which :meth:`_Problem.span_misfit` sums the residuals (a cubic
+#: Parts of every knot span in which :meth:`Problem.span_misfit` sums the residuals (a cubic
 #: span that misses a wiggle leaves residuals of alternating sign within it).
 MISFIT_BINS = 4
 
@@ -111,7 +111,7 @@ def _uneven(rms: np.ndarray, sigma: float) -> bool:
     return bool(np.max(rms) > _uneven_level(rms, sigma))
 
 
-def _restart(rms: np.ndarray, sigma: float) -> bool:
+def calls_for_restart(rms: np.ndarray, sigma: float) -> bool:
     """Whether a fit calls for another start: some frame fits clearly worse than the others, or
     some frame does not fit at all (``RMS_LIMIT_*``: every frame can be equally far off)."""
     return _uneven(rms, sigma) or bool(np.max(rms) > RMS_LIMIT_SIGMA * sigma + RMS_LIMIT_PX)
@@ -150,14 +150,14 @@ def bundle_adjust(
     ends: optional (N, 2, 2) given A', B' per frame; tangents: optional (N, 2, 2) given image
         tangent directions at A and B (any sign); with their sigmas (pixels, degrees).
     k_max: the control points grow (knot spans halved) up to this many while the residuals
-        cluster along the curve (:meth:`_Problem.span_misfit` above ``misfit_z``) and Akaike's
-        criterion (:func:`_bic` with 2 per parameter) improves (0: no growth).
+        cluster along the curve (:meth:`Problem.span_misfit` above ``misfit_z``) and Akaike's
+        criterion (:func:`bic` with 2 per parameter) improves (0: no growth).
     resect_first: search every frame's pose (but frame 0's) against the start curve before
         the first fit (a start curve that the start poses were not made for).
     polyline_mask: optional (N,) bool, False for frames whose polyline is left out of the fit
         (flagged as contradicting the given end points and tangents; needs ``ends``).
     smooth_weight: the difference penalty's weight (``CurveOptions.bundle_smooth_weight``).
-    order_tol: above 0, a curve folded over itself (:func:`_folded` with this tolerance, in
+    order_tol: above 0, a curve folded over itself (:func:`is_folded` with this tolerance, in
         sigma) is refitted from its points in a polyline's order with every foot in the
         polylines' order (``CurveOptions.bundle_order_tol``); 0 never.
     twin_m: another run's coarse-stage poses (``BundleResult.coarse_m``): when every frame's
@@ -174,7 +174,7 @@ def bundle_adjust(
     Stages: a coarse curve (``K_COARSE`` control points; with ``COARSE_POINTS`` set, on every
     polyline thinned to about that many points, weighted to stand for the full one) with the
     start poses; every
-    frame's pose searched again against that curve (``_resect_all``: the wrong-branch poses the
+    frame's pose searched again against that curve (``resect_all``: the wrong-branch poses the
     end tangents leave are far from the right ones, beyond LM's reach) and the coarse fit
     repeated (``RESECT_ROUNDS``); then the full curve on the full polylines.
 
@@ -200,7 +200,7 @@ def bundle_adjust(
     if resect_first:
         # the start poses were made for another curve: every frame's pose searched against the
         # start curve before it is bent to fit them
-        found = _resect_all(prob, ctrl, m, b, [i for i in range(1, len(m)) if setup.use_poly[i]])
+        found = resect_all(prob, ctrl, m, b, [i for i in range(1, len(m)) if setup.use_poly[i]])
         _take_better_poses(m, b, found, _frame_costs(prob, ctrl, m, b))
     cost_start = float(np.sum(prob.residuals(ctrl, m, b, jac=False)[0] ** 2))
     coarse = {"max_iter": min(max_iter, COARSE_MAX_ITER), "rel_tol": COARSE_REL_TOL}
@@ -208,7 +208,7 @@ def bundle_adjust(
     # it stops as soon as its poses are the other run's again
     early = twin_m is not None and twin_iter > 0
     first = {**coarse, "max_iter": min(coarse["max_iter"], int(twin_iter))} if early else coarse
-    (ctrl, m, b), cost, total_it, _ = lm._lm_bundle(prob, (ctrl, m, b), **first)
+    (ctrl, m, b), cost, total_it, _ = lm.lm_bundle(prob, (ctrl, m, b), **first)
     twin = twin_m if early else None
     ctrl, m, b, cost, it, retrace = _coarse_rounds(
         setup, prob, (ctrl, m, b), cost, first, coarse, twin, twin_deg
@@ -217,7 +217,7 @@ def bundle_adjust(
     coarse_cost = float(cost)
     if (
         retrace
-        or (twin_m is not None and _max_angle_deg(m, twin_m) < twin_deg)
+        or (twin_m is not None and max_angle_deg(m, twin_m) < twin_deg)
         # far above the other run at the same stage: no rival of it
         # (CurveOptions.restart_coarse_cost_ratio)
         or coarse_cost > twin_cost_ratio * twin_cost
@@ -263,12 +263,12 @@ class _Setup:
     use_poly: np.ndarray
     smooth_weight: float
 
-    def problem(self, kk: int, coarse: bool = False) -> _Problem:
+    def problem(self, kk: int, coarse: bool = False) -> Problem:
         """The problem with ``kk`` control points (``coarse``: on the polylines thinned to
         ``COARSE_POINTS``, when set)."""
         if coarse and COARSE_POINTS > 0:
-            prob = _Problem(
-                [_thinned(p, COARSE_POINTS) for p in self.polys],
+            prob = Problem(
+                [thinned(p, COARSE_POINTS) for p in self.polys],
                 self.sigma,
                 kk,
                 self.ends,
@@ -278,7 +278,7 @@ class _Setup:
             )
             prob.stand_for(self.polys)
         else:
-            prob = _Problem(
+            prob = Problem(
                 self.polys,
                 self.sigma,
                 kk,
@@ -312,19 +312,19 @@ def _checked_setup(
     tr = np.asarray(translations, float)
     n = len(polylines)
     if n < 2:
-        raise _error(f"the curve bundle needs at least 2 frames, got {n}")
+        raise bundle_error(f"the curve bundle needs at least 2 frames, got {n}")
     if rot.shape != (n, 3, 3) or tr.shape != (n, 3):
-        raise _error(f"rotations/translations must have shapes ({n}, 3, 3) and ({n}, 3)")
+        raise bundle_error(f"rotations/translations must have shapes ({n}, 3, 3) and ({n}, 3)")
     if not (np.all(np.isfinite(rot)) and np.all(np.isfinite(tr))):
-        raise _error("rotations/translations contain NaN or infinite values")
+        raise bundle_error("rotations/translations contain NaN or infinite values")
     if np.abs(np.einsum("nij,nkj->nik", rot, rot) - np.eye(3)).max() > 1e-6:
-        raise _error("rotations are not orthonormal")
+        raise bundle_error("rotations are not orthonormal")
     polys = [pl.as_polyline(p, name=f"frame {i} curve") for i, p in enumerate(polylines)]
     curve0 = np.asarray(curve0, float)
     if curve0.ndim != 2 or curve0.shape[1] != 3 or len(curve0) < 4:
-        raise _error("the start curve must be at least 4 points [x, y, z]")
+        raise bundle_error("the start curve must be at least 4 points [x, y, z]")
     if not np.all(np.isfinite(curve0)):
-        raise _error("the start curve contains NaN or infinite values")
+        raise bundle_error("the start curve contains NaN or infinite values")
     for name, arr in (("ends", ends), ("tangents", tangents)):
         # NaN tangents mean "not given" in that frame
         if arr is not None and (
@@ -332,7 +332,7 @@ def _checked_setup(
             or np.any(np.isinf(np.asarray(arr, float)))
             or (name == "ends" and not np.all(np.isfinite(np.asarray(arr, float))))
         ):
-            raise _error(f"{name}: expected {n} pairs of finite 2-D vectors")
+            raise bundle_error(f"{name}: expected {n} pairs of finite 2-D vectors")
     # Polylines run from A to B; A's image is t_i[:2].
     for i, p in enumerate(polys):
         if np.hypot(*(p[-1] - tr[i, :2])) < np.hypot(*(p[0] - tr[i, :2])):
@@ -340,7 +340,7 @@ def _checked_setup(
     m_pts = min(len(p) for p in polys)
     k = int(n_control) if n_control is not None else int(np.clip(m_pts // 6, 5, N_CONTROL))
     if k < 4:
-        raise _error(f"n_control must be at least 4, got {k}")
+        raise bundle_error(f"n_control must be at least 4, got {k}")
     sigma = max(float(np.median([noise_level(p) for p in polys])), SIGMA_FLOOR)
     m = np.einsum("nij,kj->nik", rot, rot[0])  # R_i R_0^T: frame 0 camera -> frame i camera
     b = tr - np.einsum("nij,j->ni", m, tr[0])
@@ -350,21 +350,23 @@ def _checked_setup(
 
     use_poly = np.ones(n, bool) if polyline_mask is None else np.asarray(polyline_mask, bool)
     if use_poly.shape != (n,) or (ends_arr is None and not use_poly.all()):
-        raise _error(f"polyline_mask: expected {n} flags (and given end points to leave any out)")
+        raise bundle_error(
+            f"polyline_mask: expected {n} flags (and given end points to leave any out)"
+        )
     setup = _Setup(
         polys, sigma, ends_arr, tans_arr, float(point_sigma), ts, use_poly, smooth_weight
     )
     return setup, m, b, k, curve0
 
 
-def _frame_costs(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
+def _frame_costs(prob: Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray) -> np.ndarray:
     """(N,) each frame's cost in the current state."""
     r, _, _, rows, _ = prob.evaluate(ctrl, m, b, jac=False)
     return prob.frame_costs(r, rows)
 
 
 def _take_better_poses(m: np.ndarray, b: np.ndarray, found: dict, cur: np.ndarray) -> bool:
-    """Every frame whose searched pose (``found``, of ``pose_search._resect_all``) costs less
+    """Every frame whose searched pose (``found``, of ``pose_search.resect_all``) costs less
     than its current cost ``cur`` takes it (m, b changed in place).  Returns whether some
     frame's cost fell below 0.9 of its current one."""
     changed = False
@@ -377,7 +379,7 @@ def _take_better_poses(m: np.ndarray, b: np.ndarray, found: dict, cur: np.ndarra
 
 def _coarse_rounds(
     setup: _Setup,
-    prob: _Problem,
+    prob: Problem,
     state: tuple,
     cost: float,
     first: dict,
@@ -402,17 +404,17 @@ def _coarse_rounds(
             ref = min(limit, _uneven_level(rms, sigma))
             prob.frame_w = 1.0 / (1.0 + (rms / ref) ** 4)
             lm_opts = first if rnd == 0 else coarse
-            (ctrl, m, b), _, it, _ = lm._lm_bundle(prob, (ctrl, m, b), **lm_opts)
+            (ctrl, m, b), _, it, _ = lm.lm_bundle(prob, (ctrl, m, b), **lm_opts)
             total_it += it
             prob.frame_w = np.ones(n)
         cur = _frame_costs(prob, ctrl, m, b)
-        found = _resect_all(prob, ctrl, m, b, [i for i in range(n) if setup.use_poly[i]])
+        found = resect_all(prob, ctrl, m, b, [i for i in range(n) if setup.use_poly[i]])
         changed = _take_better_poses(m, b, found, cur)
         if not np.allclose(m[0], np.eye(3), atol=1e-12):
-            ctrl, m, b = _regauge(ctrl, m, b)
-        if twin_m is not None and _max_angle_deg(m, twin_m) < twin_deg:
+            ctrl, m, b = regauge(ctrl, m, b)
+        if twin_m is not None and max_angle_deg(m, twin_m) < twin_deg:
             return ctrl, m, b, cost, total_it, True
-        (ctrl, m, b), cost, it, _ = lm._lm_bundle(prob, (ctrl, m, b), **coarse)
+        (ctrl, m, b), cost, it, _ = lm.lm_bundle(prob, (ctrl, m, b), **coarse)
         total_it += it
         if not changed:
             break
@@ -421,7 +423,7 @@ def _coarse_rounds(
 
 def _full_stage(
     setup: _Setup,
-    prob: _Problem,
+    prob: Problem,
     state: tuple,
     k: int,
     k_coarse: int,
@@ -439,31 +441,31 @@ def _full_stage(
         if k > k_coarse:
             ctrl = fit_spline(prob.basis.values(np.linspace(0.0, 1.0, 200)) @ ctrl, k)
         prob = setup.problem(k)
-        (ctrl, m, b), cost, it, converged = lm._lm_bundle(prob, (ctrl, m, b), max_iter)
+        (ctrl, m, b), cost, it, converged = lm.lm_bundle(prob, (ctrl, m, b), max_iter)
         total_it += it
     if END_POLISH:
         prob = setup.problem(k)
         prob.robust_ends = True
-        (ctrl, m, b), cost, it, converged = lm._lm_bundle(prob, (ctrl, m, b), max_iter)
+        (ctrl, m, b), cost, it, converged = lm.lm_bundle(prob, (ctrl, m, b), max_iter)
         total_it += it
-    if order_tol > 0.0 and _folded(prob, ctrl, m, b, order_tol):
+    if order_tol > 0.0 and is_folded(prob, ctrl, m, b, order_tol):
         # the spline has folded over itself (forward, back, forward along one stretch): with
         # the nearest feet its strands share the polyline points and fit the noise, a cost no
         # single curve reaches; refitted with the feet in the polylines' order, kept whatever
         # its cost (``CurveOptions.bundle_order_tol``), from the curve's points at the feet in
         # a polyline's order (they run along the curve once)
-        pts = _unfolded_points(prob, ctrl, m, b, prob.poly_w > 0.0)
+        pts = unfolded_points(prob, ctrl, m, b, prob.poly_w > 0.0)
         if pts is not None:
             ctrl = fit_spline(pts, k)
         prob.ordered_feet = True
-        (ctrl, m, b), cost, it, converged = lm._lm_bundle(prob, (ctrl, m, b), max_iter)
+        (ctrl, m, b), cost, it, converged = lm.lm_bundle(prob, (ctrl, m, b), max_iter)
         total_it += it
     return prob, (ctrl, m, b), cost, total_it, converged
 
 
 def _grow_knots(
     setup: _Setup,
-    prob: _Problem,
+    prob: Problem,
     state: tuple,
     cost: float,
     converged: bool,
@@ -477,7 +479,7 @@ def _grow_knots(
     ctrl, m, b = state
     k, total_it = prob.k, 0
     rms = prob.residuals(ctrl, m, b, jac=False)[2]
-    crit = _bic(prob, rms, prob.n_par, 2.0)
+    crit = bic(prob, rms, prob.n_par, 2.0)
     while 2 * k - 3 <= int(k_max):
         # every knot span halved (the old curve exactly, so the fit starts at the old optimum);
         # tried only where the residuals cluster along the curve (``misfit_z``: a bend or wiggle
@@ -493,13 +495,13 @@ def _grow_knots(
             break
         k2 = 2 * k - 3
         u = np.linspace(0.0, 1.0, 20 * k2)
-        ctrl2 = np.linalg.lstsq(_Basis(k2).values(u), prob.basis.values(u) @ ctrl, rcond=None)[0]
+        ctrl2 = np.linalg.lstsq(Basis(k2).values(u), prob.basis.values(u) @ ctrl, rcond=None)[0]
         prob2 = setup.problem(k2)
         prob2.robust_ends = END_POLISH
-        (c2, m2, b2), cost2, it, conv2 = lm._lm_bundle(prob2, (ctrl2, m, b), max_iter)
+        (c2, m2, b2), cost2, it, conv2 = lm.lm_bundle(prob2, (ctrl2, m, b), max_iter)
         total_it += it
         rms2 = prob2.residuals(c2, m2, b2, jac=False)[2]
-        crit2 = _bic(prob2, rms2, prob2.n_par, 2.0)
+        crit2 = bic(prob2, rms2, prob2.n_par, 2.0)
         if not crit2 < crit:
             break
         k, prob, ctrl, m, b, cost, converged, rms, crit = (
@@ -520,7 +522,7 @@ def select_control_points(
 ) -> tuple[BundleResult, dict[int, float]]:
     """The bundle refitted with each number of control points of ``candidates`` (fewer or more
     than ``result``'s), every pose free, no given end points or tangents; the fit with the
-    least Bayesian information criterion (:func:`_bic`, ln n per parameter) is returned, with
+    least Bayesian information criterion (:func:`bic`, ln n per parameter) is returned, with
     every candidate's criterion.  Each refit starts from ``result``'s curve (least squares on
     the new basis) and poses.
 
@@ -530,31 +532,31 @@ def select_control_points(
     """
     ctrl0 = np.asarray(result.control, float)
     k0 = len(ctrl0)
-    polys = _oriented_to(polylines, result)
+    polys = oriented_to(polylines, result)
 
-    def problem(kk: int) -> _Problem:
-        prob = _Problem(polys, result.sigma, kk, None, None, 1.0, 1.0)
+    def problem(kk: int) -> Problem:
+        prob = Problem(polys, result.sigma, kk, None, None, 1.0, 1.0)
         prob.smooth_weight = float(smooth_weight)
         prob.robust_ends = END_POLISH
         return prob
 
     prob0 = problem(k0)
     rms0 = prob0.residuals(ctrl0, result.m, result.b, jac=False)[2]
-    crits = {k0: _bic(prob0, rms0, prob0.n_par)}
+    crits = {k0: bic(prob0, rms0, prob0.n_par)}
     best = (crits[k0], result)
     end0 = _end_region_chi2(polys, ctrl0, result.m, result.b, result.sigma, end_fraction)
     u = np.linspace(0.0, 1.0, 400)
-    dense = _Basis(k0).values(u) @ ctrl0
+    dense = Basis(k0).values(u) @ ctrl0
     for kk in sorted({int(k) for k in candidates} - {k0}):
         if kk < 4:
             continue
         prob = problem(kk)
-        ctrl = np.linalg.lstsq(_Basis(kk).values(u), dense, rcond=None)[0]
+        ctrl = np.linalg.lstsq(Basis(kk).values(u), dense, rcond=None)[0]
         ctrl -= [0.0, 0.0, ctrl[0, 2]]  # A's depth: the gauge
         state = (ctrl, result.m.copy(), result.b.copy())
-        (ctrl, m, b), cost, it, conv = lm._lm_bundle(prob, state, max_iter)
+        (ctrl, m, b), cost, it, conv = lm.lm_bundle(prob, state, max_iter)
         rms = prob.residuals(ctrl, m, b, jac=False)[2]
-        crits[kk] = _bic(prob, rms, prob.n_par)
+        crits[kk] = bic(prob, rms, prob.n_par)
         end = _end_region_chi2(polys, ctrl, m, b, result.sigma, end_fraction)
         # the ends must fit as well as with the reference curve: a curve too stiff for a bend
         # near an end bends its end tangent, which the whole polyline's criterion hardly sees
@@ -587,7 +589,7 @@ def resect_uneven_frames(
 ) -> BundleResult:
     """A bundle whose frames fit unevenly (:func:`_uneven`: a few frames on a wrong pose
     branch, the others at the noise level) refitted with those frames left out, their poses
-    searched against that curve (:func:`_resect_all`, the full curve rather than the coarse
+    searched against that curve (:func:`resect_all`, the full curve rather than the coarse
     stage's), then every frame together again; the result with the lower cost is returned.
     No given end points or tangents (polylines only).
 
@@ -598,27 +600,27 @@ def resect_uneven_frames(
     sigma = result.sigma
     if not _uneven(result.rms, sigma):
         return result
-    polys = _oriented_to(polylines, result)
+    polys = oriented_to(polylines, result)
     n, k = len(polys), len(result.control)
     bad = result.rms > _uneven_level(result.rms, sigma)
     if bad.sum() > n // 3:
         return result
-    prob = _Problem(polys, sigma, k, None, None, 1.0, 1.0)
+    prob = Problem(polys, sigma, k, None, None, 1.0, 1.0)
     prob.smooth_weight = float(smooth_weight)
     prob.robust_ends = END_POLISH
     prob.frame_w = np.where(bad, 1e-6, 1.0)
     state = (result.control.copy(), result.m.copy(), result.b.copy())
-    (ctrl, m, b), _, it0, _ = lm._lm_bundle(prob, state, max_iter)
+    (ctrl, m, b), _, it0, _ = lm.lm_bundle(prob, state, max_iter)
     r, _, _, rows, _ = prob.evaluate(ctrl, m, b, jac=False)
     cur = prob.frame_costs(r, rows) / prob.frame_w
     m, b = m.copy(), b.copy()
-    for i, (mi, bi, ci) in _resect_all(prob, ctrl, m, b, np.flatnonzero(bad)).items():
+    for i, (mi, bi, ci) in resect_all(prob, ctrl, m, b, np.flatnonzero(bad)).items():
         if ci < cur[i]:
             m[i], b[i] = mi, bi
     if not np.allclose(m[0], np.eye(3), atol=1e-12):
-        ctrl, m, b = _regauge(ctrl, m, b)
+        ctrl, m, b = regauge(ctrl, m, b)
     prob.frame_w = np.ones(n)
-    (ctrl, m, b), cost, it, conv = lm._lm_bundle(prob, (ctrl, m, b), max_iter)
+    (ctrl, m, b), cost, it, conv = lm.lm_bundle(prob, (ctrl, m, b), max_iter)
     if not cost < result.cost:
         return result
     rms = prob.residuals(ctrl, m, b, jac=False)[2]
@@ -647,7 +649,7 @@ def _end_region_chi2(
     """(2,) sums over the frames of the squared distances (units of sigma) of the polyline
     points in the first and the last ``fraction`` of each polyline's points from the projected
     curve (A's end, B's end)."""
-    dense = _Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 60 * len(ctrl))) @ ctrl
+    dense = Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 60 * len(ctrl))) @ ctrl
     out = np.zeros(2)
     for i, q in enumerate(polys):
         proj = (dense @ m[i].T + b[i])[:, :2]

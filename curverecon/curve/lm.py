@@ -1,18 +1,18 @@
 """The curve bundle's solvers, separate from its residual model (``curve.residuals``).
 
-Levenberg-Marquardt on the joint problem (:func:`_lm_bundle`; a few hundred residuals per frame
+Levenberg-Marquardt on the joint problem (:func:`lm_bundle`; a few hundred residuals per frame
 and 3K + 5(N - 1) parameters): the normal equations in blocks, the 5 x 5 pose blocks (a frame's
 rows see only its own pose) eliminated by their Schur complement (:func:`_schur_solve`): O(N) per
 step, no dense Jacobian of all the poses (the same steps as the dense solve, to rounding).
-:func:`_lm_poses`: the same loop on every frame's pose alone, the curve fixed (the pose search).
-:func:`_gauss_newton_tsvd`: truncated-SVD Gauss-Newton for the curve with every pose fixed.
+:func:`lm_poses`: the same loop on every frame's pose alone, the curve fixed (the pose search).
+:func:`gauss_newton_tsvd`: truncated-SVD Gauss-Newton for the curve with every pose fixed.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from curverecon.curve.residuals import _expm_so3_batch, _Problem
+from curverecon.curve.residuals import Problem, expm_so3_batch
 
 #: Iteration cap of each Levenberg-Marquardt run (the full-curve stage).
 MAX_ITER = 60
@@ -22,7 +22,7 @@ MAX_ITER = 60
 REL_TOL = 1e-6
 
 
-#: LM (:func:`_lm_bundle`): a Gauss-Newton step (damping at most LM_GN_LAMBDA) that does not
+#: LM (:func:`lm_bundle`): a Gauss-Newton step (damping at most LM_GN_LAMBDA) that does not
 #: lower the cost while the linearisation predicts less than LM_STOP_DCHI2 (chi2 units) ends the
 #: run.  (Up to rounding, :func:`_gauss_newton_damping`: at first the damping reached from 1e-3 by
 #: tenfold decreases, 1.0000000000000002e-06, was not "at most 1e-6", and a run whose first
@@ -56,7 +56,7 @@ LM_GN_LAMBDA = 1e-6
 LM_STOP_DCHI2 = 0.5
 
 
-def _sum_products(w: np.ndarray, x: np.ndarray) -> np.ndarray:
+def sum_products(w: np.ndarray, x: np.ndarray) -> np.ndarray:
     """``sum_n w[n] @ x[n]`` for w (N, C, P), x (N, P, K): one matrix product (C, N P) (N P, K)
     (an einsum of these shapes took several times longer)."""
     n, c, p = w.shape
@@ -66,7 +66,7 @@ def _sum_products(w: np.ndarray, x: np.ndarray) -> np.ndarray:
 def _schur_solve(blocks, lam: float) -> np.ndarray:
     """The LM step ``-(J^T J + lam D)^-1 J^T r`` (D: Marquardt's diagonal of J^T J, floored
     at 1e-12 of its largest entry) from the normal equations' blocks of
-    :meth:`_Problem.normal_equations`: the per-frame 5 x 5 pose blocks eliminated (Schur
+    :meth:`Problem.normal_equations`: the per-frame 5 x 5 pose blocks eliminated (Schur
     complement on the curve's parameters), then back-substituted.  The same step as the
     dense solve (to rounding) at O(N) cost instead of O(N^3).  Raises LinAlgError if singular."""
     u, gc, v, w, gp = blocks
@@ -79,7 +79,7 @@ def _schur_solve(blocks, lam: float) -> np.ndarray:
     # (V + lam D)^-1 [W^T | gp] for every frame at once
     rhs = np.concatenate([np.transpose(w[1:], (0, 2, 1)), gp[1:, :, None]], axis=2)
     sol = np.linalg.solve(vd, rhs)  # (N - 1, 5, n_curve + 1)
-    s = a - _sum_products(w[1:], sol[:, :, :-1])
+    s = a - sum_products(w[1:], sol[:, :, :-1])
     rc = gc - np.einsum("ncp,np->c", w[1:], sol[:, :, -1])
     dc = -np.linalg.solve(s, rc)
     dp = -(sol[:, :, -1] + np.einsum("npk,k->np", sol[:, :, :-1], dc))
@@ -89,7 +89,7 @@ def _schur_solve(blocks, lam: float) -> np.ndarray:
 def _model_decrease(blocks, dx: np.ndarray) -> float:
     """The decrease of the cost ``|r|^2`` (chi2: residuals in units of sigma) that the
     linearisation predicts for the step dx, ``-(2 g^T dx + dx^T H dx)`` with H = J^T J and
-    g = J^T r from the blocks of :meth:`_Problem.normal_equations` (frame 0's pose is the
+    g = J^T r from the blocks of :meth:`Problem.normal_equations` (frame 0's pose is the
     gauge: no parameters)."""
     u, gc, v, w, gp = blocks
     nc = len(gc)
@@ -107,7 +107,7 @@ def _gauss_newton_damping(lam: float) -> bool:
     return lam <= LM_GN_LAMBDA * (1.0 + 1e-9)
 
 
-def _lm_bundle(prob, state, max_iter: int, lam: float = 1e-3, rel_tol: float = REL_TOL):
+def lm_bundle(prob, state, max_iter: int, lam: float = 1e-3, rel_tol: float = REL_TOL):
     """Levenberg-Marquardt (Marquardt's diagonal scaling) on the bundle's joint problem (curve
     and every pose), the steps from the normal equations' blocks (:func:`_schur_solve`): no
     dense Jacobian of all the poses.  A step is taken when it lowers the cost (lambda times 10
@@ -162,7 +162,7 @@ def _lm_bundle(prob, state, max_iter: int, lam: float = 1e-3, rel_tol: float = R
     return state, cost, it, converged
 
 
-def _gauss_newton_tsvd(residual, p, max_iter: int, rcond: float, abs_tol: float):
+def gauss_newton_tsvd(residual, p, max_iter: int, rcond: float, abs_tol: float):
     """Gauss-Newton with truncated-SVD steps on ``residual(p, jac) -> (r, J, ...)``.
 
     The curve's parametrisation is nearly free (sliding control points along the curve changes
@@ -195,8 +195,8 @@ def _gauss_newton_tsvd(residual, p, max_iter: int, rcond: float, abs_tol: float)
     return p, cost
 
 
-def _lm_poses(prob: _Problem, ctrl, m, b, max_iter: int, rel_tol: float, lam0: float = 1e-3):
-    """Levenberg-Marquardt (as :func:`_lm_bundle`) on each frame's pose alone (the curve
+def lm_poses(prob: Problem, ctrl, m, b, max_iter: int, rel_tol: float, lam0: float = 1e-3):
+    """Levenberg-Marquardt (as :func:`lm_bundle`) on each frame's pose alone (the curve
     fixed), every frame of ``prob`` at once: the frames are independent, so each keeps its own
     damping, iteration count and
     stopping test, exactly as separate runs would (the frames still running are evaluated,
@@ -242,7 +242,7 @@ def _lm_poses(prob: _Problem, ctrl, m, b, max_iter: int, rel_tol: float, lam0: f
             solved = np.all(np.isfinite(dx), axis=1)
             mt, bt = m.copy(), b.copy()
             ok_idx = idx[solved]
-            mt[ok_idx] = _expm_so3_batch(dx[solved, :3]) @ m[ok_idx]
+            mt[ok_idx] = expm_so3_batch(dx[solved, :3]) @ m[ok_idx]
             bt[ok_idx, :2] += dx[solved, 3:5]
             r2, _, _, rows, _ = sub.evaluate(ctrl, mt[sel], bt[sel], jac=False)
             c2 = np.full(n, np.inf)

@@ -2,8 +2,8 @@
 
 :func:`_resect_starts`: a sweep over the poses that put A, B on the polyline's ends - the
 wrong-branch poses that degree-off end tangents leave are beyond LM's reach - scored by the
-projected curve's distance from the polyline; :func:`_resect_all` refines the best starts of every
-frame at once (``lm._lm_poses``).  :func:`_regauge` re-expresses a state in frame 0's camera
+projected curve's distance from the polyline; :func:`resect_all` refines the best starts of every
+frame at once (``lm.lm_poses``).  :func:`regauge` re-expresses a state in frame 0's camera
 coordinates when frame 0's own pose moved.
 """
 
@@ -17,9 +17,9 @@ from curverecon.curve.bundle_kernel import (
     nearest_distances,
     sweep_distances,
 )
-from curverecon.curve.lm import _lm_poses
-from curverecon.curve.residuals import _Problem
-from curverecon.curve.spline import _Basis
+from curverecon.curve.lm import lm_poses
+from curverecon.curve.residuals import Problem
+from curverecon.curve.spline import Basis
 
 #: A swept pose is refined only if its grid score (mean squared distance) is below this multiple
 #: of the current pose's (the grid is coarse: a pose near the right one can score several px^2).
@@ -48,13 +48,13 @@ def _rot_zyx(theta: float, tau: np.ndarray, delta: np.ndarray) -> np.ndarray:
     return rz @ ry @ rx
 
 
-def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int):
+def _resect_starts(prob: Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndarray, i: int):
     """Best pose of frame i for the fixed curve: a sweep over the poses that put A, B on the
     polyline's ends (both signs of tau, rotation about AB in 10-degree steps), scored by the
     mean squared distance of the projected curve from the polyline.  The best two are refined
     by LM if they score below ``RESECT_GAIN`` times the current pose (a frame on the right
     branch scores near the noise level, far below any grid pose) and lie at least
-    ``RESECT_SAME_DEG`` from it.  Returns the (m_i, b_i) to refine (:func:`_resect_all`), none
+    ``RESECT_SAME_DEG`` from it.  Returns the (m_i, b_i) to refine (:func:`resect_all`), none
     when no sweep pose beats the current one."""
     poly = prob.polys[i]
     a3 = ctrl[0]
@@ -91,7 +91,7 @@ def _resect_starts(prob: _Problem, ctrl: np.ndarray, mi: np.ndarray, bi: np.ndar
         (mms[j], np.append(poly[0] - (mms[j] @ a3)[:2], 0.0))
         for j in best
         if float(scores[j]) < RESECT_GAIN * current
-        and _max_angle_deg(mms[j][None], mi[None]) > RESECT_SAME_DEG
+        and max_angle_deg(mms[j][None], mi[None]) > RESECT_SAME_DEG
     ]
     return starts
 
@@ -104,7 +104,7 @@ _SWEEP_DELTAS.flags.writeable = False
 @functools.cache
 def _sweep_basis(k: int) -> np.ndarray:
     """The basis values (40, k) of the pose sweep's curve samples (:func:`_resect_starts`)."""
-    out = _Basis(k).values(np.linspace(0.0, 1.0, 40))
+    out = Basis(k).values(np.linspace(0.0, 1.0, 40))
     out.flags.writeable = False
     return out
 
@@ -116,7 +116,7 @@ def _cross3(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     )
 
 
-def _resect_all(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, frames):
+def resect_all(prob: Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, frames):
     """:func:`_resect_starts` of the given frames, the starts refined by LM on their poses
     (at most 15 iterations), all at once.  Returns {frame: (m_i, b_i, cost) of its best
     refined pose} for the frames with a start."""
@@ -129,7 +129,7 @@ def _resect_all(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, 
     if not owner:
         return {}
     sub = prob.subset(owner)
-    m2, b2, cost = _lm_poses(sub, ctrl, np.array(ms), np.array(bs), 15, 1e-4)
+    m2, b2, cost = lm_poses(sub, ctrl, np.array(ms), np.array(bs), 15, 1e-4)
     best: dict = {}
     for j, i in enumerate(owner):
         if i not in best or cost[j] < best[i][2]:
@@ -137,13 +137,13 @@ def _resect_all(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, 
     return best
 
 
-def _max_angle_deg(m1: np.ndarray, m2: np.ndarray) -> float:
+def max_angle_deg(m1: np.ndarray, m2: np.ndarray) -> float:
     """The largest rotation angle (degrees) between the frames' rotations m1[i] and m2[i]."""
     c = (np.einsum("nij,nij->n", m1, m2) - 1.0) / 2.0  # (trace(m1 m2^T) - 1) / 2
     return float(np.degrees(np.arccos(np.clip(c, -1.0, 1.0))).max())
 
 
-def _regauge(ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
+def regauge(ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
     """Re-express the state in frame 0's (new) camera coordinates with A at depth 0."""
     m0, b0 = m[0].copy(), b[0].copy()
     ctrl = ctrl @ m0.T + b0

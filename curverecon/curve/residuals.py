@@ -1,6 +1,6 @@
 """The residual model of the curve bundle (the problem the solvers of ``curve.lm`` minimise):
 the spline basis on the problem's grids, every frame's residual rows and their Jacobians
-(:meth:`_Problem.evaluate`), the normal equations in blocks (:meth:`_Problem.normal_equations`).
+(:meth:`Problem.evaluate`), the normal equations in blocks (:meth:`Problem.normal_equations`).
 
 Model.  Body frame = frame 0's camera coordinates (the contract's ``curve3d`` frame), so frame 0's
 pose is the identity (gauge) and frame i maps ``X_i = M_i X_0 + b_i`` (orthographic, unit scale:
@@ -55,7 +55,7 @@ from curverecon.curve.bundle_kernel import (
     segment_offsets,
     tangent_rows,
 )
-from curverecon.curve.spline import _Basis
+from curverecon.curve.spline import Basis
 from curverecon.options import CurveOptions
 
 #: Weight of the difference penalty (order DIFF_ORDER) relative to one polyline point's residual:
@@ -88,7 +88,7 @@ REVERSE_WEIGHT = 0.02
 
 
 #: Newton steps of a foot searched again on its polyline neighbours' stretch of the curve
-#: (:meth:`_Problem._ordered_feet`).
+#: (:meth:`Problem._ordered_feet`).
 ORDER_NEWTON = 8
 
 
@@ -100,9 +100,9 @@ _EMPTY3 = np.empty((0, 3))
 
 @functools.lru_cache(maxsize=64)
 def _problem_tables(k: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """:class:`_Problem`'s tables that depend on K alone, once per K (read-only, shared): the
+    """:class:`Problem`'s tables that depend on K alone, once per K (read-only, shared): the
     dense grid u and its basis values (foot-point search), the reverse samples' basis rows."""
-    basis = _Basis(k)
+    basis = Basis(k)
     u_grid = np.linspace(0.0, 1.0, SAMPLES_PER_SPAN * (k - 3) + 1)
     n_grid = basis.values(u_grid)
     n_rev = REVERSE_SAMPLES_PER_SPAN * (k - 3) + 1
@@ -124,7 +124,7 @@ def _expm_so3(w: np.ndarray) -> np.ndarray:
     return np.eye(3) + np.sin(th) / th * k + (1 - np.cos(th)) / th**2 * (k @ k)
 
 
-def _expm_so3_batch(w: np.ndarray) -> np.ndarray:
+def expm_so3_batch(w: np.ndarray) -> np.ndarray:
     """:func:`_expm_so3` of every row of w (n, 3)."""
     th = np.linalg.norm(w, axis=1)
     k = np.zeros((len(w), 3, 3))
@@ -137,7 +137,7 @@ def _expm_so3_batch(w: np.ndarray) -> np.ndarray:
     return np.eye(3) + a[:, None, None] * k + c[:, None, None] * (k @ k)
 
 
-def _thinned(poly: np.ndarray, target: int) -> np.ndarray:
+def thinned(poly: np.ndarray, target: int) -> np.ndarray:
     """Every s-th point of the polyline and its last one, s = round((M - 1) / target) (at
     least 1): about ``target`` points, the same ends."""
     step = max(int(round((len(poly) - 1) / max(target, 1))), 1)
@@ -199,13 +199,13 @@ def _segment_offsets(
     return best_dir, best_r
 
 
-def _longest_nondecreasing(x: np.ndarray) -> np.ndarray:
+def nondecreasing_mask(x: np.ndarray) -> np.ndarray:
     """Mask of one longest non-decreasing subsequence of ``x`` (patience sorting,
     ``bundle_kernel.longest_nondecreasing``: the fold test runs it on every frame's feet)."""
     return longest_nondecreasing(np.ascontiguousarray(x, float))
 
 
-class _Problem:
+class Problem:
     """Residuals and Jacobians of the bundle for one state (control points, m, b)."""
 
     def __init__(
@@ -221,7 +221,7 @@ class _Problem:
         self.polys = polys
         self.n = len(polys)
         self.sigma = sigma
-        self.basis = _Basis(k)
+        self.basis = Basis(k)
         self.k = k
         self.ends = ends
         self.tangents = tangents
@@ -269,7 +269,7 @@ class _Problem:
 
     def stand_for(self, full: Sequence[np.ndarray]) -> None:
         """Let this problem's polylines, thinned from ``full`` (the same ends, every few points
-        kept: :func:`_thinned`), stand for them: each forward row weighted by the square root
+        kept: :func:`thinned`), stand for them: each forward row weighted by the square root
         of the interior points it stands for and the reverse term's weight from the full count
         (the cost on the scale of the full polylines', the balance with the end-point and
         tangent rows and ``LM_STOP_DCHI2`` as there), the pose sweep on the full polylines."""
@@ -576,7 +576,7 @@ class _Problem:
             uf = u[lo : lo + cnt]
             if cnt < 3 or not np.any(np.diff(uf) < 0.0):
                 continue
-            keep = _longest_nondecreasing(uf)
+            keep = nondecreasing_mask(uf)
             bad = np.flatnonzero(~keep)
             idx = np.flatnonzero(keep)
             q = self.q_all[lo + bad]
@@ -889,11 +889,11 @@ class _Problem:
         gp[1:] += np.einsum("npi,np->ni", jpf[1:], rf[1:])
         return r, (u, gc, v, w, gp), rms
 
-    def subset(self, frames: Sequence[int]) -> _Problem:
+    def subset(self, frames: Sequence[int]) -> Problem:
         """The problem of the given frames alone (repeats allowed: one per pose to refine),
-        with their weights; for the pose search (:func:`_resect_all`)."""
+        with their weights; for the pose search (:func:`resect_all`)."""
         fr = np.asarray(frames, int)
-        sub = _Problem(
+        sub = Problem(
             [self.polys[i] for i in fr],
             self.sigma,
             self.k,
@@ -963,12 +963,12 @@ class _Problem:
         m2, b2 = m.copy(), b.copy()
         if self.n > 1:  # every frame's increment at once (frame 0: the gauge)
             dp = dx[self.n_curve :].reshape(self.n - 1, 5)
-            m2[1:] = _expm_so3_batch(dp[:, :3]) @ m[1:]
+            m2[1:] = expm_so3_batch(dp[:, :3]) @ m[1:]
             b2[1:, :2] += dp[:, 3:5]
         return c2, m2, b2
 
 
-def _bic(prob: _Problem, rms: np.ndarray, n_par: int, per_param: float | None = None) -> float:
+def bic(prob: Problem, rms: np.ndarray, n_par: int, per_param: float | None = None) -> float:
     """Bayesian information criterion of a fit with ``n_par`` free parameters from each frame's
     RMS point distance ``rms`` (pixels): ``n ln(RSS / n) + n_par ln n`` over the polyline
     points (n) of the frames in the fit, the noise level estimated from the fit itself

@@ -20,7 +20,7 @@ from scipy.interpolate import BSpline
 from curverecon.curve import polyline as pl
 
 
-def _error(message: str) -> Exception:
+def bundle_error(message: str) -> Exception:
     from curverecon.errors import CurveReconError
 
     return CurveReconError(message)
@@ -58,7 +58,7 @@ class BundleResult:
 
     def curve_points(self, n: int = 200) -> np.ndarray:
         """(n, 3) points of the fitted curve in frame 0's camera coordinates, A first."""
-        basis = _Basis(len(self.control))
+        basis = Basis(len(self.control))
         return basis.values(np.linspace(0.0, 1.0, n)) @ self.control
 
     def ends(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -68,7 +68,7 @@ class BundleResult:
         return p[0], p[-1], ta / np.linalg.norm(ta), tb / np.linalg.norm(tb)
 
 
-class _Basis:
+class Basis:
     """Clamped uniform cubic B-spline basis with K control points on u in [0, 1].
 
     Evaluated as piecewise cubics: per knot span the K basis functions' power-series
@@ -101,7 +101,7 @@ class _Basis:
 
 @functools.lru_cache(maxsize=64)
 def _span_coefficients(k: int) -> tuple[np.ndarray, np.ndarray]:
-    """(knots, per-span power-series coefficients (spans, 4, K)) of :class:`_Basis` with K
+    """(knots, per-span power-series coefficients (spans, 4, K)) of :class:`Basis` with K
     control points: from scipy's ``BSpline`` once per K (read-only arrays, shared)."""
     spans = k - 3
     inner = np.linspace(0.0, 1.0, k - 2)
@@ -124,7 +124,7 @@ def fit_spline(points: np.ndarray, k: int) -> np.ndarray:
     pts = np.asarray(points, float)
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
     u = s / s[-1]
-    basis = _Basis(k)
+    basis = Basis(k)
     n = basis.values(u)
     # Ends fixed: solve for the interior control points.
     rhs = pts - np.outer(n[:, 0], pts[0]) - np.outer(n[:, -1], pts[-1])
@@ -136,10 +136,10 @@ def fit_spline(points: np.ndarray, k: int) -> np.ndarray:
     return np.vstack([pts[0], inner, pts[-1]])
 
 
-def _arc_parameters(ctrl: np.ndarray, n_out: int) -> np.ndarray:
+def arc_parameters(ctrl: np.ndarray, n_out: int) -> np.ndarray:
     """Spline parameters u of ``n_out`` points equally spaced in 3-D arc length."""
     u = np.linspace(0.0, 1.0, 4000)
-    dense = _Basis(len(ctrl)).values(u) @ ctrl
+    dense = Basis(len(ctrl)).values(u) @ ctrl
     s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(dense, axis=0), axis=1))])
     return np.interp(np.linspace(0.0, s[-1], n_out), s, u)
 
@@ -158,7 +158,7 @@ def shape_and_poses(
     ab = bpt - a
     c = float(np.linalg.norm(ab))
     if not c > 0:
-        raise _error("the fitted curve has A = B")
+        raise bundle_error("the fitted curve has A = B")
     e1 = ab / c
     if tb @ e1 > 0:
         tb = -tb  # a tangent is a line: the direction making an acute angle with BA
@@ -182,7 +182,7 @@ def shape_and_poses(
     return np.array([c, alpha, beta, phi]), poses, cmat
 
 
-def _oriented_to(polylines: Sequence[np.ndarray], result: BundleResult) -> list[np.ndarray]:
+def oriented_to(polylines: Sequence[np.ndarray], result: BundleResult) -> list[np.ndarray]:
     """Every polyline from A' to B' of a bundle result (the end nearer its projected A first)."""
     out = []
     for i, p in enumerate(polylines):

@@ -17,9 +17,9 @@ import numpy as np
 
 from curverecon.curve import joint
 from curverecon.curve import polyline as pl
-from curverecon.curve.joint import _restart
-from curverecon.curve.pose_search import _regauge
-from curverecon.curve.spline import BundleResult, _error
+from curverecon.curve.joint import calls_for_restart
+from curverecon.curve.pose_search import regauge
+from curverecon.curve.spline import BundleResult, bundle_error
 from curverecon.model.pose import rotations as pose_rotations
 from curverecon.model.pose import translations as pose_translations
 
@@ -51,7 +51,7 @@ def bundle_from_frame(
     side-on; another frame's guess lands in another basin of the joint fit."""
     n = len(polylines)
     if not 0 <= ref < n:
-        raise _error(f"reference frame {ref} out of range (0..{n - 1})")
+        raise bundle_error(f"reference frame {ref} out of range (0..{n - 1})")
     perm = [ref] + [j for j in range(n) if j != ref]
     rot = np.asarray(rotations, float)[perm]
     tr = np.asarray(translations, float)[perm]
@@ -65,7 +65,7 @@ def bundle_from_frame(
         [polylines[j] for j in perm], rot, tr, flat_start(poly), resect_first=True, **kw
     )
     inv = np.argsort(perm)
-    ctrl, m, b = _regauge(br.control, br.m[inv], br.b[inv])
+    ctrl, m, b = regauge(br.control, br.m[inv], br.b[inv])
     return BundleResult(
         ctrl,
         m,
@@ -176,7 +176,7 @@ def run_starts(run: CurveRun, mask: np.ndarray | None = None) -> BundleResult:
     rec, curves, kw, tried = run.rec, run.curves, run.kw, run.tried
     tried.clear()
     br = _first_starts(run, mask)
-    if _restart(br.rms if mask is None else br.rms[mask], br.sigma) and not run.flat:
+    if calls_for_restart(br.rms if mask is None else br.rms[mask], br.sigma) and not run.flat:
         # some frame does not fit: a second start from frame 0's polyline at depth 0 (every
         # pose searched again against it); the lower cost wins
         other = bundle_from_frame(
@@ -188,7 +188,7 @@ def run_starts(run: CurveRun, mask: np.ndarray | None = None) -> BundleResult:
     # still uneven or off: flat starts from other frames (each reference frame's polyline
     # is another guess of the curve), the lowest cost kept, until every frame fits alike
     for ref in extra_start_frames(run.n, run.o.bundle_extra_starts):
-        if not _restart(br.rms if mask is None else br.rms[mask], br.sigma):
+        if not calls_for_restart(br.rms if mask is None else br.rms[mask], br.sigma):
             break
         if mask is not None and not mask[ref]:
             continue

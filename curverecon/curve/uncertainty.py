@@ -1,5 +1,5 @@
 """The curve bundle's uncertainty: the covariance of the curve's parameters with every pose
-marginalised out (:func:`_curve_covariance`), the shape's std (:func:`_shape_std`), each output
+marginalised out (:func:`curve_covariance`), the shape's std (:func:`shape_std`), each output
 curve point's std (:func:`curve_point_std`), and the widening by another minimum about as low
 (:func:`rival_minima_std`) or by the other answer when the gate refuses the bundle
 (:func:`refused_std`).
@@ -13,31 +13,31 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from curverecon.curve import polyline as pl
-from curverecon.curve.lm import _sum_products
-from curverecon.curve.residuals import _Problem
-from curverecon.curve.spline import BundleResult, _Basis, _oriented_to, shape_and_poses
+from curverecon.curve.lm import sum_products
+from curverecon.curve.residuals import Problem
+from curverecon.curve.spline import Basis, BundleResult, oriented_to, shape_and_poses
 
 if TYPE_CHECKING:
     from curverecon.curve.bundle import CurveRun
 
 
-def _curve_covariance(prob: _Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
+def curve_covariance(prob: Problem, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
     """Covariance of the curve's parameters with every pose marginalised out: the curve block
     of (J^T J)^+ through the Schur complement on the per-frame pose blocks (residuals in units
     of sigma).  None if it is not finite."""
     _, (u, _, v, w, _), _ = prob.normal_equations(ctrl, m, b)
     try:
         vinv_wt = np.linalg.solve(v[1:], np.transpose(w[1:], (0, 2, 1)))
-        s = u - _sum_products(w[1:], vinv_wt)
+        s = u - sum_products(w[1:], vinv_wt)
         cov = np.linalg.pinv(s)
     except np.linalg.LinAlgError:
         return None
     return cov if np.all(np.isfinite(cov)) else None
 
 
-def _shape_std(result: BundleResult, prob_k: int, cov: np.ndarray | None) -> np.ndarray | None:
+def shape_std(result: BundleResult, prob_k: int, cov: np.ndarray | None) -> np.ndarray | None:
     """Standard deviations of (c, alpha, beta, phi) from the bundle's covariance of the curve's
-    parameters (:func:`_curve_covariance`), propagated through the end geometry."""
+    parameters (:func:`curve_covariance`), propagated through the end geometry."""
     n_curve = 3 * prob_k - 1
     if cov is None:
         return None
@@ -67,7 +67,7 @@ def _shape_std(result: BundleResult, prob_k: int, cov: np.ndarray | None) -> np.
 
 
 def curve_point_std(
-    prob: _Problem,
+    prob: Problem,
     ctrl: np.ndarray,
     m: np.ndarray,
     b: np.ndarray,
@@ -85,7 +85,7 @@ def curve_point_std(
     the curve is to be compared with.  ``d_red``: the pinned parametrisation of
     :func:`fit_curve_fixed_poses` (poses fixed: the std is then the curve's alone, given the
     end-point answer's poses).  ``cov``: the curve parameters' covariance if already known
-    (:func:`_curve_covariance`).  ``xy_var``: the variance (pixels^2) of a translation of the
+    (:func:`curve_covariance`).  ``xy_var``: the variance (pixels^2) of a translation of the
     whole curve in x and y, added to every point's (A' as frame 0 measured it, for the pinned
     fit).  None if the covariance is not finite."""
     if d_red is not None:
@@ -96,10 +96,10 @@ def curve_point_std(
         except np.linalg.LinAlgError:
             return None
     elif cov is None:
-        cov = _curve_covariance(prob, ctrl, m, b)
+        cov = curve_covariance(prob, ctrl, m, b)
         if cov is None:
             return None
-    basis = _Basis(len(ctrl))
+    basis = Basis(len(ctrl))
     nb = basis.values(u)
     g = []
     for c in range(3):
@@ -124,7 +124,7 @@ def curve_point_std(
     return np.sqrt(np.clip(total, 0.0, None)), np.sqrt(np.clip(total - along, 0.0, None))
 
 
-def _gap_to_curve(points: np.ndarray, other: BundleResult) -> np.ndarray:
+def gap_to_curve(points: np.ndarray, other: BundleResult) -> np.ndarray:
     """Each point's distance (input units) from ``other``'s curve or its mirror image (depth
     negated: the same answer, an exact symmetry of orthographic views), whichever is nearer
     on average."""
@@ -140,8 +140,8 @@ def accepted_std(run: CurveRun, br: BundleResult, mask: np.ndarray, u_out: np.nd
     across the curve; the two None when the covariance is not finite), from the covariance of
     the curve's parameters with every pose marginalised out."""
     k = br.control.shape[0]
-    prob = _Problem(
-        _oriented_to(run.curves, br),
+    prob = Problem(
+        oriented_to(run.curves, br),
         br.sigma,
         k,
         run.ends,
@@ -159,8 +159,8 @@ def accepted_std(run: CurveRun, br: BundleResult, mask: np.ndarray, u_out: np.nd
     # control points: 0.32, 0.88, 0.92 against 0.58, 1.17, 1.09, the spread over noise draws
     # about 0.85, 1.1, 0.95); without it 5.5, 8.0, 12.4 (0.59, 1.17, 1.10) on both
     prob.rev_weight = [0.0] * prob.n
-    cov = _curve_covariance(prob, br.control, br.m, br.b)
-    std = _shape_std(br, k, cov)
+    cov = curve_covariance(prob, br.control, br.m, br.b)
+    std = shape_std(br, k, cov)
     stds = curve_point_std(prob, br.control, br.m, br.b, u_out, cov=cov)
     point_std, normal_std = (None, None) if stds is None else stds
     return std, point_std, normal_std
@@ -180,7 +180,7 @@ def rival_minima_std(
     if not (run.o.rival_minima_std and run.use_given and rival is not None):
         return stds
     p_rival = 1.0 / (1.0 + np.exp(min(0.5 * (rival.cost - br.cost), 700.0)))
-    gap = _gap_to_curve(pts, rival)
+    gap = gap_to_curve(pts, rival)
     r_shape = normalise(*shape_and_poses(rival)[:2])[0]
     diff = np.asarray(r_shape, float) - np.asarray(shape_n, float)
     diff[3] = (diff[3] + np.pi) % (2.0 * np.pi) - np.pi
@@ -223,7 +223,7 @@ def refused_std(run: CurveRun, out, curve3d: np.ndarray, br: BundleResult, verdi
         # fixed-pose curve's std is the curve's alone given the end-point answer's poses,
         # which the refusal says are off (clothoid seed 1201, 1 px, 12 frames, a refused
         # noise draw: the curve 1.7 % of its length off, its std across the curve 0.04 %)
-        gap = _gap_to_curve(curve3d, br)
+        gap = gap_to_curve(curve3d, br)
         out = replace(
             out,
             curve3d_std=np.sqrt(out.curve3d_std**2 + gap**2),
