@@ -215,7 +215,7 @@ def test_a_hooked_end_does_not_bend_the_curve(monkeypatch):
     sight ends its polyline at the fold, beyond A', with A' on the polyline): with the
     robust-end polish (``END_POLISH``) the curve stays on the truth; held as a hard end the
     polyline's end drags it off (so the polish matters here)."""
-    from curverecon.curve import bundle as bundle_module
+    from curverecon.curve import joint
 
     scene = make_scene(np.random.default_rng(5), 8, with_curve=True)
     curves = [np.asarray(c, float) for c in scene.observations.curves]
@@ -226,7 +226,7 @@ def test_a_hooked_end_does_not_bend_the_curve(monkeypatch):
     rot, tr = _truth_poses(scene)
     errors = {}
     for polish in (True, False):
-        monkeypatch.setattr(bundle_module, "END_POLISH", polish)
+        monkeypatch.setattr(joint, "END_POLISH", polish)
         res = bundle_adjust(curves, rot, tr, scene.curve_3d)
         errors[polish] = curve_error(res.curve_points(), scene.curve_3d)
     assert errors[True] < 0.002, errors
@@ -234,7 +234,7 @@ def test_a_hooked_end_does_not_bend_the_curve(monkeypatch):
 
 
 def test_gauss_newton_floor_stop_agrees_with_a_tight_solve(monkeypatch):
-    """The LM's stop at the cost's floor (``bundle.LM_STOP_DCHI2``: a Gauss-Newton step that
+    """The LM's stop at the cost's floor (``lm.LM_STOP_DCHI2``: a Gauss-Newton step that
     fails while predicting less than half a chi2 unit) against a tightly converged solve (that
     stop off, the full-curve runs to a relative decrease of 1e-10): 1 px, 1 degree, 20 frames
     of the simulator's fourier curve (bench seed 1400, the scene the stop was tuned on) and a
@@ -242,32 +242,32 @@ def test_gauss_newton_floor_stop_agrees_with_a_tight_solve(monkeypatch):
     within 0.3 of their std across the curve (median over the points): the cost is rough at the
     floor and the fourier scene's final polish from the floor stop settles 0.22 of that std
     (median; at most 0.46) from the tight solve's, the random scene's within 0.003."""
-    import curverecon.curve.bundle as bd
+    from curverecon.curve import lm
 
     scenes = [
         make_scene(np.random.default_rng(s), 20, 1.0, 1.0, with_curve=True, curve_family=f)
         for s, f in ((1400, "fourier"), (2002, "random"))
     ]
     fired = []
-    model = bd._model_decrease
+    model = lm._model_decrease
 
     def counting(blocks, dx):
         out = model(blocks, dx)
-        fired.append(out < bd.LM_STOP_DCHI2)
+        fired.append(out < lm.LM_STOP_DCHI2)
         return out
 
-    monkeypatch.setattr(bd, "_model_decrease", counting)
+    monkeypatch.setattr(lm, "_model_decrease", counting)
     fast = [reconstruct(sc.observations) for sc in scenes]
     assert sum(fired) >= 2
-    lm = bd._lm_bundle
+    lm_run = lm.lm_bundle
 
-    def tight(prob, state, max_iter, lam=1e-3, rel_tol=bd.REL_TOL):
-        if rel_tol == bd.REL_TOL:  # the full-curve runs (the coarse ones pass their own)
+    def tight(prob, state, max_iter, lam=1e-3, rel_tol=lm.REL_TOL):
+        if rel_tol == lm.REL_TOL:  # the full-curve runs (the coarse ones pass their own)
             rel_tol, max_iter = 1e-10, 400
-        return lm(prob, state, max_iter, lam, rel_tol)
+        return lm_run(prob, state, max_iter, lam, rel_tol)
 
-    monkeypatch.setattr(bd, "LM_STOP_DCHI2", -np.inf)
-    monkeypatch.setattr(bd, "_lm_bundle", tight)
+    monkeypatch.setattr(lm, "LM_STOP_DCHI2", -np.inf)
+    monkeypatch.setattr(lm, "lm_bundle", tight)
     slow = [reconstruct(sc.observations) for sc in scenes]
     for a, b in zip(fast, slow, strict=True):
         assert a.estimator == b.estimator == "curve-bundle"
@@ -281,12 +281,12 @@ def test_gauss_newton_damping_reached_by_tenfold_decreases():
     """The LM's floor stop applies at the damping its tenfold decreases reach from the default
     start (1e-3 / 10 / 10 / 10, which rounds to just above 1e-6) and below, not one step
     before."""
-    import curverecon.curve.bundle as bd
+    from curverecon.curve import lm
 
     lam = 1e-3
     seen = []
     for _ in range(5):
-        seen.append(bd._gauss_newton_damping(lam))
+        seen.append(lm._gauss_newton_damping(lam))
         lam = max(lam / 10.0, 1e-9)
-    assert bd.LM_GN_LAMBDA == 1e-6  # the sequence below is for this value
+    assert lm.LM_GN_LAMBDA == 1e-6  # the sequence below is for this value
     assert seen == [False, False, False, True, True]

@@ -1,5 +1,5 @@
 """The curve bundle's numerical core: the analytic Jacobian and the normal equations in blocks
-(``curve.bundle._Problem``) against finite differences of the residual function, and the numba
+(``curve.residuals.Problem``) against finite differences of the residual function, and the numba
 kernels (``curve.bundle_kernel``) against brute-force NumPy and k-d tree constructions.
 
 Scenes from ``simulate.make_scene(..., with_curve=True)`` (3-D curves moved and projected
@@ -15,6 +15,8 @@ from scipy.spatial import cKDTree
 from bench.curve_end_to_end import curve_error
 from curverecon.curve import bundle as bd
 from curverecon.curve import bundle_kernel as bk
+from curverecon.curve import lm, residuals
+from curverecon.curve import pose_search as ps
 from curverecon.simulate import make_scene
 
 
@@ -36,7 +38,7 @@ def _truth_problem(seed: int, frames: int, family: str, robust_ends: bool, noise
     b = tr - np.einsum("nij,j->ni", m, tr[0])
     curve = scene.curve_3d - [0.0, 0.0, scene.curve_3d[0, 2]]
     ctrl = bd.fit_spline(curve, 12)
-    prob = bd._Problem(
+    prob = residuals.Problem(
         polys,
         1.0,
         12,
@@ -92,7 +94,7 @@ def test_analytic_jacobian_matches_finite_differences(robust_ends):
     lam = 1e-3
     d = np.maximum(np.diag(jtj), 1e-12 * np.diag(jtj).max())
     dense = -np.linalg.solve(jtj + lam * np.diag(d), jtr)
-    step = bd._schur_solve((u, gc, v, w, gp), lam)
+    step = lm._schur_solve((u, gc, v, w, gp), lam)
     assert np.linalg.norm(step - dense) < 1e-4 * np.linalg.norm(dense)
 
 
@@ -148,7 +150,7 @@ def test_bundle_on_a_seeded_scene_reaches_the_truth():
 
 @pytest.mark.parametrize("family", ["helix", "random"])
 def test_pose_sweep_distances_equal_the_k_d_tree(family):
-    """``bundle_kernel.nearest_distances`` (the pose sweep of ``bundle._resect_starts``):
+    """``bundle_kernel.nearest_distances`` (the pose sweep of ``pose_search._resect_starts``):
     a frame's resampled polyline against the projected curve samples of every sweep pose and
     scattered points, the same distances as a k-d tree's query (to the last bit: the same
     squared differences, the same nearest point up to ties)."""
@@ -169,7 +171,7 @@ def test_pose_sweep_distances_equal_the_k_d_tree(family):
 
 def test_end_and_tangent_rows_equal_the_numpy_construction():
     """``bundle_kernel.end_rows`` / ``tangent_rows`` (the bundle's rows of the polylines' end
-    points and of the given end tangents) against NumPy: the reference ``_Problem._end_rows``,
+    points and of the given end tangents) against NumPy: the reference ``Problem._end_rows``,
     and the tangent angles and their derivatives written out (angle of m (P1 - P0) against
     the given direction folded to a line, d angle / d v = (-v_y, v_x) / |v|^2), on a
     simulated scene's true state, every pose, with one tangent not given."""
@@ -239,7 +241,7 @@ def test_sweep_distances_stop_each_pose_beyond_the_bound():
 
 
 def test_thinned_problem_stands_for_the_full_polylines():
-    """The coarse stage's thinned polylines (``bundle._thinned``, ``_Problem.stand_for``):
+    """The coarse stage's thinned polylines (``residuals.thinned``, ``Problem.stand_for``):
     the same ends and every s-th point of each polyline; the cost on the scale of the full
     polylines' (the forward rows weighted by the points they stand for): at the true state of
     a noisy scene (within the noise of the sums) with per-frame RMS distances alike, and, on
@@ -250,8 +252,8 @@ def test_thinned_problem_stands_for_the_full_polylines():
         prob, state, _ = _truth_problem(11, 12, "helix", False, noise)
         prob.frame_w = np.ones(prob.n)
         prob.poly_w = np.ones(prob.n)
-        thin_polys = [bd._thinned(p, 40) for p in prob.polys]
-        thin = bd._Problem(
+        thin_polys = [residuals.thinned(p, 40) for p in prob.polys]
+        thin = residuals.Problem(
             thin_polys, 1.0, 12, prob.ends, prob.tangents, prob.point_sigma, prob.tangent_sigma
         )
         thin.stand_for(prob.polys)
@@ -271,7 +273,7 @@ def test_thinned_problem_stands_for_the_full_polylines():
     assert np.allclose(rms_t, rms, rtol=0.25)
     prob, thin, (ctrl, m, b) = problems(0.0)
     turned = m.copy()
-    turned[4] = bd._expm_so3(np.radians(3.0) * np.array([0.6, 0.8, 0.0])) @ m[4]
+    turned[4] = residuals._expm_so3(np.radians(3.0) * np.array([0.6, 0.8, 0.0])) @ m[4]
     rise = []
     for pr in (prob, thin):
         r, _, _, rows, _ = pr.evaluate(ctrl, m, b, jac=False)
@@ -305,7 +307,7 @@ def _longest_nondecreasing_reference(x: np.ndarray) -> np.ndarray:
 
 
 def test_longest_nondecreasing_run_is_a_longest_one():
-    """``bundle._longest_nondecreasing`` (numba): a non-decreasing subsequence as long as the
+    """``residuals.nondecreasing_mask`` (numba): a non-decreasing subsequence as long as the
     longest (O(M^2) dynamic programme), and the same one as the bisect implementation, on
     noisy increasing sequences (the feet of noisy polylines), with ties and empty input."""
     rng = np.random.default_rng(3)
@@ -314,7 +316,7 @@ def test_longest_nondecreasing_run_is_a_longest_one():
         x = np.sort(rng.uniform(size=n)) + rng.normal(size=n) * [0.0, 0.02, 0.3][t % 3]
         if t % 4 == 0:
             x = np.round(x, 1)  # ties
-        keep = bd._longest_nondecreasing(x)
+        keep = residuals.nondecreasing_mask(x)
         best = np.ones(n, int)  # longest non-decreasing run ending at each point
         for i in range(n):
             for j in range(i):
@@ -326,12 +328,12 @@ def test_longest_nondecreasing_run_is_a_longest_one():
 
 
 def _turn_deg(r1: np.ndarray, r2: np.ndarray) -> float:
-    """The rotation angle between two rotations (degrees; ``bundle._max_angle_deg``)."""
-    return bd._max_angle_deg(r1[None], r2[None])
+    """The rotation angle between two rotations (degrees; ``pose_search.max_angle_deg``)."""
+    return ps.max_angle_deg(r1[None], r2[None])
 
 
 def test_pose_search_leaves_the_current_basin_and_finds_a_far_pose(monkeypatch):
-    """``bundle._resect_starts`` / ``_resect_all`` on a Bezier scene (1 px, 8 frames) with the
+    """``pose_search._resect_starts`` / ``resect_all`` on a Bezier scene (1 px, 8 frames) with the
     true curve and poses: every frame at its true pose gets no start within
     ``RESECT_SAME_DEG`` of it (the sweep itself finds such poses: with the filter off some
     frames get one), and a frame turned 180 degrees about AB (A, B and their images stay put,
@@ -342,12 +344,12 @@ def test_pose_search_leaves_the_current_basin_and_finds_a_far_pose(monkeypatch):
     prob.poly_w[:] = 1.0
     near = 0
     for i in range(1, 8):
-        for mm, _ in bd._resect_starts(prob, ctrl, m[i], b[i], i):
-            assert _turn_deg(mm, m[i]) >= bd.RESECT_SAME_DEG
-    monkeypatch.setattr(bd, "RESECT_SAME_DEG", 0.0)
+        for mm, _ in ps._resect_starts(prob, ctrl, m[i], b[i], i):
+            assert _turn_deg(mm, m[i]) >= ps.RESECT_SAME_DEG
+    monkeypatch.setattr(ps, "RESECT_SAME_DEG", 0.0)
     for i in range(1, 8):
         near += sum(
-            _turn_deg(mm, m[i]) < 10.0 for mm, _ in bd._resect_starts(prob, ctrl, m[i], b[i], i)
+            _turn_deg(mm, m[i]) < 10.0 for mm, _ in ps._resect_starts(prob, ctrl, m[i], b[i], i)
         )
     assert near >= 3
     monkeypatch.undo()
@@ -361,7 +363,7 @@ def test_pose_search_leaves_the_current_basin_and_finds_a_far_pose(monkeypatch):
     b_wrong[i] = b[i] + m[i] @ (a3 - turn @ a3)
     r, _, _, rows, _ = prob.evaluate(ctrl, m_wrong, b_wrong, jac=False)
     cost_wrong = prob.frame_costs(r, rows)[i]
-    found = bd._resect_all(prob, ctrl, m_wrong, b_wrong, [i])
+    found = ps.resect_all(prob, ctrl, m_wrong, b_wrong, [i])
     m_i, _, cost = found[i]
     assert _turn_deg(m_i, m[i]) < 2.0
     assert cost < 0.1 * cost_wrong

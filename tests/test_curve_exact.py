@@ -66,17 +66,17 @@ def _curve_error(family: str, seed: int, frames: int, options=None) -> float:
 def test_a_stuck_noise_free_curve_fit_is_run_again_from_twelve_control_points(monkeypatch):
     # fourier 8008, 20 frames: from 21 control points the fit sticks (9.8e-4 px RMS at 75
     # control points, curve3d 4.9e-5 of the length); run again from 12 it reaches the target
-    from curverecon.curve import bundle
+    from curverecon.curve import fixed_poses
     from curverecon.options import CurveOptions, ReconstructOptions
 
     starts: list[int] = []
-    fit = bundle.fit_curve_fixed_poses
+    fit = fixed_poses.fit_curve_fixed_poses
 
     def counted(*args, **kwargs):
         starts.append(kwargs["k_start"])
         return fit(*args, **kwargs)
 
-    monkeypatch.setattr(bundle, "fit_curve_fixed_poses", counted)
+    monkeypatch.setattr(fixed_poses, "fit_curve_fixed_poses", counted)
     assert _curve_error("fourier", 8008, 20) < 1e-6
     assert starts == [21, 12]
     starts.clear()

@@ -83,8 +83,8 @@ def test_curve3d_error_at_half_a_pixel_is_the_tilt_in_frame_0_not_the_shape():
     length = _length(truth)
     mirror = min((truth, truth * [1.0, 1.0, -1.0]), key=lambda q: _mean_distance(rec.curve3d, q))
     err = _mean_distance(rec.curve3d, mirror) / length
-    # the raw error in frame 0's camera: about the target's 0.5 % or more (0.8 %; 0.48 % with the
-    # coarse stage on thinned polylines, bundle.COARSE_POINTS = 40, a lower-cost fit)
+    # the raw error in frame 0's camera: about the 0.5 % target or more (0.8 %; 0.48 % with the
+    # coarse stage on thinned polylines, joint.COARSE_POINTS = 40, a lower-cost fit)
     assert err > 0.004
     # the same points in arc length, the best rotation about A
     u = np.linspace(0.0, 1.0, 200)

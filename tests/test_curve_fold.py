@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from curverecon.curve import bundle as B
+from curverecon.curve import fixed_poses, residuals, spline
 from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
 
@@ -38,7 +38,7 @@ def _problem(sc):
     rot, tr = sc.truth.rotations, sc.truth.A3
     m = np.einsum("nij,kj->nik", rot, rot[0])
     b = tr - np.einsum("nij,j->ni", m, tr[0])
-    prob = B._Problem(list(sc.observations.curves), 1.0, 12, None, None, 1.0, 1.0)
+    prob = residuals.Problem(list(sc.observations.curves), 1.0, 12, None, None, 1.0, 1.0)
     return prob, m, b
 
 
@@ -46,14 +46,14 @@ def test_fold_test_tells_a_folded_spline_from_the_true_curve() -> None:
     sc = _scene()
     prob, m, b = _problem(sc)
     true = sc.curve_3d
-    assert not B._folded(prob, B.fit_spline(true, 12), m, b, 8.0)
+    assert not fixed_poses.is_folded(prob, spline.fit_spline(true, 12), m, b, 8.0)
     # forward to B, back over the last fifth of the curve, forward to B again: every image of
     # it lies on the polyline
     n = len(true)
     back = true[int(0.8 * n) : -1][::-1]
     folded = np.vstack([true, back, true[int(0.8 * n) + 1 :]])
     assert _length(folded) > 1.3 * _length(true)
-    assert B._folded(prob, B.fit_spline(folded, 12), m, b, 8.0)
+    assert fixed_poses.is_folded(prob, spline.fit_spline(folded, 12), m, b, 8.0)
 
 
 def test_bundle_on_a_scene_that_folded_is_one_curve_within_its_std() -> None:

@@ -20,18 +20,18 @@ from curverecon.simulate import make_scene
 
 
 def _spy_bundles(monkeypatch) -> list:
-    """Every ``bundle.bundle_adjust`` result of the reconstructions that follow, in order."""
-    from curverecon.curve import bundle as bd
+    """Every ``joint.bundle_adjust`` result of the reconstructions that follow, in order."""
+    from curverecon.curve import joint
 
     results = []
-    orig = bd.bundle_adjust
+    orig = joint.bundle_adjust
 
     def spy(*args, **kwargs):
         out = orig(*args, **kwargs)
         results.append(out)
         return out
 
-    monkeypatch.setattr(bd, "bundle_adjust", spy)
+    monkeypatch.setattr(joint, "bundle_adjust", spy)
     return results
 
 

@@ -98,7 +98,7 @@ def test_reported_std_covers_the_errors():
 
 
 def test_gate_reference_is_the_best_of_the_answer_and_its_alternatives():
-    """``bundle.gate_reference_chi2``: the least chi2 among the answer and its equally good
+    """``gate.gate_reference_chi2``: the least chi2 among the answer and its equally good
     alternatives (non-finite ones ignored); the answer's own with the option off."""
     from curverecon.curve.bundle import gate_reference_chi2
     from curverecon.model.reconstruction import Alternative
@@ -143,7 +143,7 @@ def test_the_gate_holds_where_the_end_points_have_alternatives():
 
 
 def test_never_worse_limit_is_the_99_percent_point_with_an_estimated_variance():
-    """``bundle.never_worse_limit``: with the variance factor estimated from ``dof`` degrees of
+    """``gate.never_worse_limit``: with the variance factor estimated from ``dof`` degrees of
     freedom, (chi2 with 4 dof) / (s2 from a chi2 with ``dof``) stays below the limit with the
     probability of ``never_worse_dchi2`` under chi2_4 (99 %; checked by drawing both, seeded),
     and the limit falls to ``never_worse_dchi2`` itself as dof grows."""

@@ -14,7 +14,7 @@ curve's).  Checked against the simulator's truth:
 - at 0.5 px the angles' errors are within 3 of the std the answer reports (seeds not used for
   tuning);
 - a frame left on a wrong pose branch is searched again against the curve the other frames
-  fit (``bundle.resect_uneven_frames``).
+  fit (``joint.resect_uneven_frames``).
 """
 
 from __future__ import annotations

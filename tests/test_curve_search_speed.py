@@ -282,7 +282,7 @@ def test_without_the_joint_refits_the_bundle_is_not_refused_for_a_worse_optimum(
     never-worse gate then refused the bundle's shape and the answer stayed there (curve 8 %
     off).  Without them (the default) the bundle's shape is accepted: every angle within
     2.5 degrees, the curve within 1.5 % (1.1 %) of its length.  (Since the bundle's pose
-    search leaves out starts in the current pose's own basin, ``bundle.RESECT_SAME_DEG``,
+    search leaves out starts in the current pose's own basin, ``pose_search.RESECT_SAME_DEG``,
     the path with the refits reaches an accepted shape here too, 0.7 %: the refits are off
     for their time and because the bundle refits every pose itself.)"""
     from bench.curve_end_to_end import curve_error

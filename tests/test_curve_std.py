@@ -98,7 +98,7 @@ def test_refused_bundle_widens_the_end_point_std():
 
 # sharp-ends 6001 with the joint refits before the bundle (its end-point answer then 10-18
 # degrees off) was the second scene here; since the pose search leaves the current pose's basin
-# alone (bundle.RESECT_SAME_DEG) its bundle is accepted on that path too
+# alone (pose_search.RESECT_SAME_DEG) its bundle is accepted on that path too
 # (test_curve_search_speed).  Refused scenes found instead (sharp-ends, fourier, random, bezier,
 # seeds 6000-6029): fourier 6027 has its Birge-scaled std cover already (2.7 std), so it serves
 # the curve3d test below only

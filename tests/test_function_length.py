@@ -16,7 +16,7 @@ import curverecon
 
 ROOT = Path(curverecon.__file__).parent
 LIMIT = 150
-EXCLUDE = ("curve",)
+EXCLUDE = ()
 FOLDERS = (".", *sorted(p.name for p in ROOT.iterdir() if p.is_dir() and any(p.glob("*.py"))))
 
 

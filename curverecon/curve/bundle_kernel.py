@@ -118,7 +118,7 @@ def nearest_in_frames(pts, lo, hi, q, qlo, qhi):
 @numba.njit(**_JIT)
 def foot_parameters(proj, u_grid, ps, q, q_lo, q_cnt):
     """Curve parameter u of the foot point of each polyline point on its frame's projected
-    curve (``bundle._Problem._all_foot_points``): the nearest dense sample (proj (N, G, 2) at
+    curve (``residuals.Problem._all_foot_points``): the nearest dense sample (proj (N, G, 2) at
     ``u_grid``), the nearer of its two dense segments, then two Newton steps on |p(u) - q|^2
     (each at most one grid step) on the exact curve, whose spans' power-series coefficients
     are ps (N, spans, 4, 2).  Frame f's points are q[q_lo[f] : q_lo[f] + q_cnt[f]]."""
@@ -170,7 +170,7 @@ def foot_parameters(proj, u_grid, ps, q, q_lo, q_cnt):
 
 @numba.njit(**_JIT)
 def forward_rows(ps, u, q, q_lo, q_cnt):
-    """The forward term's rows (``bundle._Problem.evaluate``) at the foot parameters u: per
+    """The forward term's rows (``residuals.Problem.evaluate``) at the foot parameters u: per
     polyline point the offset direction (the projected curve's unit normal at the foot point;
     the offset's own direction at the curve's ends), the signed distance along it and the
     squared distance.  ps (N, spans, 4, 2) as in :func:`foot_parameters`."""
@@ -208,7 +208,7 @@ def forward_rows(ps, u, q, q_lo, q_cnt):
 @numba.njit(**_JIT)
 def segment_offsets(verts, v_lo, v_hi, pts, q_lo, q_hi):
     """Direction and signed distance of points from their frame's polyline
-    (``bundle._segment_offsets`` after the nearest vertex, :func:`nearest_in_frames`): the
+    (``residuals._segment_offsets`` after the nearest vertex, :func:`nearest_in_frames`): the
     nearer of the two segments at the nearest vertex (the segment's normal; beyond the
     polyline's ends the offset direction).  Frame f's polyline is verts[v_lo[f] : v_hi[f] + 1],
     its points pts[q_lo[f] : q_hi[f]]."""
@@ -250,7 +250,7 @@ def segment_offsets(verts, v_lo, v_hi, pts, q_lo, q_hi):
 @numba.njit(**_JIT)
 def polyline_normal_blocks(nus, dmw, jp, res, rows, cidx, u, gc, v, w, gp):
     """Add the polyline rows' terms to the bundle's normal equations in blocks
-    (``bundle._Problem.normal_equations``) without the dense Jacobian: row i's curve Jacobian
+    (``residuals.Problem.normal_equations``) without the dense Jacobian: row i's curve Jacobian
     is ``nus[i, k] * dmw[i, c]`` at column ``cidx[k, c]`` (a cubic B-spline point depends on
     at most 4 control points: the zero basis values are skipped), its pose Jacobian jp[i]
     (frame rows[i]; frame 0's pose is the gauge, no block).  Accumulates U = Jc^T Jc and
@@ -303,7 +303,7 @@ def polyline_normal_blocks(nus, dmw, jp, res, rows, cidx, u, gc, v, w, gp):
 @numba.njit(**_JIT)
 def nearest_distances(pts, q):
     """Distance of each point q[i] from the nearest of pts (the pose sweep of
-    ``bundle._resect_starts``: a polyline resampled, every sweep pose's projected curve
+    ``pose_search._resect_starts``: a polyline resampled, every sweep pose's projected curve
     samples): the pruned scan, each query starting from the previous one's nearest point
     (consecutive queries are neighbouring curve samples).  The same distances as a k-d tree's
     query."""
@@ -352,9 +352,9 @@ def sweep_distances(pts, q, per, bound):
 
 @numba.njit(**_JIT)
 def basis_rows(coef, u, rev_basis, n):
-    """The spline's basis values (``bundle._Basis.values``, the same arithmetic) at the foot
+    """The spline's basis values (``spline.Basis.values``, the same arithmetic) at the foot
     parameters u, then ``n`` copies of the reverse samples' rows ``rev_basis``: the polyline
-    rows' nus of ``bundle._Problem.evaluate`` (len(u) + n * len(rev_basis), K).  coef: the
+    rows' nus of ``residuals.Problem.evaluate`` (len(u) + n * len(rev_basis), K).  coef: the
     basis's per-span power-series coefficients (spans, 4, K)."""
     nq = u.shape[0]
     spans, kk = coef.shape[0], coef.shape[2]
@@ -377,7 +377,7 @@ def basis_rows(coef, u, rev_basis, n):
 
 @numba.njit(**_JIT)
 def polyline_rows(r_fw, rev_r, rows, fwd_w, rev_w, pw, fw, s, hk, jac, dm, dirs, yy):
-    """The polyline rows of ``bundle._Problem.evaluate`` (forward rows, then every frame's
+    """The polyline rows of ``residuals.Problem.evaluate`` (forward rows, then every frame's
     reverse rows, frame-major; ``rows``: each row's frame) from their signed distances: Huber
     (threshold ``hk``, units of sigma ``s``; forward rows weighted by their frame's ``fwd_w``,
     reverse rows by its ``rev_w``),
@@ -430,7 +430,7 @@ def polyline_rows(r_fw, rev_r, rows, fwd_w, rev_w, pw, fw, s, hk, jac, dm, dirs,
 
 @numba.njit(**_JIT)
 def end_rows(ctrl, m, b, pts, scale, cidx, n_curve, jac):
-    """``bundle._Problem._end_rows``: the 2-D offsets of every frame's projected A, B
+    """``residuals.Problem._end_rows``: the 2-D offsets of every frame's projected A, B
     (ctrl[0], ctrl[-1]; poses m (N, 3, 3), b (N, 3)) from pts (N, 2, 2) in units of ``scale``:
     rows (N, 4) [A x, A y, B x, B y] and with ``jac`` their Jacobians (N, 4, n_curve) at the free
     columns ``cidx`` (K, 3; -1: none), (N, 4, 5).  The same arithmetic as the NumPy code (its
@@ -468,7 +468,7 @@ def end_rows(ctrl, m, b, pts, scale, cidx, n_curve, jac):
 
 @numba.njit(**_JIT)
 def tangent_rows(v3, ang, ok, m, ts, cidx, n_curve, jac):
-    """``bundle._Problem.evaluate``'s rows of the given tangent directions from the projected
+    """``residuals.Problem.evaluate``'s rows of the given tangent directions from the projected
     end tangents v3 (N, 2, 3: frame i's m (ctrl[1] - ctrl[0]) at A, m (ctrl[-2] - ctrl[-1]) at
     B) and their angles from the given directions ``ang`` (N, 2; NumPy's arctan2), ``ok``
     where given: the angle folded into [-pi/2, pi/2) (lines, any sign) in units of ``ts``
@@ -511,7 +511,7 @@ def tangent_rows(v3, ang, ok, m, ts, cidx, n_curve, jac):
 @numba.njit(**_JIT)
 def longest_nondecreasing(x):
     """Mask of one longest non-decreasing subsequence of ``x`` (patience sorting:
-    ``bundle._longest_nondecreasing``'s loop with its ``bisect.bisect_right``, the same
+    ``residuals.nondecreasing_mask``'s loop with its ``bisect.bisect_right``, the same
     subsequence)."""
     n = x.shape[0]
     tails = np.empty(n)  # least last value of a run of each length

@@ -414,141 +414,16 @@ def reconstruct_curve(
         raise _error("no frame views the curve from a different direction than frame 0")
 
     # Per-frame crossing candidates for every sample: depth, standard error.
-    lengths = [_length(p) for p in polys]
-    # per frame (in frame order) its candidates' sample, depth, standard error
-    parts: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
-    xy_key = xy.tobytes()
-    for i in informative:
-        # by content: a trial of the branch search changes one frame's pose, not the others'
-        key = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), xy_key, sigma)
-        found = _CROSSINGS.get(key)
-        if found is None:
-            found = _frame_candidates(polys[i], m[i], b[i], xy, sigma, lengths[i])
-            if len(_CROSSINGS) >= _UNARY_MAX:
-                _CROSSINGS.clear()
-            _CROSSINGS[key] = found
-        if found is None:  # no usable crossing in this frame
-            continue
-        g_k, g_z, g_s = found
-        parts.append((g_k, g_z, np.full(len(g_k), i), np.sqrt(2.0) * sigma / (view_sin[i] * g_s)))
-
+    flat = _crossing_candidates(polys, m, b, xy, sigma, informative, view_sin)
     # Unary cost of each candidate: truncated squared reprojection distance over all frames.
     trunc = (3.0 * sigma + 1.0) ** 2
-    # every candidate, by sample; within a sample in frame order, then the frame's own order
-    if parts:
-        cat_k, cat_z, cat_f, cat_s = (np.concatenate(v) for v in zip(*parts, strict=True))
-    else:
-        cat_k, cat_z, cat_f, cat_s = (np.zeros(0) for _ in range(4))
-    order = np.argsort(cat_k, kind="stable")
-    flat_k = cat_k[order].astype(int)
-    flat_z = cat_z[order].astype(float)
-    flat_f = cat_f[order].astype(int)
-    flat_s = cat_s[order].astype(float)
-    unary = np.zeros(len(flat_z))
-    if len(flat_z):
-        pts0 = np.column_stack([xy[flat_k], flat_z])
-        # each (frame, source frame) block by content: a trial of the branch search that
-        # switches one frame changes only that frame's blocks (its crossings, its distances).
-        # The candidates grouped by source frame (each group in the candidates' order): every
-        # destination frame's blocks are joined in this order and summed there in frame order
-        # (the same sums), then put back once (not one fancy assignment per block)
-        by_f = np.argsort(flat_f, kind="stable")
-        fs, starts = np.unique(flat_f[by_f], return_index=True)
-        ends = np.append(starts[1:], len(by_f))
-        pts_f = pts0[by_f]
-        src = [pts_f[lo:hi].tobytes() for lo, hi in zip(starts, ends, strict=True)]
-        acc = np.zeros(len(flat_z))  # summed over the destination frames in frame order
-        for i in informative:
-            dest = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), sigma)
-            vals: list = [None] * len(fs)
-            missing = []
-            for g in range(len(fs)):
-                key = (dest, src[g])
-                val = _UNARY.get(key)
-                if val is None:
-                    missing.append((key, g))
-                else:
-                    vals[g] = val
-            if missing:
-                # every missing block of this frame in one query (each point's distance is its
-                # own: the same values as block by block)
-                pts_i = _project_xy(
-                    np.concatenate([pts_f[starts[g] : ends[g]] for _, g in missing]), m[i], b[i]
-                )
-                # beyond sqrt(trunc) the cost is trunc whatever the distance: the search
-                # stops there
-                dist = _distances_for_frame(pts_i, polys[i], bound=np.sqrt(trunc) * 1.0001)
-                val_all = np.minimum(dist**2, trunc)
-                if len(_UNARY) + len(missing) > _UNARY_MAX:
-                    _UNARY.clear()
-                off = 0
-                for key, g in missing:
-                    cnt = int(ends[g] - starts[g])
-                    vals[g] = _UNARY[key] = val_all[off : off + cnt]
-                    off += cnt
-            acc += np.concatenate(vals) if len(vals) > 1 else vals[0]
-        unary[by_f] = acc
-    unary /= sigma**2
-
-    # Dynamic programme along the curve. States: candidates, plus a "missing" state per sample.
-    # Pairwise cost: continuity of depth relative to the image step between samples.
-    step = float(np.hypot(*(xy[1] - xy[0]))) if k_total > 1 else 1.0
-    step = max(step, 1e-9)
-    miss_cost = len(informative) * trunc / sigma**2  # as bad as a candidate every frame rejects
-    jump_w = 0.5  # cost per (depth slope)^2, in units of squared sigmas
-    offsets = np.concatenate([[0], np.cumsum(np.bincount(flat_k, minlength=k_total))])
-    zs = [flat_z[offsets[k] : offsets[k + 1]] for k in range(k_total)]
-    us = [unary[offsets[k] : offsets[k + 1]] for k in range(k_total)]
-    # Endpoint A: depth 0 exactly (translations put A at z = 0).
-    zs[0] = np.array([0.0])
-    us[0] = np.array([0.0])
-    # Endpoint B: on frame 0's line of sight through its last point; each informative frame
-    # gives the depth whose image is nearest its own last point. Weighted median (weights
-    # |r_xy|^2) so that a frame with a wrong pose cannot drag it.
-    z_b = []
-    w_b = []
-    for i in informative:
-        origin_b = m[i] @ np.array([xy[-1, 0], xy[-1, 1], 0.0]) + b[i]
-        rxy = r[i, :2]
-        z_b.append(float((polys[i][-1] - origin_b[:2]) @ rxy / (rxy @ rxy)))
-        w_b.append(float(rxy @ rxy))
-    zb = _weighted_median(np.asarray(z_b), np.asarray(w_b))
+    unary = _unary_costs(polys, m, b, informative, xy, flat, sigma, trunc)
+    z_dp, interpolated, zb = _dp_depths(polys, m, b, xy, flat, unary, sigma, trunc, informative)
     b_cam0 = np.array([xy[-1, 0], xy[-1, 1], zb])
-    zs[-1] = np.array([zb])
-    us[-1] = np.array([0.0])
-
-    # the dynamic programme (section4_kernel.depth_path) on every sample's states at once
-    zz = np.concatenate(zs)
-    uu = np.concatenate(us)
-    offs = np.concatenate([[0], np.cumsum([len(v) for v in zs])]).astype(np.int64)
-    z_dp, interpolated = depth_path(zz, uu, offs, float(step), jump_w, float(miss_cost))
-
     # Refinement: inverse-variance mean of the crossings (one per frame) that agree with the DP.
-    z_ref = z_dp.copy()
-    depth_std = np.full(k_total, np.inf)
-    n_used = np.zeros(k_total, dtype=int)
-    depth_std[0] = 0.0
-    depth_std[-1] = sigma / max(np.sqrt(len(informative)), 1.0)
-    if len(flat_z):
-        # every sample at once: the crossings within the gate of the DP depth, one per frame
-        # (the nearest; the first of equals), summed per sample in frame order
-        dz = np.abs(flat_z - z_dp[flat_k])
-        inner = (flat_k > 0) & (flat_k < k_total - 1)
-        near = inner & ~interpolated[flat_k] & (dz <= np.maximum(3.0 * flat_s, 2.0 * sigma))
-        idx = np.flatnonzero(near)
-        idx = idx[np.lexsort((idx, dz[idx], flat_f[idx], flat_k[idx]))]
-        first = np.ones(len(idx), bool)
-        first[1:] = (np.diff(flat_k[idx]) != 0) | (np.diff(flat_f[idx]) != 0)
-        sel = idx[first]
-        if len(sel):
-            ks = flat_k[sel]
-            starts = np.flatnonzero(np.concatenate([[True], np.diff(ks) != 0]))
-            w = 1.0 / flat_s[sel] ** 2
-            sw = np.add.reduceat(w, starts)
-            k_sel = ks[starts]
-            z_ref[k_sel] = np.add.reduceat(w * flat_z[sel], starts) / sw
-            depth_std[k_sel] = 1.0 / np.sqrt(sw)
-            n_used[k_sel] = np.diff(np.append(starts, len(sel)))
+    z_ref, depth_std, n_used = _refined_depths(
+        flat, z_dp, interpolated, k_total, sigma, len(informative)
+    )
 
     # Fill interpolated samples by linear interpolation in arc length.
     known = ~interpolated
@@ -569,7 +444,195 @@ def reconstruct_curve(
             for j in range(2):
                 points[:, j] = _smooth_column(xy[:, j], flat_std)
 
-    # Consistency of every frame with the recovered curve: median reprojection distance.
+    frame_residual = _frame_residuals(
+        points, polys, m, b, sigma, trunc, residual_limit, residual_frames, warnings
+    )
+    cop = _coplanarity_check(b_cam0 - tr[0], polys, rot, tangents, warnings)
+    return CurveResult(
+        points=points,
+        warnings=warnings,
+        depth_std=depth_std,
+        n_frames_used=n_used,
+        interpolated=interpolated,
+        coplanarity=cop,
+        frame_residual=frame_residual,
+    )
+
+
+def _crossing_candidates(polys, m, b, xy, sigma, informative, view_sin):
+    """Every informative frame's crossing candidates of frame 0's samples ``xy`` (cached by
+    content, ``_CROSSINGS``), sorted by sample (within a sample in frame order, then the frame's
+    own order): (sample, depth, frame, standard error) arrays."""
+    lengths = [_length(p) for p in polys]
+    # per frame (in frame order) its candidates' sample, depth, standard error
+    parts: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]] = []
+    xy_key = xy.tobytes()
+    for i in informative:
+        # by content: a trial of the branch search changes one frame's pose, not the others'
+        key = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), xy_key, sigma)
+        found = _CROSSINGS.get(key)
+        if found is None:
+            found = _frame_candidates(polys[i], m[i], b[i], xy, sigma, lengths[i])
+            if len(_CROSSINGS) >= _UNARY_MAX:
+                _CROSSINGS.clear()
+            _CROSSINGS[key] = found
+        if found is None:  # no usable crossing in this frame
+            continue
+        g_k, g_z, g_s = found
+        parts.append((g_k, g_z, np.full(len(g_k), i), np.sqrt(2.0) * sigma / (view_sin[i] * g_s)))
+    # every candidate, by sample; within a sample in frame order, then the frame's own order
+    if parts:
+        cat_k, cat_z, cat_f, cat_s = (np.concatenate(v) for v in zip(*parts, strict=True))
+    else:
+        cat_k, cat_z, cat_f, cat_s = (np.zeros(0) for _ in range(4))
+    order = np.argsort(cat_k, kind="stable")
+    return (
+        cat_k[order].astype(int),
+        cat_z[order].astype(float),
+        cat_f[order].astype(int),
+        cat_s[order].astype(float),
+    )
+
+
+def _unary_costs(polys, m, b, informative, xy, flat, sigma, trunc) -> np.ndarray:
+    """Each candidate's unary cost: its truncated squared reprojection distance summed over the
+    informative frames (in frame order), in units of sigma^2; blocks cached by content
+    (``_UNARY``)."""
+    flat_k, flat_z, flat_f, _ = flat
+    unary = np.zeros(len(flat_z))
+    if len(flat_z):
+        pts0 = np.column_stack([xy[flat_k], flat_z])
+        # each (frame, source frame) block by content: a trial of the branch search that
+        # switches one frame changes only that frame's blocks (its crossings, its distances).
+        # The candidates grouped by source frame (each group in the candidates' order): every
+        # destination frame's blocks are joined in this order and summed there in frame order
+        # (the same sums), then put back once (not one fancy assignment per block)
+        by_f = np.argsort(flat_f, kind="stable")
+        fs, starts = np.unique(flat_f[by_f], return_index=True)
+        ends = np.append(starts[1:], len(by_f))
+        pts_f = pts0[by_f]
+        src = [pts_f[lo:hi].tobytes() for lo, hi in zip(starts, ends, strict=True)]
+        acc = np.zeros(len(flat_z))  # summed over the destination frames in frame order
+        for i in informative:
+            dest = (_poly_key(polys[i]), m[i].tobytes(), b[i].tobytes(), sigma)
+            acc += _unary_blocks(polys[i], m[i], b[i], dest, src, pts_f, starts, ends, trunc)
+        unary[by_f] = acc
+    unary /= sigma**2
+    return unary
+
+
+def _unary_blocks(poly, mi, bi, dest, src, pts_f, starts, ends, trunc) -> np.ndarray:
+    """One destination frame's truncated squared distances of every source frame's block of
+    candidates (``pts_f[starts[g]:ends[g]]``), joined in block order; missing blocks measured in
+    one query and cached."""
+    vals: list = [None] * len(src)
+    missing = []
+    for g in range(len(src)):
+        key = (dest, src[g])
+        val = _UNARY.get(key)
+        if val is None:
+            missing.append((key, g))
+        else:
+            vals[g] = val
+    if missing:
+        # every missing block of this frame in one query (each point's distance is its
+        # own: the same values as block by block)
+        pts_i = _project_xy(
+            np.concatenate([pts_f[starts[g] : ends[g]] for _, g in missing]), mi, bi
+        )
+        # beyond sqrt(trunc) the cost is trunc whatever the distance: the search
+        # stops there
+        dist = _distances_for_frame(pts_i, poly, bound=np.sqrt(trunc) * 1.0001)
+        val_all = np.minimum(dist**2, trunc)
+        if len(_UNARY) + len(missing) > _UNARY_MAX:
+            _UNARY.clear()
+        off = 0
+        for key, g in missing:
+            cnt = int(ends[g] - starts[g])
+            vals[g] = _UNARY[key] = val_all[off : off + cnt]
+            off += cnt
+    return np.concatenate(vals) if len(vals) > 1 else vals[0]
+
+
+def _dp_depths(polys, m, b, xy, flat, unary, sigma, trunc, informative):
+    """The dynamic programme along the curve (``section4_kernel.depth_path``): (depth per
+    sample, whether it was interpolated, B's depth)."""
+    flat_k, flat_z = flat[0], flat[1]
+    k_total = len(xy)
+    # Dynamic programme along the curve. States: candidates, plus a "missing" state per sample.
+    # Pairwise cost: continuity of depth relative to the image step between samples.
+    step = float(np.hypot(*(xy[1] - xy[0]))) if k_total > 1 else 1.0
+    step = max(step, 1e-9)
+    miss_cost = len(informative) * trunc / sigma**2  # as bad as a candidate every frame rejects
+    jump_w = 0.5  # cost per (depth slope)^2, in units of squared sigmas
+    offsets = np.concatenate([[0], np.cumsum(np.bincount(flat_k, minlength=k_total))])
+    zs = [flat_z[offsets[k] : offsets[k + 1]] for k in range(k_total)]
+    us = [unary[offsets[k] : offsets[k + 1]] for k in range(k_total)]
+    # Endpoint A: depth 0 exactly (translations put A at z = 0).
+    zs[0] = np.array([0.0])
+    us[0] = np.array([0.0])
+    # Endpoint B: on frame 0's line of sight through its last point; each informative frame
+    # gives the depth whose image is nearest its own last point. Weighted median (weights
+    # |r_xy|^2) so that a frame with a wrong pose cannot drag it.
+    r = m[:, :, 2]
+    z_b = []
+    w_b = []
+    for i in informative:
+        origin_b = m[i] @ np.array([xy[-1, 0], xy[-1, 1], 0.0]) + b[i]
+        rxy = r[i, :2]
+        z_b.append(float((polys[i][-1] - origin_b[:2]) @ rxy / (rxy @ rxy)))
+        w_b.append(float(rxy @ rxy))
+    zb = _weighted_median(np.asarray(z_b), np.asarray(w_b))
+    zs[-1] = np.array([zb])
+    us[-1] = np.array([0.0])
+
+    # the dynamic programme (section4_kernel.depth_path) on every sample's states at once
+    zz = np.concatenate(zs)
+    uu = np.concatenate(us)
+    offs = np.concatenate([[0], np.cumsum([len(v) for v in zs])]).astype(np.int64)
+    z_dp, interpolated = depth_path(zz, uu, offs, float(step), jump_w, float(miss_cost))
+    return z_dp, interpolated, zb
+
+
+def _refined_depths(flat, z_dp, interpolated, k_total: int, sigma: float, n_informative: int):
+    """Each sample's depth as the inverse-variance mean of the crossings (one per frame) within
+    the gate of the DP depth: (depth, its std, crossings used)."""
+    flat_k, flat_z, flat_f, flat_s = flat
+    z_ref = z_dp.copy()
+    depth_std = np.full(k_total, np.inf)
+    n_used = np.zeros(k_total, dtype=int)
+    depth_std[0] = 0.0
+    depth_std[-1] = sigma / max(np.sqrt(n_informative), 1.0)
+    if len(flat_z):
+        # every sample at once: the crossings within the gate of the DP depth, one per frame
+        # (the nearest; the first of equals), summed per sample in frame order
+        dz = np.abs(flat_z - z_dp[flat_k])
+        inner = (flat_k > 0) & (flat_k < k_total - 1)
+        near = inner & ~interpolated[flat_k] & (dz <= np.maximum(3.0 * flat_s, 2.0 * sigma))
+        idx = np.flatnonzero(near)
+        idx = idx[np.lexsort((idx, dz[idx], flat_f[idx], flat_k[idx]))]
+        first = np.ones(len(idx), bool)
+        first[1:] = (np.diff(flat_k[idx]) != 0) | (np.diff(flat_f[idx]) != 0)
+        sel = idx[first]
+        if len(sel):
+            ks = flat_k[sel]
+            starts = np.flatnonzero(np.concatenate([[True], np.diff(ks) != 0]))
+            w = 1.0 / flat_s[sel] ** 2
+            sw = np.add.reduceat(w, starts)
+            k_sel = ks[starts]
+            z_ref[k_sel] = np.add.reduceat(w * flat_z[sel], starts) / sw
+            depth_std[k_sel] = 1.0 / np.sqrt(sw)
+            n_used[k_sel] = np.diff(np.append(starts, len(sel)))
+    return z_ref, depth_std, n_used
+
+
+def _frame_residuals(
+    points, polys, m, b, sigma, trunc, residual_limit, residual_frames, warnings
+) -> np.ndarray:
+    """Consistency of every frame with the recovered curve: its median reprojection distance
+    (inf once the counted frames' running sum exceeds ``residual_limit``); a warning names the
+    frames beyond 3 sigma + 1 px."""
+    n_frames = len(polys)
     frame_residual = np.zeros(n_frames)
     grid_w = np.sqrt(trunc) * 1.0001  # the unary cost's grids (built already)
     counted = np.ones(n_frames, bool) if residual_frames is None else residual_frames
@@ -596,9 +659,12 @@ def reconstruct_curve(
             f"from their polylines (limit {limit:.1f} px); their poses look inconsistent with "
             "the other frames and were outvoted"
         )
+    return frame_residual
 
-    # Coplanarity of A, B and the tangents (the paper's condition for section 4).
-    ab_cam0 = b_cam0 - tr[0]
+
+def _coplanarity_check(ab_cam0, polys, rot, tangents, warnings) -> float:
+    """Coplanarity of A, B and the tangents (the paper's condition for section 4), with a
+    warning below ``COPLANAR_THRESHOLD``; nan when a direction is zero."""
     if tangents is not None:
         ta3 = np.asarray(tangents[0], dtype=float)
         tb3 = np.asarray(tangents[1], dtype=float)
@@ -616,15 +682,7 @@ def reconstruct_curve(
                 f"{COPLANAR_THRESHOLD}): the paper's reconstruction of non-traceable points "
                 "needs them non-coplanar; the poses and the curve may be unreliable"
             )
-    return CurveResult(
-        points=points,
-        warnings=warnings,
-        depth_std=depth_std,
-        n_frames_used=n_used,
-        interpolated=interpolated,
-        coplanarity=cop,
-        frame_residual=frame_residual,
-    )
+    return cop
 
 
 def _weighted_median(values: np.ndarray, weights: np.ndarray) -> float:
