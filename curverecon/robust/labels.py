@@ -1,0 +1,382 @@
+"""Which end is A in each frame, when the input does not say (``"ends_identified": false``).
+
+Frames taken apart in time (images in any order, a curve moving free) may name the two
+traceable points differently from frame to frame.  A frame whose labels are exchanged is a
+frame of the shape (c, beta, alpha, phi) instead of (c, alpha, beta, phi) (phi, the angle
+between AS and BT, is the same for both), its polyline running from B to A: the labelling is a
+discrete unknown per frame, like its pose branch.  This stage decides it and hands the ordinary
+pipeline consistently labelled frames:
+
+1. the label search (:func:`label_search`): the global search's grid of the pose-free cost
+   (``robust.search.grid_costs``) on every frame in both labellings (a frame's wrong labelling
+   misfits past the truncation, so the sum is the cost of the better labelling per frame plus a
+   constant); its best local minima polished (``robust.search.pattern_search``,
+   ``local_refine``) with each frame in its better labelling at the current shape, relabelled
+   and polished again.  That cost is symmetric under the exchange of alpha and beta with every
+   frame's labels, so frame 0 is held unexchanged: the answer names A and B as frame 0 does;
+2. every frame's labelling at the best polished shape by its maximum-likelihood chi2 with the
+   shape held fixed (``robust.frame_samples.fixed_shape_fit``) in either labelling
+   (:func:`frame_labels`);
+3. the ordinary pipeline on the relabelled frames (A and B, tangent_A and tangent_B swapped,
+   the polyline reversed); at its answer every frame's labelling is checked again (step 2 at
+   the final shape), and the pipeline reruns if any changed (``LabelOptions.max_rounds``);
+4. exactly four frames: every real solution of the minimal solver for every relative
+   labelling (eight, frame 0 fixed) joins the alternatives, with its labelling.
+
+A frame whose two labellings fit within ``LabelOptions.undecided_dchi2`` of each other at the
+answer (A and B symmetric: alpha ~ beta, the curve its own image under the exchange) is named
+in a warning.  With polylines the curve stage (``curve.stage``) runs on the relabelled frames:
+the labels come from the end points and tangents, whose misfit the curve bundle then judges.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy import ndimage
+
+from curverecon.model.observations import Observations
+from curverecon.model.pose import normalise
+from curverecon.model.reconstruction import Alternative, Reconstruction
+from curverecon.options import ReconstructOptions
+from curverecon.refine.ml import refine
+from curverecon.robust.frame_samples import fixed_shape_fit
+from curverecon.robust.search import (
+    GridSpec,
+    branch_candidates,
+    shape_distance,
+)
+from curverecon.solvers import minimal
+
+
+@dataclass(frozen=True)
+class LabelOptions:
+    """Tuned numbers of the labelling stage."""
+
+    starts: int = 12
+    """Grid minima polished by the label search (a few compass and LM steps)."""
+    candidates: int = 4
+    """Distinct polished shapes scored by their maximum-likelihood chi2 (``frame_labels``)."""
+    distinct: float = 0.02
+    """``robust.search.shape_distance`` below which two polished shapes are one."""
+    truncate_chi2: float = 25.0
+    """A frame's chi2 counts at most this in a candidate's score (outlier frames)."""
+    refine_iterations: int = 15
+    """Maximum-likelihood iterations of each candidate before it is scored."""
+    grid_frames_factor: int = 2
+    """The grid of ``GridSpec.for_frames`` for this many times the frames (every frame is
+    costed in both labellings: a grid as coarse as the search's for twice the frames)."""
+    compass_iterations: int = 10
+    """Compass steps of the pose-free cost from each grid minimum."""
+    undecided_dchi2: float = 4.0
+    """A frame whose two labellings' chi2 differ by less is undecided (warned about)."""
+    switch_dchi2: float = 1.0
+    """At the answer, a frame is relabelled when its other labelling fits better by this."""
+    max_rounds: int = 2
+    """Pipeline reruns after a frame's labelling changed at the answer."""
+
+
+@dataclass
+class LabelSearch:
+    """The label search's best shape (normalised), every frame's labelling, its cost."""
+
+    shape: np.ndarray
+    exchanged: np.ndarray
+    cost: float
+
+
+def exchange(obs: Observations, mask: np.ndarray) -> Observations:
+    """``obs`` with the labels of the frames in ``mask`` exchanged: A and B, tangent_A and
+    tangent_B swapped, the polyline reversed."""
+    m = np.asarray(mask, bool)
+    col = m[:, None]
+    curves = None
+    if obs.curves is not None:
+        curves = [c[::-1].copy() if f else c for c, f in zip(obs.curves, m, strict=True)]
+    return replace(
+        obs,
+        a=np.where(col, obs.b, obs.a),
+        b=np.where(col, obs.a, obs.b),
+        tangent_a=np.where(col, obs.tangent_b, obs.tangent_a),
+        tangent_b=np.where(col, obs.tangent_a, obs.tangent_b),
+        curves=curves,
+        warnings=list(obs.warnings),
+    )
+
+
+def _terms(obs: Observations) -> dict[str, np.ndarray]:
+    """The per-frame terms of the pose-free cost (``robust.search.reduced_cost``)."""
+    return {
+        "cp": obs.cp,
+        "ua": np.column_stack([np.cos(obs.rel_a), np.sin(obs.rel_a)]),
+        "ub": np.column_stack([np.cos(obs.rel_b), np.sin(obs.rel_b)]),
+    }
+
+
+def frame_misfits(terms: dict[str, np.ndarray], params: np.ndarray) -> np.ndarray:
+    """(M, N) pose-free misfit of every frame (the best of its four branches of (10)) for
+    shapes (M, 4) given as (gamma, alpha, beta, phi): ``robust.search.reduced_cost`` per frame,
+    untruncated."""
+    cp, ua, ub = terms["cp"], terms["ua"], terms["ub"]
+    c = np.max(cp) / np.cos(params[:, 0])
+    tb = np.tan(params[:, 2])
+    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, c, np.tan(params[:, 1]))
+    x = (c * tb * np.cos(params[:, 3]))[:, None, None]
+    y = (c * tb * np.sin(params[:, 3]))[:, None, None]
+    px = cp[:, None] + s * (x * sin_d + y * cos_d)
+    py = x * cos_d - y * sin_d
+    cross = px * ua[:, 1][:, None] - py * ua[:, 0][:, None]
+    r2 = cross * cross / (px * px + py * py + 1e-300) + r_b * r_b
+    return np.min(r2, axis=2)
+
+
+def _both(obs: Observations) -> Observations:
+    """Every frame twice: as labelled, then with its labels exchanged."""
+    return Observations(
+        np.concatenate([obs.a, obs.b]),
+        np.concatenate([obs.b, obs.a]),
+        np.concatenate([obs.tangent_a, obs.tangent_b]),
+        np.concatenate([obs.tangent_b, obs.tangent_a]),
+    )
+
+
+def _grid_costs(obs: Observations, spec: GridSpec) -> tuple[np.ndarray, dict]:
+    """``robust.search.grid_costs`` with every frame in its better labelling: the per-frame
+    misfit the better of the frame's two labellings, truncated, summed over frames."""
+    both = _both(obs)
+    t = _terms(both)
+    cp, ua, ub = t["cp"], t["ua"], t["ub"]
+    n = cp.size
+    gam = spec.gammas()
+    alp = np.radians((np.arange(spec.n_alpha) + 0.5) * 90.0 / spec.n_alpha)
+    bet = np.radians((np.arange(spec.n_beta) + 0.5) * 90.0 / spec.n_beta)
+    phi = np.radians(np.linspace(0.0, 180.0, spec.n_phi))
+    c = np.max(cp) / np.cos(gam)
+    cg, ag = np.meshgrid(c, np.tan(alp), indexing="ij")
+    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, cg, ag)  # (G, A, 2N, 4)
+    vx, vy = ua[:, 0][:, None], ua[:, 1][:, None]
+    dt = np.float32
+    ones = np.ones(cos_d.shape)
+    lin_cross = np.stack(
+        [cp[:, None] * vy * ones, s * sin_d * vy - cos_d * vx, s * cos_d * vy + sin_d * vx], -1
+    )
+    lin_px = np.stack([cp[:, None] * ones, s * sin_d, s * cos_d], -1)
+    lin_py = np.stack([0.0 * ones, cos_d, -sin_d], -1)
+    tb = np.tan(bet)
+    xy = np.stack([np.outer(tb, np.cos(phi)).ravel(), np.outer(tb, np.sin(phi)).ravel()])
+    coef = np.concatenate([np.ones((c.size, 1, xy.shape[1])), c[:, None, None] * xy[None]], axis=1)
+    coef = coef[:, None].astype(dt)
+    shp = (spec.n_gamma, spec.n_alpha, n * 4, 3)
+    lin_cross, lin_px, lin_py = (m.reshape(shp).astype(dt) for m in (lin_cross, lin_px, lin_py))
+    rb2 = (r_b * r_b).astype(dt)[..., None]
+    trunc = dt(math.sin(math.radians(spec.truncate_deg)) ** 2)
+    cost = np.empty((spec.n_gamma, spec.n_alpha, coef.shape[-1]))
+    for ig in range(spec.n_gamma):
+        cross = lin_cross[ig] @ coef[ig]
+        px = lin_px[ig] @ coef[ig]
+        py = lin_py[ig] @ coef[ig]
+        r2 = cross * cross / (px * px + py * py + dt(1e-30))
+        r2 = r2.reshape(spec.n_alpha, n, 4, -1) + rb2[ig]
+        per_frame = np.min(r2, axis=2)  # (A, 2N, B*P)
+        per_frame = np.minimum(per_frame[:, : n // 2], per_frame[:, n // 2 :])
+        cost[ig] = np.sum(np.minimum(per_frame, trunc), axis=1, dtype=np.float64)
+    cost = cost.reshape(spec.n_gamma, spec.n_alpha, spec.n_beta, spec.n_phi)
+    return cost, {"c": c, "alpha": alp, "beta": bet, "phi": phi}
+
+
+def _grid_minima(obs: Observations, spec: GridSpec, count: int) -> np.ndarray:
+    """The ``count`` best local minima of :func:`_grid_costs`, as (gamma, alpha, beta, phi)
+    rows."""
+    cost, axes = _grid_costs(obs, spec)
+    filt = ndimage.minimum_filter(cost, size=3, mode="nearest")
+    idx = np.argwhere(cost <= filt)
+    idx = idx[np.argsort(cost[tuple(idx.T)], kind="stable")[:count]]
+    gam = np.arccos(np.clip(np.max(obs.cp) / axes["c"], 0.0, 1.0))
+    return np.array(
+        [[gam[g], axes["alpha"][a], axes["beta"][b], axes["phi"][p]] for g, a, b, p in idx]
+    ).reshape(-1, 4)
+
+
+def _cost(terms: tuple[dict, dict], x: np.ndarray, trunc: float) -> np.ndarray:
+    """(M,) pose-free cost of shapes (M, 4), every frame in its better labelling."""
+    f = np.minimum(frame_misfits(terms[0], x), frame_misfits(terms[1], x))
+    return np.sum(np.minimum(f, trunc), axis=1)
+
+
+def _compass(
+    terms: tuple[dict, dict], x: np.ndarray, steps: np.ndarray, trunc: float, n_iter: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """Vectorised compass search of :func:`_cost` from M starts (``robust.search``'s
+    ``pattern_search`` on this cost); returns (params, costs)."""
+    x = np.array(x, float)
+    h = np.broadcast_to(np.asarray(steps, float), x.shape).copy()
+    lo = np.array([0.0, 1e-4, 1e-4, -np.pi])
+    hi = np.array([np.radians(87.0), np.pi / 2 - 1e-4, np.pi / 2 - 1e-4, 2 * np.pi])
+    f = _cost(terms, x, trunc)
+    m = x.shape[0]
+    dirs = np.concatenate([np.eye(4), -np.eye(4)])
+    with np.errstate(all="ignore"):
+        for _ in range(n_iter):
+            trial = np.clip(x[:, None, :] + dirs[None] * h[:, None, :], lo, hi)
+            ft = _cost(terms, trial.reshape(-1, 4), trunc).reshape(m, 8)
+            j = np.argmin(ft, axis=1)
+            better = ft[np.arange(m), j] < f
+            x = np.where(better[:, None], trial[np.arange(m), j], x)
+            f = np.where(better, ft[np.arange(m), j], f)
+            h = np.where(better[:, None], h, h * 0.5)
+    return x, f
+
+
+def label_search(
+    obs: Observations, point_sigma: float, tangent_sigma: float, o: LabelOptions | None = None
+) -> LabelSearch:
+    """The shape and labelling that fit the frames best, each frame in its better labelling
+    (module docstring, steps 1-2); frame 0 unexchanged."""
+    o = o or LabelOptions()
+    spec = GridSpec.for_frames(o.grid_frames_factor * obs.n_frames)
+    trunc = math.sin(math.radians(spec.truncate_deg)) ** 2
+    x = _grid_minima(obs, spec, o.starts)
+    steps = 0.5 * np.radians(
+        [80.0 / max(spec.n_gamma - 1, 1), 90.0 / spec.n_alpha, 90.0 / spec.n_beta, 10.0]
+    )
+    terms = (_terms(obs), _terms(exchange(obs, np.ones(obs.n_frames, bool))))
+    x, f = _compass(terms, x, steps, trunc, o.compass_iterations)
+    shapes: list[np.ndarray] = []
+    for k in np.argsort(f):
+        shape = np.array([np.max(obs.cp) / math.cos(x[k, 0]), *x[k, 1:]])
+        shape, _ = normalise(shape, np.zeros((1, 5)))
+        if all(shape_distance(shape, s) >= o.distinct for s in shapes):
+            shapes.append(shape)
+        if len(shapes) == o.candidates:
+            break
+    best = None
+    for shape in shapes:
+        found = _refined(obs, shape, point_sigma, tangent_sigma, o)
+        if best is None or found.cost < best.cost:
+            best = found
+    if best.exchanged[0]:  # the same fit named from frame 0: alpha and beta exchanged
+        shape, _ = normalise(best.shape[[0, 2, 1, 3]], np.zeros((1, 5)))
+        best = LabelSearch(shape, ~best.exchanged, best.cost)
+    return best
+
+
+def _refined(
+    obs: Observations, shape: np.ndarray, point_sigma: float, tangent_sigma: float, o: LabelOptions
+) -> LabelSearch:
+    """A polished shape refined by maximum likelihood, every frame in its better labelling at
+    the start (frames past ``o.truncate_chi2`` in both weighted down), labelled again at the
+    refined shape and scored by its truncated chi2."""
+    n = obs.n_frames
+    fit = fixed_shape_fit(_both(obs), shape, point_sigma, tangent_sigma)
+    same, other = fit.frame_chi2[:n], fit.frame_chi2[n:]
+    ex = other < same
+    poses = np.where(ex[:, None], fit.poses[n:], fit.poses[:n])
+    weights = np.where(np.minimum(same, other) < o.truncate_chi2, 1.0, 1e-3)
+    with np.errstate(all="ignore"):
+        ref = refine(
+            exchange(obs, ex),
+            shape,
+            poses,
+            point_sigma,
+            tangent_sigma,
+            max_iter=o.refine_iterations,
+            covariance=False,
+            frame_weights=weights,
+        )
+    if np.all(np.isfinite(ref.shape)):
+        shape, _ = normalise(ref.shape, ref.poses)
+    same, other = frame_labels(obs, shape, point_sigma, tangent_sigma)
+    cost = float(np.sum(np.minimum(np.minimum(same, other), o.truncate_chi2)))
+    return LabelSearch(shape, other < same, cost)
+
+
+def frame_labels(
+    obs: Observations, shape: np.ndarray, point_sigma: float, tangent_sigma: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Every frame's chi2 at ``shape`` (held fixed, every frame at its best pose) as labelled
+    in ``obs`` and with its labels exchanged: (N,), (N,)."""
+    fit = fixed_shape_fit(_both(obs), shape, point_sigma, tangent_sigma)
+    n = obs.n_frames
+    return fit.frame_chi2[:n], fit.frame_chi2[n:]
+
+
+Runner = Callable[[Observations, ReconstructOptions], Reconstruction]
+
+
+def reconstruct_any_labels(
+    obs: Observations,
+    opts: ReconstructOptions,
+    run: Runner,
+    o: LabelOptions | None = None,
+) -> Reconstruction:
+    """The reconstruction of frames whose labels A and B may differ from frame to frame
+    (module docstring): ``run`` reconstructs consistently labelled frames (the pipeline)."""
+    o = o or LabelOptions()
+    ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
+    exchanged = label_search(obs, ps, ts, o).exchanged
+    consistent = replace(exchange(obs, exchanged), ends_identified=True)
+    rec = run(consistent, opts)
+    for _ in range(o.max_rounds):
+        same, other = frame_labels(consistent, rec.shape, ps, ts)
+        flip = other < same - o.switch_dchi2
+        flip[0] = False
+        if not flip.any():
+            break
+        exchanged ^= flip
+        consistent = exchange(consistent, flip)
+        rec = run(consistent, opts)
+    gap = np.abs(other - same)
+    undecided = [int(i) for i in np.flatnonzero(gap < o.undecided_dchi2)]
+    warnings = list(rec.warnings)
+    if undecided:
+        warnings.append(
+            f"frames {undecided[:20]}: which end is A could not be decided (both labellings "
+            f"fit within chi2 {o.undecided_dchi2:g}; A and B look alike: alpha "
+            f"{math.degrees(rec.alpha):.1f}, beta {math.degrees(rec.beta):.1f} degrees)"
+        )
+    if undecided and undecided[0] == 0:
+        warnings.append(
+            "frame 0 fits both labellings: the answer's A and B may be named the other way "
+            "round (alpha and beta exchanged)"
+        )
+    if opts.method == "auto" and obs.n_frames == minimal.FRAMES:
+        rec = replace(rec, alternatives=_four_frame_labellings(obs, rec, exchanged, ps, ts, opts))
+    return replace(rec, warnings=warnings, ends_exchanged=exchanged)
+
+
+def _four_frame_labellings(
+    obs: Observations,
+    rec: Reconstruction,
+    exchanged: np.ndarray,
+    point_sigma: float,
+    tangent_sigma: float,
+    opts: ReconstructOptions,
+) -> list[Alternative]:
+    """``rec``'s alternatives and every real minimal solution of every other relative
+    labelling of four frames (frame 0 unexchanged), each with its labelling."""
+    alts = [
+        replace(a, ends_exchanged=exchanged.copy()) if a.ends_exchanged is None else a
+        for a in rec.alternatives
+    ]
+    for code in range(1 << (obs.n_frames - 1)):
+        ex = np.array([False] + [bool(code >> k & 1) for k in range(obs.n_frames - 1)])
+        if np.array_equal(ex, exchanged):
+            continue
+        sub = exchange(obs, ex)
+        try:
+            result = minimal.solve(sub, opts.minimal)
+        except (ArithmeticError, ValueError, np.linalg.LinAlgError):
+            continue
+        for shape, poses in zip(result.shapes, result.poses, strict=True):
+            shape_n, poses_n = normalise(shape, poses)
+            fit = refine(sub, shape_n, poses_n, point_sigma, tangent_sigma, max_iter=0)
+            alts.append(Alternative(shape_n, poses_n, float(fit.chi2), fit.std, ex))
+    kept: list[Alternative] = []
+    for a in sorted(alts, key=lambda a: a.chi2):
+        same_label = [k for k in kept if np.array_equal(k.ends_exchanged, a.ends_exchanged)]
+        if all(shape_distance(a.shape, k.shape) >= 1e-6 for k in same_label):
+            kept.append(a)
+    return kept
