@@ -17,6 +17,7 @@ from curverecon.pipeline import reconstruct
 from curverecon.robust.labels import exchange, frame_labels
 from curverecon.robust.search import shape_distance
 from curverecon.simulate import make_scene
+from curverecon.trace.ends import EndAssignment, ends_identified
 
 
 def _relabelled(obs: Observations, share: float, seed: int) -> tuple[Observations, np.ndarray]:
@@ -111,3 +112,25 @@ def test_the_flag_round_trips():
     assert (
         observations_from_dict(observations_to_dict(obs.subset([0, 1, 2]))).ends_identified is False
     )
+
+
+def test_trace_says_whether_the_ends_are_identified():
+    ambiguous = EndAssignment(np.zeros(8, bool), [2, 4, 6], False)
+    clear = EndAssignment(np.zeros(8, bool), [3], True)
+    assert ends_identified(clear) and not ends_identified(ambiguous)
+    assert ends_identified(ambiguous, "ordered") and not ends_identified(clear, "unordered")
+    with pytest.raises(ValueError, match="ends mode"):
+        ends_identified(clear, "sometimes")
+
+
+def test_trace_flags(tmp_path):
+    folder = tmp_path / "img"
+    args = ["simulate", "-o", str(tmp_path / "s.json"), "--frames", "5", "--seed", "4"]
+    assert main([*args, "--images", str(folder)]) == 0
+    for flags, identified in (([], True), (["--unordered"], False), (["--ordered"], True)):
+        out = tmp_path / "obs.json"
+        assert main(["trace", str(folder), "-o", str(out), "--quiet", *flags]) == 0
+        doc = json.loads(out.read_text())
+        assert doc.get("ends_identified", True) is identified
+        assert observations_from_dict(doc).ends_identified is identified
+    assert main(["trace", str(folder), "-o", str(out), "--ordered", "--unordered"]) == 2

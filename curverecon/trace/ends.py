@@ -29,6 +29,12 @@ Each traced polyline runs from one end to the other in an order the tracer chose
    end-point answer from hooked-end tangents, which the bundle must not leave), the wrong
    one 0.07; with the polylines alone the right order fits as well.
 
+3. Whether the order is established at all (:func:`ends_identified`): with more ambiguous links
+   than ``MAX_AMBIGUOUS_LINKS`` (no smooth motion between frames: images taken apart in time,
+   in independent orientations) continuity says nothing, and ``curverecon trace`` writes
+   ``"ends_identified": false``: the reconstruction then decides each frame's labelling
+   (``curverecon.robust.labels``).  ``--ordered`` and ``--unordered`` say it instead.
+
 (Per-frame checks at a shape from the end points and tangents alone were tried and dropped:
 the end tangents of traced polylines misfit that shape by 5-30 degrees in many frames, as much
 as a reversed frame does.)
@@ -207,3 +213,20 @@ def assign_ends(
                     flip, best = f, score
             decided = True
     return EndAssignment(flip, ambiguous, decided)
+
+
+ENDS_MODES = ("auto", "ordered", "unordered")
+"""What ``curverecon trace`` is told about the frames: ``auto`` (continuity decides whether the
+ends are identified), ``ordered`` (they are: smooth motion, ``--ordered``), ``unordered`` (they
+are not: ``--unordered``)."""
+
+
+def ends_identified(assignment: EndAssignment, mode: str = "auto") -> bool:
+    """Whether the labels of ``assignment`` name the same physical end in every frame: ``mode``
+    ``ordered`` or ``unordered`` says so; ``auto``: unless continuity left more links ambiguous
+    than ``MAX_AMBIGUOUS_LINKS`` (module docstring, step 3)."""
+    if mode not in ENDS_MODES:
+        raise ValueError(f"unknown ends mode {mode!r} (choose {', '.join(ENDS_MODES)})")
+    if mode != "auto":
+        return mode == "ordered"
+    return len(assignment.ambiguous) <= MAX_AMBIGUOUS_LINKS
