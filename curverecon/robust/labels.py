@@ -38,6 +38,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy import ndimage
 
+from curverecon.curve.labels import polyline_misfits
 from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise
 from curverecon.model.reconstruction import Alternative, Reconstruction
@@ -56,9 +57,9 @@ from curverecon.solvers import minimal
 class LabelOptions:
     """Tuned numbers of the labelling stage."""
 
-    starts: int = 12
+    starts: int = 16
     """Grid minima polished by the label search (a few compass and LM steps)."""
-    candidates: int = 4
+    candidates: int = 6
     """Distinct polished shapes scored by their maximum-likelihood chi2 (``frame_labels``)."""
     distinct: float = 0.02
     """``robust.search.shape_distance`` below which two polished shapes are one."""
@@ -77,6 +78,14 @@ class LabelOptions:
     """At the answer, a frame is relabelled when its other labelling fits better by this."""
     max_rounds: int = 2
     """Pipeline reruns after a frame's labelling changed at the answer."""
+    polyline_check: bool = True
+    """With polylines, judge the labels by the curve's fit to them (``curve.labels``)."""
+    polyline_dchi2: float = 25.0
+    """Frames whose two labellings' chi2 differ by less are judged by their polylines too
+    (every frame where the tangents were fitted to the polylines, and frame 0)."""
+    polyline_ratio: float = 0.6
+    """A polyline decides a frame's labelling where one direction's fit RMS is below this
+    fraction of the other's."""
 
 
 @dataclass
@@ -290,6 +299,9 @@ def _refined(
         shape, _ = normalise(ref.shape, ref.poses)
     same, other = frame_labels(obs, shape, point_sigma, tangent_sigma)
     cost = float(np.sum(np.minimum(np.minimum(same, other), o.truncate_chi2)))
+    # a shape that fits most frames in either labelling (alpha and beta near 0 seen along the
+    # chord: the shape barely determined) fits by the labels' freedom, not by the data
+    cost += float(np.sum(np.maximum(o.undecided_dchi2 - np.abs(other - same), 0.0)))
     return LabelSearch(shape, other < same, cost)
 
 
@@ -318,24 +330,27 @@ def reconstruct_any_labels(
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
     exchanged = label_search(obs, ps, ts, o).exchanged
     consistent = replace(exchange(obs, exchanged), ends_identified=True)
+    if obs.curves is not None and o.polyline_check and opts.curve.bundle:
+        # the polylines judge the labels on section 4's curve before the bundle's fit
+        quick = replace(opts, curve=replace(opts.curve, bundle=False))
+        flip, _ = _label_flips(run(consistent, quick), consistent, ps, ts, o)
+        exchanged ^= flip
+        consistent = exchange(consistent, flip)
     rec = run(consistent, opts)
     for _ in range(o.max_rounds):
-        same, other = frame_labels(consistent, rec.shape, ps, ts)
-        flip = other < same - o.switch_dchi2
-        flip[0] = False
+        flip, decided = _label_flips(rec, consistent, ps, ts, o)
         if not flip.any():
             break
         exchanged ^= flip
         consistent = exchange(consistent, flip)
         rec = run(consistent, opts)
-    gap = np.abs(other - same)
-    undecided = [int(i) for i in np.flatnonzero(gap < o.undecided_dchi2)]
+    undecided = [int(i) for i in np.flatnonzero(~decided)]
     warnings = list(rec.warnings)
     if undecided:
         warnings.append(
             f"frames {undecided[:20]}: which end is A could not be decided (both labellings "
-            f"fit within chi2 {o.undecided_dchi2:g}; A and B look alike: alpha "
-            f"{math.degrees(rec.alpha):.1f}, beta {math.degrees(rec.beta):.1f} degrees)"
+            f"fit about equally; A and B look alike: alpha {math.degrees(rec.alpha):.1f}, "
+            f"beta {math.degrees(rec.beta):.1f} degrees)"
         )
     if undecided and undecided[0] == 0:
         warnings.append(
@@ -345,6 +360,37 @@ def reconstruct_any_labels(
     if opts.method == "auto" and obs.n_frames == minimal.FRAMES:
         rec = replace(rec, alternatives=_four_frame_labellings(obs, rec, exchanged, ps, ts, opts))
     return replace(rec, warnings=warnings, ends_exchanged=exchanged)
+
+
+def _label_flips(
+    rec: Reconstruction,
+    obs: Observations,
+    point_sigma: float,
+    tangent_sigma: float,
+    o: LabelOptions,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The frames whose labels to exchange at ``rec`` (frame 0 never: when frame 0 clearly
+    prefers the other labelling, every other frame is exchanged instead) and the frames whose
+    labelling is decided: by the chi2 at ``rec.shape`` in either labelling (``frame_labels``),
+    and with polylines by the curve's fit to them (``curve.labels.polyline_misfits``) where
+    one direction fits clearly closer (``LabelOptions.polyline_ratio``)."""
+    n = obs.n_frames
+    fit = fixed_shape_fit(_both(obs), rec.shape, point_sigma, tangent_sigma)
+    same, other = fit.frame_chi2[:n], fit.frame_chi2[n:]
+    prefer = other < same - o.switch_dchi2
+    decided = np.abs(other - same) >= o.undecided_dchi2
+    if obs.curves is not None and rec.curve3d is not None and o.polyline_check:
+        check = np.abs(other - same) < o.polyline_dchi2
+        if obs.tangents_from_curve or not obs.ends_given:
+            check[:] = True  # tangents fitted to the polylines: weak evidence of their own
+        check[0] = True
+        rms_same, rms_other = polyline_misfits(rec, obs, fit.poses[:n], fit.poses[n:], check)
+        with np.errstate(invalid="ignore"):
+            low = np.minimum(rms_same, rms_other)
+            clear = low < o.polyline_ratio * np.maximum(rms_same, rms_other)
+        prefer = np.where(clear, rms_other < rms_same, prefer)
+        decided |= clear
+    return prefer ^ (prefer[0] & decided[0]), decided
 
 
 def _four_frame_labellings(
