@@ -39,6 +39,7 @@ import numpy as np
 from scipy import ndimage
 
 from curverecon.curve.labels import polyline_misfits
+from curverecon.errors import CurveReconError
 from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise
 from curverecon.model.reconstruction import Alternative, Reconstruction
@@ -331,14 +332,10 @@ def reconstruct_any_labels(
     exchanged = label_search(obs, ps, ts, o).exchanged
     consistent = replace(exchange(obs, exchanged), ends_identified=True)
     if obs.curves is not None and o.polyline_check and opts.curve.bundle:
-        # the polylines judge the labels on section 4's curve before the bundle's fit
-        quick = replace(opts, curve=replace(opts.curve, bundle=False))
-        flip, _ = _label_flips(run(consistent, quick), consistent, ps, ts, o)
-        exchanged ^= flip
-        consistent = exchange(consistent, flip)
+        consistent, exchanged = _polyline_start(consistent, exchanged, opts, run, o)
     rec = run(consistent, opts)
     for _ in range(o.max_rounds):
-        flip, decided = _label_flips(rec, consistent, ps, ts, o)
+        flip, decided, _ = _label_flips(rec, consistent, ps, ts, o)
         if not flip.any():
             break
         exchanged ^= flip
@@ -362,26 +359,58 @@ def reconstruct_any_labels(
     return replace(rec, warnings=warnings, ends_exchanged=exchanged)
 
 
+def _polyline_start(
+    obs: Observations, exchanged: np.ndarray, opts: ReconstructOptions, run: Runner, o: LabelOptions
+) -> tuple[Observations, np.ndarray]:
+    """The label search's labelling, or the same with frame 0 exchanged against the others,
+    whichever section 4's curve (the pipeline without the bundle) fits the polylines closer
+    (mean over frames of the closer direction's RMS), then every frame relabelled where its
+    polyline clearly says so (:func:`_label_flips`).  Frame 0's end points alone often leave
+    its labelling open, and a wrong one sets it against every other frame."""
+    ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
+    quick = replace(  # section 4's curve; no LO-RANSAC for a wrong labelling's odd frame
+        opts,
+        curve=replace(opts.curve, bundle=False),
+        frame_samples=replace(opts.frame_samples, enabled=False),
+    )
+    others = np.arange(obs.n_frames) > 0
+    best = None
+    for swap in (False, True):
+        cand = exchange(obs, others) if swap else obs
+        try:
+            rec = run(cand, quick)
+        except CurveReconError:
+            continue
+        flip, _, score = _label_flips(rec, cand, ps, ts, o, every_frame=True)
+        if best is None or score < best[0]:
+            best = (score, exchange(cand, flip), exchanged ^ (others & swap) ^ flip)
+    return (obs, exchanged) if best is None else best[1:]
+
+
 def _label_flips(
     rec: Reconstruction,
     obs: Observations,
     point_sigma: float,
     tangent_sigma: float,
     o: LabelOptions,
-) -> tuple[np.ndarray, np.ndarray]:
+    every_frame: bool = False,
+) -> tuple[np.ndarray, np.ndarray, float]:
     """The frames whose labels to exchange at ``rec`` (frame 0 never: when frame 0 clearly
-    prefers the other labelling, every other frame is exchanged instead) and the frames whose
-    labelling is decided: by the chi2 at ``rec.shape`` in either labelling (``frame_labels``),
-    and with polylines by the curve's fit to them (``curve.labels.polyline_misfits``) where
-    one direction fits clearly closer (``LabelOptions.polyline_ratio``)."""
+    prefers the other labelling, every other frame is exchanged instead), the frames whose
+    labelling is decided, and the polylines' mean fit (px, the closer direction's RMS; inf
+    without polylines): by the chi2 at ``rec.shape`` in either labelling (``frame_labels``),
+    and with polylines by the curve's fit to them (``curve.labels.polyline_misfits``; every
+    frame with ``every_frame``) where one direction fits clearly closer
+    (``LabelOptions.polyline_ratio``)."""
     n = obs.n_frames
     fit = fixed_shape_fit(_both(obs), rec.shape, point_sigma, tangent_sigma)
     same, other = fit.frame_chi2[:n], fit.frame_chi2[n:]
     prefer = other < same - o.switch_dchi2
     decided = np.abs(other - same) >= o.undecided_dchi2
+    score = np.inf
     if obs.curves is not None and rec.curve3d is not None and o.polyline_check:
         check = np.abs(other - same) < o.polyline_dchi2
-        if obs.tangents_from_curve or not obs.ends_given:
+        if every_frame or obs.tangents_from_curve or not obs.ends_given:
             check[:] = True  # tangents fitted to the polylines: weak evidence of their own
         check[0] = True
         rms_same, rms_other = polyline_misfits(rec, obs, fit.poses[:n], fit.poses[n:], check)
@@ -390,7 +419,8 @@ def _label_flips(
             clear = low < o.polyline_ratio * np.maximum(rms_same, rms_other)
         prefer = np.where(clear, rms_other < rms_same, prefer)
         decided |= clear
-    return prefer ^ (prefer[0] & decided[0]), decided
+        score = float(np.nanmean(low))
+    return prefer ^ (prefer[0] & decided[0]), decided, score
 
 
 def _four_frame_labellings(
