@@ -115,9 +115,11 @@ def test_the_flag_round_trips():
 
 
 def test_trace_says_whether_the_ends_are_identified():
-    ambiguous = EndAssignment(np.zeros(8, bool), [2, 4, 6], False)
-    clear = EndAssignment(np.zeros(8, bool), [3], True)
+    ambiguous = EndAssignment(np.zeros(8, bool), [2, 4, 6], False, 0.1)
+    moving = EndAssignment(np.zeros(8, bool), [], False, 0.3)
+    clear = EndAssignment(np.zeros(8, bool), [3], True, 0.1)
     assert ends_identified(clear) and not ends_identified(ambiguous)
+    assert not ends_identified(moving) and ends_identified(moving, "ordered")
     assert ends_identified(ambiguous, "ordered") and not ends_identified(clear, "unordered")
     with pytest.raises(ValueError, match="ends mode"):
         ends_identified(clear, "sometimes")
