@@ -348,10 +348,15 @@ def reconstruct_any_labels(
     (module docstring): ``run`` reconstructs consistently labelled frames (the pipeline)."""
     o = o or LabelOptions()
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
-    exchanged = label_search(obs, ps, ts, o).exchanged
+    found = label_search(obs, ps, ts, o)
+    exchanged = found.exchanged
     consistent = replace(exchange(obs, exchanged), ends_identified=True)
     if obs.curves is not None and o.polyline_check and opts.curve.bundle:
-        consistent, exchanged = _polyline_start(consistent, exchanged, opts, run, o)
+        same, other = frame_labels(consistent, found.shape, ps, ts)
+        # frame 0 tried against the others unless its end points decide it clearly
+        weak = obs.tangents_from_curve or not obs.ends_given
+        swap = weak or abs(other[0] - same[0]) < o.polyline_dchi2
+        consistent, exchanged = _polyline_start(consistent, exchanged, opts, run, o, swap)
     rec = run(consistent, opts)
     for _ in range(o.max_rounds):
         flip, decided, _ = _label_flips(rec, consistent, ps, ts, o)
@@ -379,13 +384,19 @@ def reconstruct_any_labels(
 
 
 def _polyline_start(
-    obs: Observations, exchanged: np.ndarray, opts: ReconstructOptions, run: Runner, o: LabelOptions
+    obs: Observations,
+    exchanged: np.ndarray,
+    opts: ReconstructOptions,
+    run: Runner,
+    o: LabelOptions,
+    try_swap: bool = True,
 ) -> tuple[Observations, np.ndarray]:
-    """The label search's labelling, or the same with frame 0 exchanged against the others,
-    whichever section 4's curve (the pipeline without the bundle) fits the polylines closer
-    (mean over frames of the closer direction's RMS), then every frame relabelled where its
-    polyline clearly says so (:func:`_label_flips`).  Frame 0's end points alone often leave
-    its labelling open, and a wrong one sets it against every other frame."""
+    """The label search's labelling, or (``try_swap``) the same with frame 0 exchanged against
+    the others, whichever section 4's curve (the pipeline without the bundle) fits the
+    polylines closer (mean over frames of the closer direction's RMS), then every frame
+    relabelled where its polyline clearly says so (:func:`_label_flips`).  Frame 0's end
+    points alone often leave its labelling open, and a wrong one sets it against every other
+    frame."""
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
     quick = replace(  # section 4's curve; no LO-RANSAC for a wrong labelling's odd frame
         opts,
@@ -394,7 +405,7 @@ def _polyline_start(
     )
     others = np.arange(obs.n_frames) > 0
     best = None
-    for swap in (False, True):
+    for swap in (False, True)[: 1 + try_swap]:
         cand = exchange(obs, others) if swap else obs
         try:
             rec = run(cand, quick)
