@@ -8,25 +8,31 @@ discrete unknown per frame, like its pose branch.  This stage decides it and han
 pipeline consistently labelled frames:
 
 1. the label search (:func:`label_search`): the global search's grid of the pose-free cost
-   (``robust.search.grid_costs``) on every frame in both labellings (a frame's wrong labelling
-   misfits past the truncation, so the sum is the cost of the better labelling per frame plus a
-   constant); its best local minima polished (``robust.search.pattern_search``,
-   ``local_refine``) with each frame in its better labelling at the current shape, relabelled
-   and polished again.  That cost is symmetric under the exchange of alpha and beta with every
-   frame's labels, so frame 0 is held unexchanged: the answer names A and B as frame 0 does;
-2. every frame's labelling at the best polished shape by its maximum-likelihood chi2 with the
-   shape held fixed (``robust.frame_samples.fixed_shape_fit``) in either labelling
-   (:func:`frame_labels`);
+   (``robust.search``'s, :func:`_grid_costs`) with every frame's misfit the better of its two
+   labellings; its best local minima polished by compass steps on that cost; the distinct
+   results, in order, refined by maximum likelihood with every frame in its better labelling
+   (:func:`_refined`) and scored by their truncated chi2 with the shape held fixed
+   (``robust.frame_samples.fixed_shape_fit``) in the better labelling per frame, plus a penalty
+   for every frame that fits both about equally (a shape fitting most frames either way, alpha
+   and beta near 0 seen along the chord, fits by the labels' freedom, not by the data); the
+   best is refined again from its own labels.  That cost is symmetric under the exchange of
+   alpha and beta with every frame's labels, so frame 0 is held unexchanged: the answer names
+   A and B as in frame 0;
+2. with polylines (``curve.labels``): section 4's curve (the pipeline without the bundle) is
+   fitted to every polyline in either direction; where one direction fits clearly closer it
+   decides that frame, and frame 0 is tried against all the others (its end points alone often
+   leave its labelling open), the labelling whose curve fits the polylines closer kept;
 3. the ordinary pipeline on the relabelled frames (A and B, tangent_A and tangent_B swapped,
-   the polyline reversed); at its answer every frame's labelling is checked again (step 2 at
-   the final shape), and the pipeline reruns if any changed (``LabelOptions.max_rounds``);
+   the polyline reversed); at its answer every frame's labelling is checked again (chi2 in
+   either labelling at the answer's shape; with polylines the answer's curve fitted to them),
+   and the pipeline reruns if one changed (``LabelOptions.max_rounds``);
 4. exactly four frames: every real solution of the minimal solver for every relative
    labelling (eight, frame 0 fixed) joins the alternatives, with its labelling.
 
-A frame whose two labellings fit within ``LabelOptions.undecided_dchi2`` of each other at the
-answer (A and B symmetric: alpha ~ beta, the curve its own image under the exchange) is named
-in a warning.  With polylines the curve stage (``curve.stage``) runs on the relabelled frames:
-the labels come from the end points and tangents, whose misfit the curve bundle then judges.
+A frame whose labellings fit about equally at the answer (chi2 within
+``LabelOptions.undecided_dchi2``, and with polylines neither direction clearly closer: A and B
+look alike, alpha ~ beta) is named in a warning; where that is frame 0, the answer's A and B may
+be named the other way round, and a second warning says so.
 """
 
 from __future__ import annotations
