@@ -93,8 +93,8 @@ class LabelOptions:
     switch_dchi2: float = 4.0
     """At the answer, a frame is relabelled (and the pipeline run again) when its other
     labelling fits better by this: a frame that fits both about equally barely moves the
-    answer, and a rerun costs a whole reconstruction (at 1.0, 3 reruns and an LO-RANSAC run in
-    12 scenes of 20 frames, time ratio 2.45)."""
+    answer, and a rerun costs a whole reconstruction (12 scenes of 20 frames: 3 reruns at 1.0,
+    2 at 4.0)."""
     max_rounds: int = 2
     """Pipeline reruns after a frame's labelling changed at the answer."""
     polyline_check: bool = True
