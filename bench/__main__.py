@@ -3,7 +3,7 @@
 Usage::
 
     python -m bench [--quick] [--out DIR] [--workers N] [--budget SECONDS] [--full-counts]
-    python -m bench --only batch|bundle|fuzz|minimal|outliers|scale|trace [--quick]
+    python -m bench --only batch|bundle|fuzz|minimal|outliers|scale|start|trace|unordered [--quick]
 
 Writes ``REPORT.md``, ``report.json`` and PNG plots into ``--out`` (default ``bench/``).  The
 speed section runs first in this process (no worker busy); then the scene experiments run on
@@ -288,6 +288,7 @@ EXTRA_SECTIONS = {
     "scale": "bench.scale",
     "start": "bench.start",
     "trace": "bench.trace",
+    "unordered": "bench.unordered",
 }
 """Sections with a module of their own (``run(quick) -> dict`` of report keys); each also runs
 alone: ``python -m bench --only NAME`` or ``python -m bench.NAME``."""

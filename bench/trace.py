@@ -17,6 +17,12 @@ gradient of 60 grey levels).  Per sequence:
   (mean distance over the curve's length, best over the mirror image):
   ``images_curve_error_median`` (relative) and ``images_curve_within_1pct_rate``.
 
+Sequences of seeds 2000.. (``RANDOM_SEQUENCES``) show each frame in its own random orientation
+(``tumbling_scene(independent=True)``): the same end-to-end keys with the suffix
+``_random_orientations``, the document flagged ``"ends_identified": false`` where continuity
+cannot establish the ends (``curverecon.trace.ends.ends_identified``), as ``curverecon trace``
+writes it.
+
 Seeds 0.. are those the tracer's options were set on; the ``*_heldout`` keys repeat the
 figures on seeds 1000.. (not used for tuning).  ``trace_seconds_per_frame_512``: the median
 wall time of ``trace_image`` on a rendered 512 x 512 frame (one thread).
@@ -34,14 +40,19 @@ import time
 import numpy as np
 
 FAMILIES = ("bezier", "helix", "wave")
+RANDOM_SEQUENCES = 6
+"""Sequences (seeds 2000..) whose frames are in independent random orientations
+(``tumbling_scene(independent=True)``): continuity cannot tell the ends apart, the document says
+``"ends_identified": false`` as ``curverecon trace`` writes it, and the reconstruction decides
+each frame's labelling; keys ``*_random_orientations``."""
 
 
-def _sequence(seed: int, end_to_end: bool) -> dict:
+def _sequence(seed: int, end_to_end: bool, independent: bool = False) -> dict:
     from bench.curve_end_to_end import curve_error
     from curverecon.curve.polyline import distance_to_polyline
     from curverecon.io import OBSERVATIONS_FORMAT, observations_from_dict
     from curverecon.pipeline import reconstruct
-    from curverecon.trace.ends import assign_ends, frame_record
+    from curverecon.trace.ends import assign_ends, ends_identified, frame_record
     from curverecon.trace.frame import trace_image
     from curverecon.trace.options import TraceOptions
     from curverecon.trace.render import render_frame, tumbling_scene
@@ -49,7 +60,7 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
 
     rng = np.random.default_rng(seed)
     family = FAMILIES[seed % len(FAMILIES)]
-    scene = tumbling_scene(rng, 16, family=family)
+    scene = tumbling_scene(rng, 16, family=family, independent=independent)
     options = TraceOptions()
     curves, truths, errors, skipped, first, index = [], [], [], 0, None, []
     for k, truth in enumerate(scene.observations.curves):
@@ -82,6 +93,9 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
         frames = [frame_record(c, options.tangent_fit_length) for c in oriented]
         # as ``curverecon trace`` writes them: the tangents are fits to the polylines
         doc = {"format": OBSERVATIONS_FORMAT, "frames": frames, "tangents_from_curve": True}
+        if not ends_identified(assignment):  # as ``curverecon trace`` decides it
+            doc["ends_identified"] = False
+        out["ends_identified"] = "ends_identified" not in doc
         obs = observations_from_dict(doc)
         try:
             rec = reconstruct(obs)
@@ -97,14 +111,14 @@ def _sequence(seed: int, end_to_end: bool) -> dict:
     return out
 
 
-def _one(job: tuple[int, bool]) -> dict:
+def _one(job: tuple) -> dict:
     return _sequence(*job)
 
 
-def _map_sequences(jobs: list[tuple[int, bool]]) -> list[dict]:
-    """``_sequence`` of every (seed, end_to_end) job, in order, on every core (fork processes;
-    the end-to-end jobs, the long ones, first).  Each sequence draws from its own seed: the
-    results do not depend on the scheduling."""
+def _map_sequences(jobs: list[tuple]) -> list[dict]:
+    """``_sequence`` of every (seed, end_to_end[, independent]) job, in order, on every core
+    (fork processes; the end-to-end jobs, the long ones, first).  Each sequence draws from its
+    own seed: the results do not depend on the scheduling."""
     import multiprocessing as mp
     import os
 
@@ -161,18 +175,25 @@ def run(quick: bool = False) -> dict:
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     n_trace, n_e2e = (6, 2) if quick else (21, 12)
     n_held, n_held_e2e = (3, 1) if quick else (9, 4)
+    n_random = 1 if quick else RANDOM_SEQUENCES
     jobs = [(s, s < n_e2e) for s in range(n_trace)]
     jobs += [(1000 + s, s < n_held_e2e) for s in range(n_held)]
+    jobs += [(2000 + s, True, True) for s in range(n_random)]
     results = _map_sequences(jobs)
-    main, held = results[:n_trace], results[n_trace:]
+    main, held = results[:n_trace], results[n_trace : n_trace + n_held]
+    rand = results[n_trace + n_held :]
     out = _summary(main, "")
     out.update(_summary(held, "_heldout"))
+    out.update(_summary(rand, "_random_orientations"))
+    out["images_ends_identified_random_orientations"] = int(
+        sum(bool(r.get("ends_identified")) for r in rand)
+    )
     out["trace_seconds_per_frame_512"] = round(_speed_512(5 if quick else 20), 4)
-    missed = [r["seed"] for r in main + held if not r["end_ok"]]
+    missed = [r["seed"] for r in main + held if not r["end_ok"]]  # continuity's own test
     out["trace_end_identity_missed_seeds"] = missed
     out["images_curve_error_by_seed"] = {
         str(r["seed"]): round(float(r["curve_error"]), 5)
-        for r in main + held
+        for r in main + held + rand
         if r["curve_error"] is not None
     }
     return out

@@ -135,6 +135,22 @@ def _add_trace(tr: argparse.ArgumentParser) -> None:
     tr.add_argument(
         "--quiet", action="store_true", help="no progress bar (shown only on a terminal anyway)"
     )
+    order = tr.add_mutually_exclusive_group()
+    order.add_argument(
+        "--ordered",
+        dest="ends",
+        action="store_const",
+        const="ordered",
+        default="auto",
+        help="the frames are in order (smooth motion): A is the same end in every frame",
+    )
+    order.add_argument(
+        "--unordered",
+        dest="ends",
+        action="store_const",
+        const="unordered",
+        help='frames in no order: write "ends_identified": false (the reconstruction decides)',
+    )
 
 
 def _add_match_flat(flat: argparse.ArgumentParser) -> None:
@@ -268,6 +284,7 @@ def _cmd_trace(args: argparse.Namespace) -> int:
         options,
         progress=sys.stderr.isatty() and not args.quiet,
         keep_images=bool(args.plot),
+        ends=args.ends,
     )
     write_json(args.output, result.document)
     if args.plot:

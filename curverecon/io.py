@@ -166,9 +166,14 @@ def observations_from_dict(data: Any) -> Observations:
     from_curve = data.get("tangents_from_curve", False)
     if not isinstance(from_curve, bool):
         raise CurveReconError('"tangents_from_curve" must be true or false')
-    return Observations(
+    identified = data.get("ends_identified", True)
+    if not isinstance(identified, bool):
+        raise CurveReconError('"ends_identified" must be true or false')
+    obs = Observations(
         np.array(a), np.array(b), np.array(ta), np.array(tb), keep, given, warnings, from_curve
     )
+    obs.ends_identified = identified
+    return obs
 
 
 def _end_tangents(curve: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
@@ -208,4 +213,6 @@ def observations_to_dict(obs: Observations) -> dict:
     doc = {"format": OBSERVATIONS_FORMAT, "projection": "orthographic", "frames": frames}
     if obs.tangents_from_curve:
         doc["tangents_from_curve"] = True
+    if not obs.ends_identified:
+        doc["ends_identified"] = False
     return doc

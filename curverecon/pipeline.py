@@ -51,6 +51,7 @@ from curverecon.robust.frame_samples import (
     frame_sample_hypothesis,
     sample_score,
 )
+from curverecon.robust.labels import reconstruct_any_labels
 from curverecon.robust.outliers import chi2_lower_tail, chi2_tail, find_outlier_frames
 from curverecon.robust.search import Candidate, robust_start
 from curverecon.solvers import minimal
@@ -99,6 +100,8 @@ def reconstruct(
     if not (opts.point_sigma > 0 and opts.tangent_sigma_deg > 0):
         raise CurveReconError("point and tangent standard deviations must be positive")
     obs.require_reconstructable()
+    if not obs.ends_identified:  # each frame's labelling an unknown (robust/labels.py)
+        return reconstruct_any_labels(obs, opts, lambda o, op: reconstruct(o, options=op))
     if opts.method == "auto" and obs.n_frames == minimal.FRAMES:
         minimal.check_four_frames(obs, opts.minimal)
     progress = StageProgress(STAGES, opts.progress)

@@ -66,6 +66,10 @@ class Observations:
             document's ``"tangents_from_curve": true``, written by ``curverecon trace``): the
             reconstruction also tries the polylines alone and keeps what fits them better
             (``curverecon.pipeline.reconstruct``).
+        ends_identified: A is the same physical end in every frame (default).  False (the
+            document's ``"ends_identified": false``): the labels may name different ends in
+            different frames, and the reconstruction decides each frame's labelling
+            (``curverecon.robust.labels``).
 
     Construction validates every frame (finite numbers, A' != B', tangents not zero and not
     perpendicular to A'B') and raises :class:`CurveReconError` with a one-line message.
@@ -79,8 +83,14 @@ class Observations:
     ends_given: bool = True
     warnings: list[str] = field(default_factory=list)
     tangents_from_curve: bool = False
+    ends_identified: bool = True
 
     def __post_init__(self) -> None:
+        if not isinstance(self.ends_identified, bool | np.bool_):
+            raise CurveReconError(
+                f"ends_identified must be true or false, got {self.ends_identified!r}"
+            )
+        self.ends_identified = bool(self.ends_identified)
         self.a = _as_xy("A", self.a)
         self.b = _as_xy("B", self.b)
         self.tangent_a = _as_xy("tangent_A", self.tangent_a)
@@ -205,6 +215,7 @@ class Observations:
             self.ends_given,
             list(self.warnings),
             self.tangents_from_curve,
+            self.ends_identified,
         )
 
     # ----------------------------------------------------------------- checks

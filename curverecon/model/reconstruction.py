@@ -24,6 +24,8 @@ class Alternative:
     poses: np.ndarray
     chi2: float
     std: np.ndarray | None = None
+    ends_exchanged: np.ndarray | None = None
+    """With ``"ends_identified": false``: per frame, this shape's labelling exchanges A and B."""
 
 
 @dataclass
@@ -59,6 +61,8 @@ class Reconstruction:
         curve_bundle: the curve bundle's summary (the output's ``curve_bundle`` key), or None.
         ambiguous_dchi2: a frame whose other branch fits within this chi2 of its pose is
             ambiguous (``BranchOptions.ambiguous_dchi2``).
+        ends_exchanged: (N,) with ``"ends_identified": false`` input: the frames whose labels
+            A and B the answer exchanged (A and B are named as in frame 0); None otherwise.
     """
 
     shape: np.ndarray
@@ -78,6 +82,7 @@ class Reconstruction:
     curve3d_normal_std: np.ndarray | None = None
     curve_bundle: dict | None = None
     ambiguous_dchi2: float = 4.0
+    ends_exchanged: np.ndarray | None = None
 
     @property
     def c(self) -> float:
@@ -138,6 +143,8 @@ class Reconstruction:
             }
             if self.frame_chi2 is not None:
                 frame["chi2"] = float(self.frame_chi2[i])
+            if self.ends_exchanged is not None:
+                frame["ends_exchanged"] = bool(self.ends_exchanged[i])
             if self.branch_alternatives is not None:
                 ad, at = self.branch_alternatives[i, :2]
                 frame["branch_alternative"] = {
@@ -159,9 +166,12 @@ class Reconstruction:
                 **shape_dict(alt.shape),
                 "chi2": alt.chi2,
                 "std": None if alt.std is None else shape_dict(alt.std),
+                **_exchanged_key(alt.ends_exchanged),
             }
             for alt in self.alternatives
         ]
+        if self.ends_exchanged is not None:
+            out["ends_identified"] = False
         out["warnings"] = list(self.warnings)
         if self.curve3d is not None:
             out["curve3d"] = np.asarray(self.curve3d, float).tolist()
@@ -172,6 +182,11 @@ class Reconstruction:
         if self.curve_bundle is not None:
             out["curve_bundle"] = self.curve_bundle
         return out
+
+
+def _exchanged_key(exchanged: np.ndarray | None) -> dict:
+    """An alternative's ``ends_exchanged`` list (frames whose labels it exchanges), if any."""
+    return {} if exchanged is None else {"ends_exchanged": [bool(v) for v in exchanged]}
 
 
 def alternatives_warning(

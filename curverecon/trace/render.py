@@ -116,6 +116,7 @@ def tumbling_scene(
     chord: tuple[float, float] = (0.35, 0.5),
     step_deg: float = 25.0,
     min_foreshortening: float = 0.3,
+    independent: bool = False,
 ) -> Scene:
     """A curve of ``family`` tumbling through ``n_frames`` frames of ``size`` pixels.
 
@@ -124,7 +125,9 @@ def tumbling_scene(
     AB foreshortened below ``min_foreshortening`` (or an end tangent along the normal of A'B') is
     drawn again.  The curve's bounding box is kept inside the image (a margin of 6 % each side),
     its centre drifting smoothly.  The scene's polylines (1,000 points a frame) are the true
-    projected curves in pixels; ``curve_3d`` is frame 0's, A at z = 0.
+    projected curves in pixels; ``curve_3d`` is frame 0's, A at z = 0.  ``independent``: every
+    frame in its own random orientation (drawn until observable), nothing linking one frame's
+    pose to the next (images taken apart in time; ``step_deg`` unused).
     """
     pts = curve_points(rng, family) * rng.uniform(*chord) * size
     pts = pts - pts[0]
@@ -135,7 +138,7 @@ def tumbling_scene(
         r = Rotation.random(random_state=rng).as_matrix()
     rots.append(r)
     while len(rots) < n_frames:
-        for _ in range(200):
+        for _ in range(0 if independent else 200):
             ax = _unit(axis + 0.35 * rng.normal(size=3))
             cand = Rotation.from_rotvec(np.radians(step_deg) * ax).as_matrix() @ rots[-1]
             if _observable(cand, pts, min_foreshortening):

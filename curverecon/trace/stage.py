@@ -16,7 +16,7 @@ import numpy as np
 
 from curverecon.errors import CurveReconError
 from curverecon.io import OBSERVATIONS_FORMAT
-from curverecon.trace.ends import assign_ends, frame_record
+from curverecon.trace.ends import assign_ends, ends_identified, frame_record
 from curverecon.trace.frame import trace_image
 from curverecon.trace.images import count_frames, iter_frames
 from curverecon.trace.options import TraceOptions
@@ -44,8 +44,13 @@ def trace_inputs(
     options: TraceOptions | None = None,
     progress: bool = False,
     keep_images: bool = False,
+    ends: str = "auto",
 ) -> TraceResult:
     """Trace every frame of ``inputs`` (image files, one folder, or one video).
+
+    ``ends``: what is known of the frames' order (``trace.ends.ENDS_MODES``; ``--ordered``,
+    ``--unordered``): the document says ``"ends_identified": false`` where the labels may
+    name different ends in different frames (``trace.ends.ends_identified``).
 
     Raises :class:`CurveReconError` for an input that cannot be read or fewer than
     ``MIN_TRACED_FRAMES`` traced frames (the message names the reasons).
@@ -88,9 +93,14 @@ def trace_inputs(
         )
     curves = [t["curve"] for t in traced]
     assignment = assign_ends(
-        curves, o.ambiguity_ratio, [t["index"] for t in traced], fit_length=o.tangent_fit_length
+        curves,
+        o.ambiguity_ratio,
+        [t["index"] for t in traced],
+        use_reconstruction=ends != "unordered",
+        fit_length=o.tangent_fit_length,
     )
-    if assignment.ambiguous:
+    identified = ends_identified(assignment, ends)
+    if assignment.ambiguous and identified:
         which = ", ".join(str(traced[k]["index"]) for k in assignment.ambiguous[:10])
         how = (
             "the reconstruction from the polylines decided"
@@ -98,6 +108,13 @@ def trace_inputs(
             else "continuity of shape decided"
         )
         warnings.append(f"which end is A was ambiguous by continuity before frames {which} ({how})")
+    elif not identified and ends == "auto":
+        warnings.append(
+            f"which end is A: continuity was ambiguous at {len(assignment.ambiguous)} of "
+            f"{len(traced) - 1} links (no smooth motion between frames); written as "
+            '"ends_identified": false, the reconstruction decides each frame (--ordered if '
+            "the frames are in order)"
+        )
     frames = []
     for t, f in zip(traced, assignment.flip, strict=True):
         curve = np.round(t["curve"][::-1] if f else t["curve"], 4)  # 1e-4 px: far below the noise
@@ -119,6 +136,7 @@ def trace_inputs(
         "frames_skipped": skipped,
         # the tangents are fits to the polylines, not measurements of their own
         "tangents_from_curve": True,
+        **({} if identified else {"ends_identified": False}),
         "pixel_convention": "x = column, y = row, centre of the top-left pixel at (0, 0)",
     }
     return TraceResult(doc, warnings, traced)

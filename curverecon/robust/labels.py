@@ -1,0 +1,494 @@
+"""Which end is A in each frame, when the input does not say (``"ends_identified": false``).
+
+Frames taken apart in time (images in any order, a curve moving free) may name the two
+traceable points differently from frame to frame.  A frame whose labels are exchanged is a
+frame of the shape (c, beta, alpha, phi) instead of (c, alpha, beta, phi) (phi, the angle
+between AS and BT, is the same for both), its polyline running from B to A: the labelling is a
+discrete unknown per frame, like its pose branch.  This stage decides it and hands the ordinary
+pipeline consistently labelled frames:
+
+1. the label search (:func:`label_search`): the global search's grid of the pose-free cost
+   (``robust.search``'s, :func:`_grid_costs`) with every frame's misfit the better of its two
+   labellings; its best local minima polished by compass steps on that cost; the distinct
+   results, in order, refined by maximum likelihood with every frame in its better labelling
+   (:func:`_refined`) and scored by their truncated chi2 with the shape held fixed
+   (``robust.frame_samples.fixed_shape_fit``) in the better labelling per frame, plus a penalty
+   for every frame that fits both about equally (a shape fitting most frames either way, alpha
+   and beta near 0 seen along the chord, fits by the labels' freedom, not by the data); the
+   best is refined again from its own labels.  That cost is symmetric under the exchange of
+   alpha and beta with every frame's labels, so frame 0 is held unexchanged: the answer names
+   A and B as in frame 0;
+2. with polylines (``curve.labels``): section 4's curve (the pipeline without the bundle) is
+   fitted to every polyline in either direction; where one direction fits clearly closer it
+   decides that frame, and frame 0 is tried against all the others (its end points alone often
+   leave its labelling open), the labelling whose curve fits the polylines closer kept;
+3. the ordinary pipeline on the relabelled frames (A and B, tangent_A and tangent_B swapped,
+   the polyline reversed); at its answer every frame's labelling is checked again (chi2 in
+   either labelling at the answer's shape; with polylines the answer's curve fitted to them),
+   and the pipeline reruns if one changed (``LabelOptions.max_rounds``);
+4. exactly four frames: every real solution of the minimal solver for every relative
+   labelling (eight, frame 0 fixed) joins the alternatives, with its labelling.
+
+A frame whose labellings fit about equally at the answer (chi2 within
+``LabelOptions.undecided_dchi2``, and with polylines neither direction clearly closer: A and B
+look alike, alpha ~ beta) is named in a warning; where that is frame 0, the answer's A and B may
+be named the other way round, and a second warning says so.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy import ndimage
+
+from curverecon.curve.labels import polyline_misfits
+from curverecon.errors import CurveReconError
+from curverecon.model.observations import Observations
+from curverecon.model.pose import normalise
+from curverecon.model.reconstruction import Alternative, Reconstruction
+from curverecon.options import ReconstructOptions
+from curverecon.refine.ml import refine
+from curverecon.robust.frame_samples import fixed_shape_fit
+from curverecon.robust.search import (
+    GridSpec,
+    branch_candidates,
+    shape_distance,
+)
+from curverecon.solvers import minimal
+
+
+@dataclass(frozen=True)
+class LabelOptions:
+    """Tuned numbers of the labelling stage."""
+
+    starts: int = 16
+    """Grid minima polished by the label search (a few compass and LM steps)."""
+    candidates: int = 6
+    """Distinct polished shapes scored by their maximum-likelihood chi2 (``frame_labels``)."""
+    distinct: float = 0.02
+    """``robust.search.shape_distance`` below which two polished shapes are one."""
+    truncate_chi2: float = 25.0
+    """A frame's chi2 counts at most this in a candidate's score (outlier frames)."""
+    plausible_score: float = 2.5
+    """The candidates are scored in the pose-free cost's order until one scores at most this
+    per frame (each frame has one degree of freedom beyond its pose: chi2 about 1 a frame,
+    plus the undecided frames' penalty, up to ``undecided_dchi2`` each; on 20-frame scenes
+    the truth scored 0.7-2.4 a frame, wrong candidates 3-10)."""
+    final_rounds: int = 2
+    """The best candidate refined again from its own shape and labels, while its score falls
+    (a frame labelled wrong at the first refinement's shape turns an outlier of the pipeline
+    and costs it an LO-RANSAC run)."""
+    refine_iterations: int = 15
+    """Maximum-likelihood iterations of each candidate before it is scored."""
+    grid_frames_factor: int = 2
+    """The grid of ``GridSpec.for_frames`` for this many times the frames (every frame is
+    costed in both labellings: a grid as coarse as the search's for twice the frames)."""
+    compass_iterations: int = 10
+    """Compass steps of the pose-free cost from each grid minimum."""
+    undecided_dchi2: float = 4.0
+    """A frame whose two labellings' chi2 differ by less is undecided (warned about)."""
+    switch_dchi2: float = 4.0
+    """At the answer, a frame is relabelled (and the pipeline run again) when its other
+    labelling fits better by this: a frame that fits both about equally barely moves the
+    answer, and a rerun costs a whole reconstruction (12 scenes of 20 frames: 3 reruns at 1.0,
+    2 at 4.0)."""
+    max_rounds: int = 2
+    """Pipeline reruns after a frame's labelling changed at the answer."""
+    polyline_check: bool = True
+    """With polylines, judge the labels by the curve's fit to them (``curve.labels``)."""
+    polyline_dchi2: float = 25.0
+    """Frames whose two labellings' chi2 differ by less are judged by their polylines too
+    (every frame where the tangents were fitted to the polylines, and frame 0)."""
+    polyline_ratio: float = 0.6
+    """A polyline decides a frame's labelling where one direction's fit RMS is below this
+    fraction of the other's."""
+
+
+@dataclass
+class LabelSearch:
+    """The label search's best shape (normalised), every frame's labelling, its cost."""
+
+    shape: np.ndarray
+    exchanged: np.ndarray
+    cost: float
+
+
+def exchange(obs: Observations, mask: np.ndarray) -> Observations:
+    """``obs`` with the labels of the frames in ``mask`` exchanged: A and B, tangent_A and
+    tangent_B swapped, the polyline reversed."""
+    m = np.asarray(mask, bool)
+    col = m[:, None]
+    curves = None
+    if obs.curves is not None:
+        curves = [c[::-1].copy() if f else c for c, f in zip(obs.curves, m, strict=True)]
+    return replace(
+        obs,
+        a=np.where(col, obs.b, obs.a),
+        b=np.where(col, obs.a, obs.b),
+        tangent_a=np.where(col, obs.tangent_b, obs.tangent_a),
+        tangent_b=np.where(col, obs.tangent_a, obs.tangent_b),
+        curves=curves,
+        warnings=list(obs.warnings),
+    )
+
+
+def _terms(obs: Observations) -> dict[str, np.ndarray]:
+    """The per-frame terms of the pose-free cost (``robust.search.reduced_cost``)."""
+    return {
+        "cp": obs.cp,
+        "ua": np.column_stack([np.cos(obs.rel_a), np.sin(obs.rel_a)]),
+        "ub": np.column_stack([np.cos(obs.rel_b), np.sin(obs.rel_b)]),
+    }
+
+
+def frame_misfits(terms: dict[str, np.ndarray], params: np.ndarray) -> np.ndarray:
+    """(M, N) pose-free misfit of every frame (the best of its four branches of (10)) for
+    shapes (M, 4) given as (gamma, alpha, beta, phi): ``robust.search.reduced_cost`` per frame,
+    untruncated."""
+    cp, ua, ub = terms["cp"], terms["ua"], terms["ub"]
+    c = np.max(cp) / np.cos(params[:, 0])
+    tb = np.tan(params[:, 2])
+    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, c, np.tan(params[:, 1]))
+    x = (c * tb * np.cos(params[:, 3]))[:, None, None]
+    y = (c * tb * np.sin(params[:, 3]))[:, None, None]
+    px = cp[:, None] + s * (x * sin_d + y * cos_d)
+    py = x * cos_d - y * sin_d
+    cross = px * ua[:, 1][:, None] - py * ua[:, 0][:, None]
+    r2 = cross * cross / (px * px + py * py + 1e-300) + r_b * r_b
+    return np.min(r2, axis=2)
+
+
+def _both(obs: Observations) -> Observations:
+    """Every frame twice: as labelled, then with its labels exchanged."""
+    return Observations(
+        np.concatenate([obs.a, obs.b]),
+        np.concatenate([obs.b, obs.a]),
+        np.concatenate([obs.tangent_a, obs.tangent_b]),
+        np.concatenate([obs.tangent_b, obs.tangent_a]),
+    )
+
+
+def _grid_costs(obs: Observations, spec: GridSpec) -> tuple[np.ndarray, dict]:
+    """``robust.search.grid_costs`` with every frame in its better labelling: the per-frame
+    misfit the better of the frame's two labellings, truncated, summed over frames."""
+    both = _both(obs)
+    t = _terms(both)
+    cp, ua, ub = t["cp"], t["ua"], t["ub"]
+    n = cp.size
+    gam = spec.gammas()
+    alp = np.radians((np.arange(spec.n_alpha) + 0.5) * 90.0 / spec.n_alpha)
+    bet = np.radians((np.arange(spec.n_beta) + 0.5) * 90.0 / spec.n_beta)
+    phi = np.radians(np.linspace(0.0, 180.0, spec.n_phi))
+    c = np.max(cp) / np.cos(gam)
+    cg, ag = np.meshgrid(c, np.tan(alp), indexing="ij")
+    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, cg, ag)  # (G, A, 2N, 4)
+    vx, vy = ua[:, 0][:, None], ua[:, 1][:, None]
+    dt = np.float32
+    ones = np.ones(cos_d.shape)
+    lin_cross = np.stack(
+        [cp[:, None] * vy * ones, s * sin_d * vy - cos_d * vx, s * cos_d * vy + sin_d * vx], -1
+    )
+    lin_px = np.stack([cp[:, None] * ones, s * sin_d, s * cos_d], -1)
+    lin_py = np.stack([0.0 * ones, cos_d, -sin_d], -1)
+    tb = np.tan(bet)
+    xy = np.stack([np.outer(tb, np.cos(phi)).ravel(), np.outer(tb, np.sin(phi)).ravel()])
+    coef = np.concatenate([np.ones((c.size, 1, xy.shape[1])), c[:, None, None] * xy[None]], axis=1)
+    coef = coef[:, None].astype(dt)
+    shp = (spec.n_gamma, spec.n_alpha, n * 4, 3)
+    lin_cross, lin_px, lin_py = (m.reshape(shp).astype(dt) for m in (lin_cross, lin_px, lin_py))
+    rb2 = (r_b * r_b).astype(dt)[..., None]
+    trunc = dt(math.sin(math.radians(spec.truncate_deg)) ** 2)
+    cost = np.empty((spec.n_gamma, spec.n_alpha, coef.shape[-1]))
+    for ig in range(spec.n_gamma):
+        cross = lin_cross[ig] @ coef[ig]
+        px = lin_px[ig] @ coef[ig]
+        py = lin_py[ig] @ coef[ig]
+        r2 = cross * cross / (px * px + py * py + dt(1e-30))
+        r2 = r2.reshape(spec.n_alpha, n, 4, -1) + rb2[ig]
+        per_frame = np.min(r2, axis=2)  # (A, 2N, B*P)
+        per_frame = np.minimum(per_frame[:, : n // 2], per_frame[:, n // 2 :])
+        cost[ig] = np.sum(np.minimum(per_frame, trunc), axis=1, dtype=np.float64)
+    cost = cost.reshape(spec.n_gamma, spec.n_alpha, spec.n_beta, spec.n_phi)
+    return cost, {"c": c, "alpha": alp, "beta": bet, "phi": phi}
+
+
+def _grid_minima(obs: Observations, spec: GridSpec, count: int) -> np.ndarray:
+    """The ``count`` best local minima of :func:`_grid_costs`, as (gamma, alpha, beta, phi)
+    rows."""
+    cost, axes = _grid_costs(obs, spec)
+    filt = ndimage.minimum_filter(cost, size=3, mode="nearest")
+    idx = np.argwhere(cost <= filt)
+    idx = idx[np.argsort(cost[tuple(idx.T)], kind="stable")[:count]]
+    gam = np.arccos(np.clip(np.max(obs.cp) / axes["c"], 0.0, 1.0))
+    return np.array(
+        [[gam[g], axes["alpha"][a], axes["beta"][b], axes["phi"][p]] for g, a, b, p in idx]
+    ).reshape(-1, 4)
+
+
+def _cost(terms: tuple[dict, dict], x: np.ndarray, trunc: float) -> np.ndarray:
+    """(M,) pose-free cost of shapes (M, 4), every frame in its better labelling."""
+    f = np.minimum(frame_misfits(terms[0], x), frame_misfits(terms[1], x))
+    return np.sum(np.minimum(f, trunc), axis=1)
+
+
+def _compass(
+    terms: tuple[dict, dict], x: np.ndarray, steps: np.ndarray, trunc: float, n_iter: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """Vectorised compass search of :func:`_cost` from M starts (``robust.search``'s
+    ``pattern_search`` on this cost); returns (params, costs)."""
+    x = np.array(x, float)
+    h = np.broadcast_to(np.asarray(steps, float), x.shape).copy()
+    lo = np.array([0.0, 1e-4, 1e-4, -np.pi])
+    hi = np.array([np.radians(87.0), np.pi / 2 - 1e-4, np.pi / 2 - 1e-4, 2 * np.pi])
+    f = _cost(terms, x, trunc)
+    m = x.shape[0]
+    dirs = np.concatenate([np.eye(4), -np.eye(4)])
+    with np.errstate(all="ignore"):
+        for _ in range(n_iter):
+            trial = np.clip(x[:, None, :] + dirs[None] * h[:, None, :], lo, hi)
+            ft = _cost(terms, trial.reshape(-1, 4), trunc).reshape(m, 8)
+            j = np.argmin(ft, axis=1)
+            better = ft[np.arange(m), j] < f
+            x = np.where(better[:, None], trial[np.arange(m), j], x)
+            f = np.where(better, ft[np.arange(m), j], f)
+            h = np.where(better[:, None], h, h * 0.5)
+    return x, f
+
+
+def label_search(
+    obs: Observations, point_sigma: float, tangent_sigma: float, o: LabelOptions | None = None
+) -> LabelSearch:
+    """The shape and labelling that fit the frames best, each frame in its better labelling
+    (module docstring, steps 1-2); frame 0 unexchanged."""
+    o = o or LabelOptions()
+    spec = GridSpec.for_frames(o.grid_frames_factor * obs.n_frames)
+    trunc = math.sin(math.radians(spec.truncate_deg)) ** 2
+    x = _grid_minima(obs, spec, o.starts)
+    steps = 0.5 * np.radians(
+        [80.0 / max(spec.n_gamma - 1, 1), 90.0 / spec.n_alpha, 90.0 / spec.n_beta, 10.0]
+    )
+    terms = (_terms(obs), _terms(exchange(obs, np.ones(obs.n_frames, bool))))
+    x, f = _compass(terms, x, steps, trunc, o.compass_iterations)
+    shapes: list[np.ndarray] = []
+    for k in np.argsort(f):
+        shape = np.array([np.max(obs.cp) / math.cos(x[k, 0]), *x[k, 1:]])
+        shape, _ = normalise(shape, np.zeros((1, 5)))
+        if all(shape_distance(shape, s) >= o.distinct for s in shapes):
+            shapes.append(shape)
+        if len(shapes) == o.candidates:
+            break
+    best = None
+    for shape in shapes:
+        found = _refined(obs, shape, point_sigma, tangent_sigma, o)
+        if best is None or found.cost < best.cost:
+            best = found
+        if best.cost <= o.plausible_score * obs.n_frames:
+            break  # a fit as close as the noise allows: the next candidates cannot do much better
+    for _ in range(o.final_rounds):  # refined again from its own labels and shape
+        again = _refined(obs, best.shape, point_sigma, tangent_sigma, o)
+        if not again.cost < best.cost:
+            break
+        best = again
+    if best.exchanged[0]:  # the same fit named from frame 0: alpha and beta exchanged
+        shape, _ = normalise(best.shape[[0, 2, 1, 3]], np.zeros((1, 5)))
+        best = LabelSearch(shape, ~best.exchanged, best.cost)
+    return best
+
+
+def _refined(
+    obs: Observations, shape: np.ndarray, point_sigma: float, tangent_sigma: float, o: LabelOptions
+) -> LabelSearch:
+    """A polished shape refined by maximum likelihood, every frame in its better labelling at
+    the start (frames past ``o.truncate_chi2`` in both weighted down), labelled again at the
+    refined shape and scored by its truncated chi2."""
+    n = obs.n_frames
+    fit = fixed_shape_fit(_both(obs), shape, point_sigma, tangent_sigma)
+    same, other = fit.frame_chi2[:n], fit.frame_chi2[n:]
+    ex = other < same
+    poses = np.where(ex[:, None], fit.poses[n:], fit.poses[:n])
+    weights = np.where(np.minimum(same, other) < o.truncate_chi2, 1.0, 1e-3)
+    with np.errstate(all="ignore"):
+        ref = refine(
+            exchange(obs, ex),
+            shape,
+            poses,
+            point_sigma,
+            tangent_sigma,
+            max_iter=o.refine_iterations,
+            covariance=False,
+            frame_weights=weights,
+        )
+    if np.all(np.isfinite(ref.shape)):
+        shape, _ = normalise(ref.shape, ref.poses)
+    same, other = frame_labels(obs, shape, point_sigma, tangent_sigma)
+    cost = float(np.sum(np.minimum(np.minimum(same, other), o.truncate_chi2)))
+    # a shape that fits most frames in either labelling (alpha and beta near 0 seen along the
+    # chord: the shape barely determined) fits by the labels' freedom, not by the data
+    cost += float(np.sum(np.maximum(o.undecided_dchi2 - np.abs(other - same), 0.0)))
+    return LabelSearch(shape, other < same, cost)
+
+
+def frame_labels(
+    obs: Observations, shape: np.ndarray, point_sigma: float, tangent_sigma: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Every frame's chi2 at ``shape`` (held fixed, every frame at its best pose) as labelled
+    in ``obs`` and with its labels exchanged: (N,), (N,)."""
+    fit = fixed_shape_fit(_both(obs), shape, point_sigma, tangent_sigma)
+    n = obs.n_frames
+    return fit.frame_chi2[:n], fit.frame_chi2[n:]
+
+
+Runner = Callable[[Observations, ReconstructOptions], Reconstruction]
+
+
+def reconstruct_any_labels(
+    obs: Observations,
+    opts: ReconstructOptions,
+    run: Runner,
+    o: LabelOptions | None = None,
+) -> Reconstruction:
+    """The reconstruction of frames whose labels A and B may differ from frame to frame
+    (module docstring): ``run`` reconstructs consistently labelled frames (the pipeline)."""
+    o = o or LabelOptions()
+    ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
+    found = label_search(obs, ps, ts, o)
+    exchanged = found.exchanged
+    consistent = replace(exchange(obs, exchanged), ends_identified=True)
+    if obs.curves is not None and o.polyline_check and opts.curve.bundle:
+        same, other = frame_labels(consistent, found.shape, ps, ts)
+        # frame 0 tried against the others unless its end points decide it clearly
+        weak = obs.tangents_from_curve or not obs.ends_given
+        swap = weak or abs(other[0] - same[0]) < o.polyline_dchi2
+        consistent, exchanged = _polyline_start(consistent, exchanged, opts, run, o, swap)
+    rec = run(consistent, opts)
+    for _ in range(o.max_rounds):
+        flip, decided, _ = _label_flips(rec, consistent, ps, ts, o)
+        if not flip.any():
+            break
+        exchanged ^= flip
+        consistent = exchange(consistent, flip)
+        rec = run(consistent, opts)
+    undecided = [int(i) for i in np.flatnonzero(~decided)]
+    warnings = list(rec.warnings)
+    if undecided:
+        warnings.append(
+            f"frames {undecided[:20]}: which end is A could not be decided (both labellings "
+            f"fit about equally; A and B look alike: alpha {math.degrees(rec.alpha):.1f}, "
+            f"beta {math.degrees(rec.beta):.1f} degrees)"
+        )
+    if undecided and undecided[0] == 0:
+        warnings.append(
+            "frame 0 fits both labellings: the answer's A and B may be named the other way "
+            "round (alpha and beta exchanged)"
+        )
+    if opts.method == "auto" and obs.n_frames == minimal.FRAMES:
+        rec = replace(rec, alternatives=_four_frame_labellings(obs, rec, exchanged, ps, ts, opts))
+    return replace(rec, warnings=warnings, ends_exchanged=exchanged)
+
+
+def _polyline_start(
+    obs: Observations,
+    exchanged: np.ndarray,
+    opts: ReconstructOptions,
+    run: Runner,
+    o: LabelOptions,
+    try_swap: bool = True,
+) -> tuple[Observations, np.ndarray]:
+    """The label search's labelling, or (``try_swap``) the same with frame 0 exchanged against
+    the others, whichever section 4's curve (the pipeline without the bundle) fits the
+    polylines closer (mean over frames of the closer direction's RMS), then every frame
+    relabelled where its polyline clearly says so (:func:`_label_flips`).  Frame 0's end
+    points alone often leave its labelling open, and a wrong one sets it against every other
+    frame."""
+    ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
+    quick = replace(  # section 4's curve; no LO-RANSAC for a wrong labelling's odd frame
+        opts,
+        curve=replace(opts.curve, bundle=False),
+        frame_samples=replace(opts.frame_samples, enabled=False),
+    )
+    others = np.arange(obs.n_frames) > 0
+    best = None
+    for swap in (False, True)[: 1 + try_swap]:
+        cand = exchange(obs, others) if swap else obs
+        try:
+            rec = run(cand, quick)
+        except CurveReconError:
+            continue
+        flip, _, score = _label_flips(rec, cand, ps, ts, o, every_frame=True)
+        if best is None or score < best[0]:
+            best = (score, exchange(cand, flip), exchanged ^ (others & swap) ^ flip)
+    return (obs, exchanged) if best is None else best[1:]
+
+
+def _label_flips(
+    rec: Reconstruction,
+    obs: Observations,
+    point_sigma: float,
+    tangent_sigma: float,
+    o: LabelOptions,
+    every_frame: bool = False,
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """The frames whose labels to exchange at ``rec`` (frame 0 never: when frame 0 clearly
+    prefers the other labelling, every other frame is exchanged instead), the frames whose
+    labelling is decided, and the polylines' mean fit (px, the closer direction's RMS; inf
+    without polylines): by the chi2 at ``rec.shape`` in either labelling (``frame_labels``),
+    and with polylines by the curve's fit to them (``curve.labels.polyline_misfits``; every
+    frame with ``every_frame``) where one direction fits clearly closer
+    (``LabelOptions.polyline_ratio``)."""
+    n = obs.n_frames
+    fit = fixed_shape_fit(_both(obs), rec.shape, point_sigma, tangent_sigma)
+    same, other = fit.frame_chi2[:n], fit.frame_chi2[n:]
+    prefer = other < same - o.switch_dchi2
+    decided = np.abs(other - same) >= o.undecided_dchi2
+    score = np.inf
+    if obs.curves is not None and rec.curve3d is not None and o.polyline_check:
+        check = np.abs(other - same) < o.polyline_dchi2
+        if every_frame or obs.tangents_from_curve or not obs.ends_given:
+            check[:] = True  # tangents fitted to the polylines: weak evidence of their own
+        check[0] = True
+        rms_same, rms_other = polyline_misfits(rec, obs, fit.poses[:n], fit.poses[n:], check)
+        with np.errstate(invalid="ignore"):
+            low = np.minimum(rms_same, rms_other)
+            clear = low < o.polyline_ratio * np.maximum(rms_same, rms_other)
+        prefer = np.where(clear, rms_other < rms_same, prefer)
+        decided |= clear
+        score = float(np.nanmean(low))
+    return prefer ^ (prefer[0] & decided[0]), decided, score
+
+
+def _four_frame_labellings(
+    obs: Observations,
+    rec: Reconstruction,
+    exchanged: np.ndarray,
+    point_sigma: float,
+    tangent_sigma: float,
+    opts: ReconstructOptions,
+) -> list[Alternative]:
+    """``rec``'s alternatives and every real minimal solution of every other relative
+    labelling of four frames (frame 0 unexchanged), each with its labelling."""
+    alts = [
+        replace(a, ends_exchanged=exchanged.copy()) if a.ends_exchanged is None else a
+        for a in rec.alternatives
+    ]
+    for code in range(1 << (obs.n_frames - 1)):
+        ex = np.array([False] + [bool(code >> k & 1) for k in range(obs.n_frames - 1)])
+        if np.array_equal(ex, exchanged):
+            continue
+        sub = exchange(obs, ex)
+        try:
+            result = minimal.solve(sub, opts.minimal)
+        except (ArithmeticError, ValueError, np.linalg.LinAlgError):
+            continue
+        for shape, poses in zip(result.shapes, result.poses, strict=True):
+            shape_n, poses_n = normalise(shape, poses)
+            fit = refine(sub, shape_n, poses_n, point_sigma, tangent_sigma, max_iter=0)
+            alts.append(Alternative(shape_n, poses_n, float(fit.chi2), fit.std, ex))
+    kept: list[Alternative] = []
+    for a in sorted(alts, key=lambda a: a.chi2):
+        same_label = [k for k in kept if np.array_equal(k.ends_exchanged, a.ends_exchanged)]
+        if all(shape_distance(a.shape, k.shape) >= 1e-6 for k in same_label):
+            kept.append(a)
+    return kept
