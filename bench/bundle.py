@@ -110,9 +110,7 @@ def truth_start_bundle(sc, ends: bool, sigma: float):
     kw: dict = {
         "point_sigma": sigma,
         "tangent_sigma_deg": sigma,
-        "k_max": o.bundle_max_control_points,
         "smooth_weight": o.bundle_smooth_weight,
-        "misfit_z": o.bundle_misfit_z,
         "order_tol": o.bundle_order_tol,
     }
     if ends:

@@ -254,25 +254,6 @@ class CurveOptions:
     1302 (0.5 px, 12 frames) reached a minimum of higher cost (1,877.8 against 1,859.2), phi
     3.3 degrees off against 0.16."""
 
-    refit_with_bundle: bool = False
-    """With the curve bundle (``bundle``, method "auto"), also run the joint refits and the
-    alternative shapes (``refit_*``, ``curve.branches.refit_branches_with_curves``) before
-    it.  Off: the bundle fits the shape and every pose to the polylines itself, searches every
-    frame's pose against its curve (frame 0's other branch included) and gates its shape on
-    the end points' confidence region about the answer and every equally good alternative
-    (``never_worse_alternatives``), so the refits mostly fed it a start (a refused shape
-    falls back to the end-point answer without them).  2026-11-27, 20 frames,
-    1 px, seeds 1400-1403 and 2000, every family (the refit was taken in 2 of these 30
-    scenes) and 12 frames, 0.5 px (seeds 0, 103, 222, 1200-1202: the test scenes of the
-    refits): every curve error the same to 1e-4 with and without, and the refits were about
-    40 % of the branch choice's CPU time at 20 frames (1.22 of 2.5 s over 12 scenes); held
-    out (20 frames seeds 2001-2003, 12 frames 0.5 px seeds 1203-1205) the same to 1e-4.  On
-    sharp-ends 6001 (12 frames, 1 px) the refit took an optimum 10-18 degrees off and the gate
-    then refused the bundle (curve 8.3 % off); without it the bundle is accepted (1.1 %).
-    (Since the bundle's pose search leaves out starts in the current pose's basin,
-    ``bundle.RESECT_SAME_DEG``, the path with the refits is accepted there too, 0.7 %.)  The
-    refits stay without the bundle (``--curve-bundle off``, section 4's answer)."""
-
     refit_dchi2: float = 4.0
     """A joint refit with one frame on its mirrored branch is a candidate if its chi2 is within
     this of the answer's."""
@@ -292,38 +273,6 @@ class CurveOptions:
     within 1e-2 of another agreed within 2e-5 (chi2 within 1e-9: the refinement's tolerance),
     and 5 of 12 scenes had such repeats (up to 6 of 11 candidates); no two refits fell between
     2e-5 and 1e-2.  0: every candidate scored."""
-
-    bundle_max_control_points: int = 12
-    """The bundle's curve may grow from 12 control points (knot spans halved: 21, 39) where
-    the polyline residuals ask for it: tried when they cluster along the curve
-    (``bundle_misfit_z``) and kept while Akaike's criterion of the polyline residuals improves.
-    Off (12) by default.  At 0.5 px, 12 frames, the residuals of no family asked (tuning seeds
-    6000-6011 with 39 allowed: every scene kept 12 but helix 6002, a wrong minimum): the curve
-    errors there above 0.5 % of the length are a tilt of the correctly shaped curve in frame
-    0's camera (after the best rotation about A every one was below 0.22 %, helix 6002 aside),
-    which the number of knots does not change (one sharp-ended scene, 16 noise draws: median
-    error 1.6, 1.9, 1.8 % with 8, 12, 21 control points).  At 0.1 px wiggly (Fourier) curves
-    ask for 21.  Not on by default: a polyline of another curve in one frame
-    (tests/test_curve_never_worse.py) then made the curve grow to 39 and fit it (1.2 px RMS)
-    before the flag test could leave it out (8.7 px at 12)."""
-
-    bundle_misfit_z: float = 2.0
-    """The knot spans are halved only when the residuals' clustering along the curve
-    (``bundle._Problem.span_misfit``, about N(0, 1) for pure noise and below it once the fit
-    has absorbed its parameters: -4 to +1 at 0.5 px on tuning seeds 6000-6011) exceeds this:
-    the trial fit costs 1.5-4 s, so it is run only where a bend or wiggle is missed."""
-
-    polylines_only_control_points: tuple[int, ...] = ()
-    """Polylines only (no end points or tangents given): the bundle's curve is refitted with
-    each of these numbers of control points besides its own (12) and the fit with the least
-    Bayesian information criterion whose end regions fit as well as the 12-point curve's kept
-    (``bundle.select_control_points``).  Off (empty) by default: alpha, beta, phi are the
-    curve's end tangents, and a stiffer curve shrinks their std (bench seed 1300, Bezier, 0.5
-    px, 12 frames: 2.8, 3.5, 8.9 degrees at 12 control points, 0.35, 0.80, 0.88 at 4) but
-    biases them where the curve bends near an end, which neither the criterion nor the end
-    regions' residuals see: with (4, 5, 6, 8) the rate of scenes with all three angles within
-    1 degree stayed 1 of 12 on the bench's seeds (1300-1301) and was 0 of 11 on held-out seeds
-    (7300-7301), with |error| / std up to 5 (clothoid 7300), 8 and 14 (fourier 1301)."""
 
     frame0_branch_dchi2: float = 9.0
     """Frame 0's pose fixes the coordinates of ``curve3d``; when its other pose branch of (10)

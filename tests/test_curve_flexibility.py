@@ -1,13 +1,8 @@
-"""The curve bundle's flexibility comes from the data.
+"""What limits the curve bundle's ``curve3d`` at half a pixel.
 
 Scenes: ``simulate.make_scene`` with 3-D curves of ``curve_families`` moved and projected by the
 simulator (no project code in the geometry), 12 frames, end points and tangents given.
 
-- With growth allowed (``CurveOptions.bundle_max_control_points`` 39; off by default), the
-  knot spans are halved only where the polyline residuals cluster along the curve and
-  Akaike's criterion then improves: a cubic Bezier curve (exactly a spline of 4 control points)
-  keeps the 12 of the start while a wiggly Fourier curve, which a 12-point spline misses by more
-  (checked on the true 3-D curve), gets more.
 - What limits ``curve3d`` at 0.5 px is not the flexibility: a Fourier scene whose ``curve3d``
   is about 0.5 % of the length off has the right shape (within 0.1 % after the best
   rotation about A) and is tilted as a whole in frame 0's camera, which only frame 0's own view
@@ -20,7 +15,6 @@ import numpy as np
 from scipy.interpolate import make_lsq_spline
 from scipy.spatial.transform import Rotation
 
-from curverecon.options import CurveOptions, ReconstructOptions
 from curverecon.pipeline import reconstruct
 from curverecon.simulate import make_scene
 
@@ -62,18 +56,6 @@ def _scene(family: str, seed: int, noise: float, n_points: int = 150):
         curve_family=family,
         n_curve_points=n_points,
     )
-
-
-def test_knots_grow_with_the_curve_s_wiggliness():
-    bezier, fourier = _scene("bezier", 6000, 0.1), _scene("fourier", 6000, 0.1)
-    dense = [_scene(f, 6000, 0.1, 3000).curve_3d for f in ("bezier", "fourier")]
-    # independent fact: 12 control points miss the Fourier curve by far more than the cubic
-    assert _spline_miss(dense[1], 12) > 5 * _spline_miss(dense[0], 12)
-    grow = ReconstructOptions(curve=CurveOptions(bundle_max_control_points=39))
-    k_bezier = reconstruct(bezier.observations, options=grow).curve_bundle["control_points"]
-    k_fourier = reconstruct(fourier.observations, options=grow).curve_bundle["control_points"]
-    assert k_bezier == 12
-    assert k_fourier > k_bezier
 
 
 def test_curve3d_error_at_half_a_pixel_is_the_tilt_in_frame_0_not_the_shape():

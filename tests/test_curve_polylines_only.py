@@ -10,7 +10,7 @@ curve's).  Checked against the simulator's truth:
   polyline's chords and its ends are polished robustly; measured 0.0047 and 0.0069 degrees
   (seeds 21, 22), 0 and 0.028 without the reverse term.  Curves outside the spline space
   (clothoids, helices) are off by 0.1-1.9 degrees noise-free at the bundle's 12 control points
-  (``CurveOptions.bundle_max_control_points``: the knots chosen from the data are item 2);
+  (a fixed number of knots);
 - at 0.5 px the angles' errors are within 3 of the std the answer reports (seeds not used for
   tuning);
 - a frame left on a wrong pose branch is searched again against the curve the other frames

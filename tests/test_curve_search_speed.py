@@ -3,7 +3,7 @@ constructions they replace: section 4's grid distances with pruned cells against
 3 x 3 cells, its unbounded grid distances against a k-d tree, the median of the frame residuals
 without the far points' tree queries, the cache of validated polylines, and the duplicate joint
 refits scored once (``CurveOptions.refit_same_tol``); with the curve bundle, no joint refits
-before it (``CurveOptions.refit_with_bundle``) and the same curve.
+before it.
 """
 
 from __future__ import annotations
@@ -246,34 +246,6 @@ def test_read_only_views_are_keyed_by_content():
     key = s4._poly_key(view)
     base[4, 0] += 1.0
     assert s4._poly_key(view) != key
-
-
-@pytest.mark.parametrize("family", ["fourier", "random"])
-def test_bundle_without_the_joint_refits_finds_the_same_curve(family):
-    """``CurveOptions.refit_with_bundle`` off (the default): the joint refits before the curve
-    bundle are left out.  Bench time_20 scenes (seed 1400, 20 frames, 1 px) in which the refit
-    is taken ("the curve chose between nearby maximum-likelihood optima"): the default answer's
-    curve is within 0.5 % of the true curve and within 1e-4 (of the length) of the answer with
-    the refits run, which carries their warning."""
-    from dataclasses import replace
-
-    from bench.curve_end_to_end import curve_error
-    from curverecon.options import ReconstructOptions
-    from curverecon.pipeline import reconstruct
-
-    sc = _scene_20(1400, family)
-    opts = ReconstructOptions()
-    fast = reconstruct(sc.observations, options=opts)
-    slow = reconstruct(
-        sc.observations, options=replace(opts, curve=replace(opts.curve, refit_with_bundle=True))
-    )
-    refit = "the curve chose between nearby maximum-likelihood optima"
-    assert any(w.startswith(refit) for w in slow.warnings)
-    assert not any(w.startswith(refit) for w in fast.warnings)
-    err_fast = curve_error(fast.curve3d, sc.curve_3d)
-    err_slow = curve_error(slow.curve3d, sc.curve_3d)
-    assert err_fast < 0.005, err_fast
-    assert abs(err_fast - err_slow) < 1e-4, (err_fast, err_slow)
 
 
 def test_without_the_joint_refits_the_bundle_is_not_refused_for_a_worse_optimum():

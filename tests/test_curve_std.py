@@ -102,8 +102,8 @@ def test_refused_bundle_widens_the_end_point_std():
 # (test_curve_search_speed).  Refused scenes found instead (sharp-ends, fourier, random, bezier,
 # seeds 6000-6029): fourier 6027 has its Birge-scaled std cover already (2.7 std), so it serves
 # the curve3d test below only
-@pytest.mark.parametrize(("family", "seed", "refit"), [("helix", 6007, False)])
-def test_refused_bundle_std_includes_the_answers_disagreement(family, seed, refit):
+@pytest.mark.parametrize(("family", "seed"), [("helix", 6007)])
+def test_refused_bundle_std_includes_the_answers_disagreement(family, seed):
     """A scene (1 px, 1 degree, 12 frames) whose end-point answer is itself off (by 2-3
     degrees) and whose bundle shape, nearer the truth, is refused just past the limit: the
     Birge scaling alone leaves errors of more than 3 std; with the two answers' difference in
@@ -116,7 +116,7 @@ def test_refused_bundle_std_includes_the_answers_disagreement(family, seed, refi
     # the F limit of its 8 degrees of freedom and the polylines reject the end-point poses, so
     # by default its bundle's (nearer) shape is kept (checked below); the refused path's std
     # is what this test measures
-    base = CurveOptions(refit_with_bundle=refit, never_worse_f_test=False)
+    base = CurveOptions(never_worse_f_test=False)
     birge = reconstruct(
         scene.observations,
         options=ReconstructOptions(curve=replace(base, refused_std_disagreement=False)),
@@ -134,7 +134,7 @@ def test_refused_bundle_std_includes_the_answers_disagreement(family, seed, refi
     )
     default = reconstruct(
         scene.observations,
-        options=ReconstructOptions(curve=CurveOptions(refit_with_bundle=refit)),
+        options=ReconstructOptions(curve=CurveOptions()),
     )
     if family == "helix":
         assert default.curve_bundle["accepted"]
@@ -185,10 +185,9 @@ def test_curve3d_normal_std_matches_the_distances_over_noise_draws():
 
 
 @pytest.mark.parametrize(
-    ("family", "seed", "refit"),
-    [("clothoid", 5212, False), ("helix", 6007, False), ("fourier", 6027, False)],
+    ("family", "seed"), [("clothoid", 5212), ("helix", 6007), ("fourier", 6027)]
 )
-def test_refused_bundle_curve3d_std_includes_the_curves_disagreement(family, seed, refit):
+def test_refused_bundle_curve3d_std_includes_the_curves_disagreement(family, seed):
     """Where the bundle is refused, ``curve3d`` is fitted with the end-point answer's poses
     fixed and its std alone is the curve's given those poses; the refusal says they are off,
     so each point's std adds its distance from the bundle's curve: then the true curve is
@@ -200,7 +199,7 @@ def test_refused_bundle_curve3d_std_includes_the_curves_disagreement(family, see
     # the known-variance gate alone: helix 6007 falls in the band of
     # CurveOptions.never_worse_f_test, where the polylines keep its bundle (fourier 6027 is
     # refused either way: dchi2 30.5)
-    base = CurveOptions(refit_with_bundle=refit, never_worse_f_test=False)
+    base = CurveOptions(never_worse_f_test=False)
     rec = reconstruct(scene.observations, options=ReconstructOptions(curve=base))
     assert rec.curve_bundle["accepted"] is False
     plain = reconstruct(

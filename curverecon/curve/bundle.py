@@ -44,7 +44,6 @@ from curverecon.curve.joint import (
     N_CONTROL,
     bundle_adjust,
     resect_uneven_frames,
-    select_control_points,
 )
 from curverecon.curve.residuals import SIGMA_FLOOR
 from curverecon.curve.section4 import noise_level
@@ -81,7 +80,6 @@ __all__ = [
     "polylines_reject_fixed_poses",
     "refine_reconstruction",
     "resect_uneven_frames",
-    "select_control_points",
     "shape_and_poses",
 ]
 
@@ -260,9 +258,7 @@ def _prepared(
         "tangents": tangents,
         "point_sigma": point_sigma,
         "tangent_sigma_deg": tangent_sigma_deg,
-        "k_max": o.bundle_max_control_points,
         "smooth_weight": o.bundle_smooth_weight,
-        "misfit_z": o.bundle_misfit_z,
         "order_tol": o.bundle_order_tol,
     }
     w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / np.radians(tangent_sigma_deg)] * 2)
@@ -328,12 +324,6 @@ def _fitted_bundle(run: CurveRun) -> tuple[BundleResult, np.ndarray, list[int]]:
         # polylines only: a few frames left on a wrong pose branch searched again against the
         # curve the others fit (the end tangents are the curve's own: one such frame bends them)
         br = resect_uneven_frames(br, run.curves, smooth_weight=o.bundle_smooth_weight)
-    if not run.use_given and o.polylines_only_control_points:
-        # polylines only: the end tangents are the curve's own; its number of control points
-        # from the data (the information criterion), not the fixed default
-        br, _ = select_control_points(
-            br, run.curves, o.polylines_only_control_points, smooth_weight=o.bundle_smooth_weight
-        )
     return br, mask, flagged
 
 

@@ -1,6 +1,6 @@
 """The joint fit of the curve bundle: every frame's pose and one 3-D B-spline fitted to every
-polyline (:func:`bundle_adjust`), and the polylines-only refits (:func:`resect_uneven_frames`,
-:func:`select_control_points`).
+polyline (:func:`bundle_adjust`), and the polylines-only refit of uneven frames
+(:func:`resect_uneven_frames`).
 
 Stages of :func:`bundle_adjust`, each a function here: a coarse curve (``K_COARSE`` control
 points; with ``COARSE_POINTS`` set, on polylines thinned to about that many points that stand for
@@ -8,10 +8,7 @@ the full ones, ``Problem.stand_for``) with the start poses; every frame's pose s
 against that curve (``pose_search``; a regauge when frame 0's own pose moves); the coarse fit
 again (:func:`_coarse_rounds`); then the full curve; then a polish with robust ends (``END_POLISH``:
 a traced end hooked back along the line of sight ends its polyline at the fold); a folded curve
-refitted with its feet in the polylines' order (:func:`_full_stage`); then, where the polyline
-residuals cluster along the curve (``Problem.span_misfit``: a bend or wiggle the spline misses),
-every knot span halved while Akaike's criterion improves (:func:`_grow_knots`;
-``CurveOptions.bundle_max_control_points``, ``bundle_misfit_z``).  A flat start searches every
+refitted with its feet in the polylines' order (:func:`_full_stage`).  A flat start searches every
 frame's pose against the flat curve before the first fit (``resect_first``): the end-point
 answer's poses, made for another curve, bent the flat curve into a wrong minimum (trace bench
 seed 0: every flat start from those poses lost, every one from the searched poses found the
@@ -30,10 +27,9 @@ from curverecon.curve import polyline as pl
 from curverecon.curve.fixed_poses import is_folded, unfolded_points
 from curverecon.curve.lm import MAX_ITER
 from curverecon.curve.pose_search import max_angle_deg, regauge, resect_all
-from curverecon.curve.residuals import SIGMA_FLOOR, SMOOTH_WEIGHT, Problem, bic, thinned
+from curverecon.curve.residuals import SIGMA_FLOOR, SMOOTH_WEIGHT, Problem, thinned
 from curverecon.curve.section4 import noise_level
 from curverecon.curve.spline import Basis, BundleResult, bundle_error, fit_spline, oriented_to
-from curverecon.options import CurveOptions
 
 #: Control points of the curve's cubic B-spline (default; fewer for short polylines).
 N_CONTROL = 12
@@ -90,11 +86,6 @@ RMS_LIMIT_SIGMA = 3.0
 RMS_LIMIT_PX = 1.0
 
 
-#: Parts of every knot span in which :meth:`Problem.span_misfit` sums the residuals (a cubic
-#: span that misses a wiggle leaves residuals of alternating sign within it).
-MISFIT_BINS = 4
-
-
 #: A frame whose RMS distance exceeds UNEVEN_RATIO times the median frame's (plus sigma / 4,
 #: and at least sigma) fits clearly worse than the others: the coarse stage down-weights it
 #: before the pose search, and :func:`refine_reconstruction` tries the second start.
@@ -130,10 +121,8 @@ def bundle_adjust(
     tangent_sigma_deg: float = 1.0,
     max_iter: int = MAX_ITER,
     polyline_mask: np.ndarray | None = None,
-    k_max: int = 0,
     resect_first: bool = False,
     smooth_weight: float = SMOOTH_WEIGHT,
-    misfit_z: float = CurveOptions.bundle_misfit_z,
     order_tol: float = 0.0,
     twin_m: np.ndarray | None = None,
     twin_deg: float = 0.0,
@@ -149,9 +138,6 @@ def bundle_adjust(
     n_control: control points of the spline (default ``N_CONTROL``, fewer for short polylines).
     ends: optional (N, 2, 2) given A', B' per frame; tangents: optional (N, 2, 2) given image
         tangent directions at A and B (any sign); with their sigmas (pixels, degrees).
-    k_max: the control points grow (knot spans halved) up to this many while the residuals
-        cluster along the curve (:meth:`Problem.span_misfit` above ``misfit_z``) and Akaike's
-        criterion (:func:`bic` with 2 per parameter) improves (0: no growth).
     resect_first: search every frame's pose (but frame 0's) against the start curve before
         the first fit (a start curve that the start poses were not made for).
     polyline_mask: optional (N,) bool, False for frames whose polyline is left out of the fit
@@ -232,8 +218,7 @@ def bundle_adjust(
         setup, prob, (ctrl, m, b), k, k_coarse, max_iter, order_tol
     )
     total_it += it
-    grown = _grow_knots(setup, prob, (ctrl, m, b), cost, converged, k_max, misfit_z, max_iter)
-    (ctrl, m, b), cost, converged, rms, it = grown
+    rms = prob.residuals(ctrl, m, b, jac=False)[2]
     return BundleResult(
         ctrl,
         m,
@@ -242,7 +227,7 @@ def bundle_adjust(
         rms,
         cost_start,
         cost,
-        total_it + it,
+        total_it,
         converged,
         coarse_m=coarse_m,
         coarse_cost=coarse_cost,
@@ -461,123 +446,6 @@ def _full_stage(
         (ctrl, m, b), cost, it, converged = lm.lm_bundle(prob, (ctrl, m, b), max_iter)
         total_it += it
     return prob, (ctrl, m, b), cost, total_it, converged
-
-
-def _grow_knots(
-    setup: _Setup,
-    prob: Problem,
-    state: tuple,
-    cost: float,
-    converged: bool,
-    k_max: int,
-    misfit_z: float,
-    max_iter: int,
-):
-    """Every knot span halved while the residuals cluster along the curve and Akaike's
-    criterion improves (``k_max``, ``misfit_z`` of :func:`bundle_adjust`).  Returns (state,
-    cost, converged, per-frame RMS px, iterations)."""
-    ctrl, m, b = state
-    k, total_it = prob.k, 0
-    rms = prob.residuals(ctrl, m, b, jac=False)[2]
-    crit = bic(prob, rms, prob.n_par, 2.0)
-    while 2 * k - 3 <= int(k_max):
-        # every knot span halved (the old curve exactly, so the fit starts at the old optimum);
-        # tried only where the residuals cluster along the curve (``misfit_z``: a bend or wiggle
-        # the spline misses; the trial costs a fit) and kept while the information criterion
-        # improves
-        # not while some frame fits clearly worse than the others (``_uneven``): a polyline
-        # that contradicts the others (to be flagged) or a wrong pose is no bend of the curve,
-        # and a freer curve would hide it
-        if (
-            _uneven(rms[setup.use_poly], setup.sigma)
-            or prob.span_misfit(ctrl, m, b, MISFIT_BINS) <= misfit_z
-        ):
-            break
-        k2 = 2 * k - 3
-        u = np.linspace(0.0, 1.0, 20 * k2)
-        ctrl2 = np.linalg.lstsq(Basis(k2).values(u), prob.basis.values(u) @ ctrl, rcond=None)[0]
-        prob2 = setup.problem(k2)
-        prob2.robust_ends = END_POLISH
-        (c2, m2, b2), cost2, it, conv2 = lm.lm_bundle(prob2, (ctrl2, m, b), max_iter)
-        total_it += it
-        rms2 = prob2.residuals(c2, m2, b2, jac=False)[2]
-        crit2 = bic(prob2, rms2, prob2.n_par, 2.0)
-        if not crit2 < crit:
-            break
-        k, prob, ctrl, m, b, cost, converged, rms, crit = (
-            k2, prob2, c2, m2, b2, cost2, conv2, rms2, crit2
-        )  # fmt: skip
-    return (ctrl, m, b), cost, converged, rms, total_it
-
-
-def select_control_points(
-    result: BundleResult,
-    polylines: Sequence[np.ndarray],
-    candidates: Sequence[int],
-    *,
-    smooth_weight: float = SMOOTH_WEIGHT,
-    max_iter: int = MAX_ITER,
-    end_fraction: float = 0.15,
-    end_dchi2: float = 1.0,
-) -> tuple[BundleResult, dict[int, float]]:
-    """The bundle refitted with each number of control points of ``candidates`` (fewer or more
-    than ``result``'s), every pose free, no given end points or tangents; the fit with the
-    least Bayesian information criterion (:func:`bic`, ln n per parameter) is returned, with
-    every candidate's criterion.  Each refit starts from ``result``'s curve (least squares on
-    the new basis) and poses.
-
-    Polylines only, the end tangents (alpha, beta, phi) are the curve's at its ends: the more
-    control points, the shorter the end spans that fix them and the larger their variance, while
-    a curve with too few bends away from the polylines (the criterion sees it in the residuals).
-    """
-    ctrl0 = np.asarray(result.control, float)
-    k0 = len(ctrl0)
-    polys = oriented_to(polylines, result)
-
-    def problem(kk: int) -> Problem:
-        prob = Problem(polys, result.sigma, kk, None, None, 1.0, 1.0)
-        prob.smooth_weight = float(smooth_weight)
-        prob.robust_ends = END_POLISH
-        return prob
-
-    prob0 = problem(k0)
-    rms0 = prob0.residuals(ctrl0, result.m, result.b, jac=False)[2]
-    crits = {k0: bic(prob0, rms0, prob0.n_par)}
-    best = (crits[k0], result)
-    end0 = _end_region_chi2(polys, ctrl0, result.m, result.b, result.sigma, end_fraction)
-    u = np.linspace(0.0, 1.0, 400)
-    dense = Basis(k0).values(u) @ ctrl0
-    for kk in sorted({int(k) for k in candidates} - {k0}):
-        if kk < 4:
-            continue
-        prob = problem(kk)
-        ctrl = np.linalg.lstsq(Basis(kk).values(u), dense, rcond=None)[0]
-        ctrl -= [0.0, 0.0, ctrl[0, 2]]  # A's depth: the gauge
-        state = (ctrl, result.m.copy(), result.b.copy())
-        (ctrl, m, b), cost, it, conv = lm.lm_bundle(prob, state, max_iter)
-        rms = prob.residuals(ctrl, m, b, jac=False)[2]
-        crits[kk] = bic(prob, rms, prob.n_par)
-        end = _end_region_chi2(polys, ctrl, m, b, result.sigma, end_fraction)
-        # the ends must fit as well as with the reference curve: a curve too stiff for a bend
-        # near an end bends its end tangent, which the whole polyline's criterion hardly sees
-        limit = end_dchi2 * max(3 * (k0 - kk), 1)
-        if np.any(end - end0 > limit):
-            crits[kk] = np.inf
-        if crits[kk] < best[0]:
-            res = BundleResult(
-                ctrl,
-                m,
-                b,
-                result.sigma,
-                rms,
-                result.cost_start,
-                cost,
-                result.iterations + it,
-                conv,
-                list(result.warnings),
-            )
-            best = (crits[kk], res)
-    return best[1], crits
 
 
 def resect_uneven_frames(

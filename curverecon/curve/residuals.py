@@ -594,14 +594,6 @@ class Problem:
         ps[:, :, 0] += b[:, None, :2]
         return ps
 
-    def _span_local(self, ps: np.ndarray, fid: np.ndarray, u: np.ndarray):
-        """Coefficients (Q, 4, 2) of each point's span (frame ``fid``) and the local coordinate
-        (Q, 1) of u in it (:meth:`span_misfit`; the residuals themselves come from
-        ``bundle_kernel.forward_rows``)."""
-        t = np.clip(u, 0.0, 1.0) * self.basis.spans
-        j = np.minimum(t.astype(int), self.basis.spans - 1)
-        return ps[fid, j], (t - j)[:, None]
-
     def _jc_rows(self, nus: np.ndarray, dm: np.ndarray) -> np.ndarray:
         """Curve-parameter Jacobian rows ``sum_k nus[r, k] dm[r, c]`` at the free (k, c)."""
         # every (k, c) product at once, then the free columns (P0_z, the depth gauge, left out)
@@ -915,33 +907,6 @@ class Problem:
         """(N,) each frame's sum of squared residuals (the regulariser's rows left out)."""
         keep = rows >= 0
         return np.bincount(rows[keep], r[keep] ** 2, minlength=self.n)
-
-    def span_misfit(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray, bins: int) -> float:
-        """How much the polyline residuals cluster along the curve: the signed normal residuals
-        (units of sigma, clipped at ``HUBER_K``) of the frames in the fit summed in ``bins``
-        equal parts of every knot span per frame; ``T = sum over (frame, part) of sum^2 / count``
-        is chi2 with one degree of freedom per part when the residuals are the polylines' noise
-        and grows when the spline misses a bend or wiggle there (the residuals of a span then
-        share a sign in every frame).  Returns ``(T - dof) / sqrt(2 dof)`` (about N(0, 1) for
-        noise; the frames left out of the fit and empty parts are not counted)."""
-        fid, u = self.q_fid, self._all_foot_points(ctrl, m, b)
-        c, xl = self._span_local(self._projected_spans(ctrl, m, b), fid, u)
-        e = ((c[:, 3] * xl + c[:, 2]) * xl + c[:, 1]) * xl + c[:, 0] - self.q_all
-        tan = (3.0 * c[:, 3] * xl + 2.0 * c[:, 2]) * xl + c[:, 1]
-        nrm = np.column_stack([-tan[:, 1], tan[:, 0]])
-        nrm /= np.maximum(np.linalg.norm(nrm, axis=1), 1e-300)[:, None]
-        r = np.clip(np.einsum("ij,ij->i", nrm, e) / self.sigma, -HUBER_K, HUBER_K)
-        keep = (u > 0.0) & (u < 1.0) & (np.asarray(self.poly_w, float)[fid] > 0)
-        nb = self.basis.spans * int(bins)
-        part = np.minimum((u[keep] * nb).astype(int), nb - 1) + nb * fid[keep]
-        sums = np.bincount(part, r[keep], minlength=nb * self.n)
-        cnt = np.bincount(part, minlength=nb * self.n)
-        full = cnt > 0
-        dof = int(full.sum())
-        if dof == 0:
-            return 0.0
-        t = float(np.sum(sums[full] ** 2 / cnt[full]))
-        return (t - dof) / np.sqrt(2.0 * dof)
 
     def pose_normal_equations(self, ctrl: np.ndarray, m: np.ndarray, b: np.ndarray):
         """Per frame (every frame, the curve fixed): (cost (N,), V = Jp^T Jp (N, 5, 5),

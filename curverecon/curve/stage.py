@@ -81,15 +81,12 @@ def fit_curve(
             # with the bundle on given end points (and no joint refits after it) the search's
             # coarse curve of the chosen poses is the bundle's start
             # (CurveOptions.bundle_start_from_search)
-            coarse_start = (
-                bundle and obs.ends_given and not o.refit_with_bundle and o.bundle_start_from_search
-            )
+            coarse_start = bundle and obs.ends_given and o.bundle_start_from_search
             rec, res = resolve_branches_with_curves(
                 rec, obs.curves, reconstruct_curve, o, full=not coarse_start
             )
-            if not bundle or o.refit_with_bundle:
-                # the joint refits (the bundle refits the shape and every pose itself:
-                # CurveOptions.refit_with_bundle)
+            if not bundle:
+                # the joint refits (the bundle refits the shape and every pose itself)
                 rec, res = refit_branches_with_curves(
                     rec,
                     obs,
