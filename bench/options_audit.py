@@ -493,8 +493,8 @@ def _describe(base: dict[str, Any], new: dict[str, Any]) -> str:
     if "curve_err" in a and "curve_err" in b:
         parts.append(f"curve {100 * a['curve_err']:.3g} -> {100 * b['curve_err']:.3g} %")
     if a["std"] and b["std"]:
-        r = max(y / x if x > 0 else INF for x, y in zip(a["std"], b["std"], strict=True))
-        parts.append(f"std x{r:.3g} (largest)")
+        r = [y / x if x > 0 else INF for x, y in zip(a["std"], b["std"], strict=True)]
+        parts.append(f"std x{min(r):.3g} to x{max(r):.3g}")
     return "; ".join(parts)
 
 
@@ -557,8 +557,13 @@ def main(argv: list[str] | None = None) -> None:
     p.add_argument("--only", nargs="*", default=None, help="Class.field names")
     p.add_argument("--max-seconds", type=float, default=300.0)
     p.add_argument("--reuse-defaults", action="store_true")
+    p.add_argument("--resume", action="store_true", help="keep the options audit.json has")
+    p.add_argument("--table", action="store_true", help="print audit.json as a markdown table")
     args = p.parse_args(argv)
     out = Path(args.out)
+    if args.table:
+        print(markdown(json.loads((out / "audit.json").read_text())), end="")
+        return
     out.mkdir(parents=True, exist_ok=True)
     install()
     scenes = suite()
@@ -573,13 +578,19 @@ def main(argv: list[str] | None = None) -> None:
         for r in res["reads"]:
             reads.setdefault(r, []).append(name)
     (out / "reads.json").write_text(json.dumps(reads, indent=1))
-    order = sorted(base, key=lambda n: base[n]["seconds"])
+    order = _interleaved(base)
     frames_of = {s["name"]: _frames(s["build"]) for s in scenes}
     slim = {n: {k: v for k, v in r.items() if k != "doc"} for n, r in base.items()}
     tasks, results = [], []
-    for key, value in NEUTRAL.items():
+    apath = out / "audit.json"
+    if args.resume and apath.exists():
+        results = [r for r in json.loads(apath.read_text()) if r["verdict"] != "unread"]
+    done = {r["option"] for r in results}
+    # the stages cheapest to audit first; the search and the curve (most scenes read them) last
+    rank = {"SearchOptions": 1, "CurveOptions": 2}
+    for key, value in sorted(NEUTRAL.items(), key=lambda kv: rank.get(kv[0][0], 0)):
         name = f"{key[0]}.{key[1]}"
-        if args.only is not None and name not in args.only:
+        if (args.only is not None and name not in args.only) or name in done:
             continue
         read_on = [n for n in order if n in set(reads.get(name, ()))]
         cap = SCENE_CAP_FRAMES.get(key)
@@ -594,8 +605,75 @@ def main(argv: list[str] | None = None) -> None:
             res["read_on"] = len(reads.get(res["option"], ()))
             results.append(res)
             print(json.dumps(res), flush=True)
-            (out / "audit.json").write_text(json.dumps(results, indent=1))
-    (out / "audit.json").write_text(json.dumps(results, indent=1))
+            apath.write_text(json.dumps(results, indent=1))
+    apath.write_text(json.dumps(results, indent=1))
+
+
+def _default(name: str) -> str:
+    cname, field = name.split(".")
+    for f in dataclasses.fields(option_classes()[cname]):
+        if f.name == field:
+            if f.default is not dataclasses.MISSING:
+                return repr(f.default)
+            return repr(f.default_factory())  # type: ignore[misc]
+    return "(removed)"
+
+
+def _moved_text(r: dict[str, Any]) -> str:
+    rows = r.get("scenes", [])
+    hit = [x for x in rows if x["moved"] and x["moved"] != ["output"]]
+    if hit:
+        x = hit[0]
+        return f"{x['scene']}: {', '.join(x['moved'])} ({x.get('detail', '')})"
+    out = [x["scene"] for x in rows if x["moved"] == ["output"]]
+    if out:
+        return f"output only ({', '.join(out[:3])}{' ...' if len(out) > 3 else ''})"
+    return ""
+
+
+VERDICTS = {
+    "unread": "unread",
+    "identical": "identical",
+    "output": "output, no figure",
+    "figure": "figure",
+    "time": "time",
+}
+
+
+def markdown(results: list[dict[str, Any]]) -> str:
+    """The measurement table (docs/options-audit.md): one row per option."""
+    lines = [
+        "| option | default | neutral | scenes read | run | verdict | what moved (first scene) |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for r in sorted(results, key=lambda r: r["option"]):
+        verdict = r["verdict"]
+        base = verdict.replace(" (partial)", "")
+        partial = " (partial)" if "partial" in verdict else ""
+        ratio = r.get("time_ratio")
+        what = _moved_text(r)
+        if ratio is not None and (ratio > 1.5 or ratio < 1 / 1.5):
+            what = f"{what}; time x{ratio}".lstrip("; ")
+        lines.append(
+            f"| `{r['option']}` | `{_default(r['option'])}` | `{r['neutral']}` | "
+            f"{r.get('read_on', 0)} | {len(r.get('scenes', []))} | "
+            f"{VERDICTS.get(base, base)}{partial} | {what} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def _interleaved(base: dict[str, Any]) -> list[str]:
+    """Scene names, one of each kind in turn (each kind cheapest first): an option whose
+    neutral value moves a figure meets a scene of every kind early."""
+    kinds: dict[str, list[str]] = {}
+    for name in sorted(base, key=lambda n: base[n]["seconds"]):
+        kinds.setdefault(name.split("_")[0].rstrip("0123456789"), []).append(name)
+    out = []
+    while any(kinds.values()):
+        for names in kinds.values():
+            if names:
+                out.append(names.pop(0))
+    return out
 
 
 def _frames(spec: tuple) -> int:

@@ -1,4 +1,4 @@
-"""Hypotheses from four-frame samples: LO-RANSAC on the complete minimal solver (issue 12).
+"""Hypotheses from four-frame samples: LO-RANSAC on the complete minimal solver.
 
 With outlier frames the global search (``robust.search``) refines its candidates on all frames,
 and the outliers pull every candidate: on 30 % outlier scenes its best candidate was 40-50

@@ -1,4 +1,4 @@
-"""The complete minimal solver: four frames, every shape that fits them exactly (issue 12).
+"""The complete minimal solver: four frames, every shape that fits them exactly.
 
 Four frames give four lean equations (``generated/lean_polynomial.py``) in the four unknowns
 (c, tan(alpha), tan(beta), cos(phi)).  ``make derive`` reduces them by their symmetry to
