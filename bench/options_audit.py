@@ -161,7 +161,6 @@ NEUTRAL: dict[tuple[str, str], Any] = {
     ("FewFrameSampleOptions", "max_frames"): NEVER,
     ("FewFrameSampleOptions", "samples"): 0,
     ("FewFrameSampleOptions", "refine_per_sample"): 1,
-    ("FewFrameSampleOptions", "degenerate_skips"): 0,
     ("FewFrameSampleOptions", "precise_p_value"): 0.0,
     ("FewFrameSampleOptions", "precise_chi2_ratio"): INF,
     ("ReconstructOptions", "marginal_max_frames"): NEVER,

@@ -810,9 +810,6 @@ class FewFrameSampleOptions:
     """Of each sample's solutions, this many with the lowest chi2 on all frames (shape fixed,
     every frame at its best pose) are refined on all frames.  Exact data: the truth's chi2 is
     zero, always the first."""
-    degenerate_skips: int = 10
-    """Degenerate samples (two equal views, a tangent along A'B') skipped, each replaced by the
-    next spread sample, before giving up."""
     precise_p_value: float = 1e-2
     """Beyond ``max_frames``: run when the search's best fit is not exact but its chi2 is
     improbably low for the noise given (lower tail probability, n - 4 degrees of freedom): the

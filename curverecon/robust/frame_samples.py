@@ -365,25 +365,20 @@ def few_frame_hypotheses(
     minimal_options: MinimalOptions | None = None,
     search: SearchOptions | None = None,
 ) -> list[Candidate]:
-    """Candidates from the real minimal solutions of ``options.samples`` spread samples (a
-    degenerate sample is replaced by the next of :func:`spread_samples`): of
-    each sample's shapes the ``options.refine_per_sample`` with the lowest chi2 on all frames
-    (shape fixed, every frame at its best branch of (10)) are refined on all frames
-    (``refine.start.refine_hypothesis``); best (lowest robust cost) first."""
+    """Candidates from the real minimal solutions of the first ``options.samples`` spread
+    samples (:func:`spread_samples`; a degenerate one gives none): of each sample's shapes the
+    ``options.refine_per_sample`` with the lowest chi2 on all frames (shape fixed, every frame
+    at its best branch of (10)) are refined on all frames (``refine.start.refine_hypothesis``);
+    best (lowest robust cost) first."""
     o = options or FewFrameSampleOptions()
     w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / tangent_sigma] * 2)
     meas = obs.measurements()
     starts: list[np.ndarray] = []
-    solved = 0
-    tries = itertools.islice(iter_spread_samples(obs.n_frames), o.samples + o.degenerate_skips)
-    for sample in tries:
-        if solved >= o.samples:
-            break
+    for sample in itertools.islice(iter_spread_samples(obs.n_frames), o.samples):
         try:
             shapes = minimal.solve(obs.subset(sample), minimal_options).shapes
-        except CurveReconError:  # a degenerate sample (two equal views, a tangent along A'B'):
-            continue  # the next one
-        solved += 1
+        except CurveReconError:  # a degenerate sample (two equal views, a tangent along A'B')
+            continue
         if shapes.shape[0] == 0:
             continue
         poses = switch_branches(obs, shapes, poses_from_branches(obs, shapes), w8)
