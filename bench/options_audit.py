@@ -81,7 +81,6 @@ NEUTRAL: dict[tuple[str, str], Any] = {
     ("BranchOptions", "ambiguous_dchi2"): 0.0,
     ("BranchOptions", "flip_dchi2"): 0.0,
     ("BranchOptions", "flip_max_frames"): 0,
-    ("BranchOptions", "flip_combo_max"): 0,
     ("BranchOptions", "alternative_dchi2"): 0.0,
     ("BranchOptions", "mixture_dchi2"): 0.0,
     ("CurveOptions", "bundle"): False,

@@ -46,7 +46,7 @@ class SearchOptions:
 
     near_exact_chi2: float = 0.05
     """chi2 per degree of freedom below which a fit that is not exact counts as nearly
-    noise-free (search harder; flip pairs and triples of frames).  Noise-free 6-frame rate."""
+    noise-free (search harder).  Noise-free 6-frame rate."""
 
     exact_cost: float = 1e-9
     """A (robust) chi2 at or below this is an exact fit: nothing can beat it by the relative 1e-9
@@ -167,10 +167,6 @@ class BranchOptions:
 
     flip_max_frames: int = 12
     """... only with at most this many inlier frames (with more, the others pin the shape)."""
-
-    flip_combo_max: int = 64
-    """Nearly noise-free fits: at most this many pairs and triples of frames switched together
-    (noise-free 5-6 frame rates)."""
 
     alternative_dchi2: float = 4.0
     """Shapes whose chi2 is within this of the best count as fitting equally well."""
