@@ -129,8 +129,6 @@ NEUTRAL: dict[tuple[str, str], Any] = {
     ("CurveOptions", "fixed_pose_resolution"): 1e-4,
     ("CurveOptions", "fixed_pose_smooth_weight"): 0.1,
     ("CurveOptions", "fixed_pose_smooth_factor"): 1.0,
-    ("MinimalOptions", "real_tolerance"): 1e-3,
-    ("MinimalOptions", "bound_tolerance"): 1e-3,
     ("MinimalOptions", "polish_iterations"): 0,
     ("MinimalOptions", "duplicate_frames"): 0.0,
     ("MinimalOptions", "tangent_along_chord_deg"): 0.0,
@@ -650,11 +648,12 @@ def markdown(results: list[dict[str, Any]]) -> str:
         base = verdict.replace(" (partial)", "")
         partial = " (partial)" if "partial" in verdict else ""
         ratio = r.get("time_ratio")
-        what = _moved_text(r)
+        what = _moved_text(r) or r.get("note", "")
         if ratio is not None and (ratio > 1.5 or ratio < 1 / 1.5):
             what = f"{what}; time x{ratio}".lstrip("; ")
         lines.append(
-            f"| `{r['option']}` | `{_default(r['option'])}` | `{r['neutral']}` | "
+            f"| `{r['option']}` | `{r.get('default') or _default(r['option'])}` | "
+            f"`{r['neutral']}` | "
             f"{r.get('read_on', 0)} | {len(r.get('scenes', []))} | "
             f"{VERDICTS.get(base, base)}{partial} | {what} |"
         )
@@ -692,7 +691,7 @@ def stage_list(results: list[dict[str, Any]], gone: set[str]) -> str:
         lines.append(f"- **{title}**")
         for r in sorted(rows, key=lambda r: r["option"]):
             field = r["option"].split(".")[1]
-            what = _moved_text(r) or r["verdict"]
+            what = _moved_text(r) or r.get("note") or r["verdict"]
             lines.append(f"  - `{field}` = `{_default(r['option'])}`: {what}")
     return "\n".join(lines) + "\n"
 

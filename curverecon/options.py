@@ -594,14 +594,10 @@ ESTIMATORS = ("marginal", "ml")
 
 @dataclass(frozen=True)
 class MinimalOptions:
-    """What counts as a real shape among the tracked solutions, and the tracker's options."""
+    """The minimal solver's input checks, its polish, and the tracker's options.  (What counts
+    as real and inside the bounds: ``solvers.minimal.REAL_TOLERANCE``, ``BOUND_TOLERANCE``.)"""
 
     homotopy: HomotopyOptions = field(default_factory=HomotopyOptions)
-    real_tolerance: float = 1e-6
-    """Largest |imaginary part| / (1 + |value|) of a solution taken as real.  Tracked endpoints
-    are polished to about 1e-12; complex pairs of real data sit far above this."""
-    bound_tolerance: float = 1e-6
-    """Slack on C >= c'^2, A, B >= 0 and 0 <= P <= 1 (dimensionless, after scaling)."""
     polish_iterations: int = 6
     """Newton iterations on the tracked (unsquared) system for each real solution; the tracker
     ends every path with up to 3 already, so this is a margin (it stops at 1e-15 relative)."""
