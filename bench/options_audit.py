@@ -692,6 +692,9 @@ def stage_list(results: list[dict[str, Any]], gone: set[str]) -> str:
         for r in sorted(rows, key=lambda r: r["option"]):
             field = r["option"].split(".")[1]
             what = _moved_text(r) or r.get("note") or r["verdict"]
+            if r["verdict"].startswith("identical"):
+                run = len(r.get("scenes", []))
+                what = f"identical on {run} of {r.get('read_on', run)} scenes that read it"
             lines.append(f"  - `{field}` = `{_default(r['option'])}`: {what}")
     return "\n".join(lines) + "\n"
 
