@@ -178,12 +178,8 @@ NEUTRAL: dict[tuple[str, str], Any] = {
 TraceOptions' width, high_sigmas, low_sigmas, end_direction_widths and tangent_fit_length
 are scales of the input with no neutral value (measured on the trace bench, kept)."""
 
-# Options that the suite cannot run at their neutral value: the reason (kept on it).
-NOT_RUN = {
-    ("CurveOptions", "curve_search_max_frames"): "the full branch search at 1,000 frames takes "
-    "hours (section 4 is O(N^2) per candidate switch)",
-}
-
+# The full branch search on every frame of a 1,000-frame curve takes hours (section 4 is
+# O(N^2) per candidate switch, ``CurveOptions.curve_search_max_frames``): only shorter scenes.
 SCENE_CAP_FRAMES = {("CurveOptions", "curve_search_max_frames"): 200}
 
 
@@ -254,7 +250,7 @@ def _sim(seed, group, key, frames, noise, **kw):
     return make(seed, group, key, frames, point_sigma=noise, tangent_sigma_deg=noise, **kw)
 
 
-def _curve_scene(seed, frames, noise, family, ends=True):
+def _curve_scene(seed, frames, noise, family):
     from curverecon.simulate import make_scene
 
     sc = make_scene(
