@@ -141,7 +141,6 @@ NEUTRAL: dict[tuple[str, str], Any] = {
     ("FrameSampleOptions", "max_samples"): 1000,
     ("FrameSampleOptions", "success_prob"): 0.9,
     ("FrameSampleOptions", "dyn_num_trials_mult"): 1.0,
-    ("FrameSampleOptions", "min_refine_frames"): 0,
     ("FrameSampleOptions", "score"): "tangent",
     ("FrameSampleOptions", "seed"): 1,
     ("FrameSampleOptions", "final_refinements"): 0,

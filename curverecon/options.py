@@ -664,8 +664,6 @@ class FrameSampleOptions:
     """Probability that some sample was all inliers when the loop stops (adaptive stopping)."""
     dyn_num_trials_mult: float = 2.0
     """Safety factor on the adaptive number of samples (noisy samples give imprecise shapes)."""
-    min_refine_frames: int = 6
-    """Frames a shape must explain before it is refined on them (the local optimisation)."""
     score: str = "fixed_shape"
     """How a sample's shape is scored on all frames: "fixed_shape", the robust cost of
     ``fixed_shape_fit`` (every frame's pose at its best branch, all six residuals: the measure

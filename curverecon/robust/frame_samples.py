@@ -64,6 +64,11 @@ def fixed_shape_fit(
     return refine(obs, shape, poses, point_sigma, tangent_sigma, max_iter=0, covariance=False)
 
 
+MIN_REFINE_FRAMES = 6
+"""Frames a shape must explain before the local optimisation refines it on them (a fit on
+fewer is barely determined; 0 gave the same output on the 13 scenes of
+``bench.options_audit`` that run the samples: ``docs/options-audit.md``)."""
+
 CHORD_BINS = 64
 """Bins of the chord-length convolution in :func:`chord_costs` (each a quarter of the chord's
 noise standard deviation wide, over +-8 of them)."""
@@ -233,7 +238,7 @@ class FrameSampleEstimator:
                 self.obs, shape, self.point_sigma, self.tangent_sigma, self.search
             )
             inliers = fit.frame_chi2 < self.options.truncate
-            if int(inliers.sum()) < self.options.min_refine_frames:
+            if int(inliers.sum()) < MIN_REFINE_FRAMES:
                 return shape
             if previous is not None and np.array_equal(inliers, previous):
                 break
@@ -262,7 +267,7 @@ class FrameSampleEstimator:
                 self.obs, shape, self.point_sigma, self.tangent_sigma, self.search
             )
             inliers = fit.frame_chi2 < mult * o.truncate
-            if int(inliers.sum()) < o.min_refine_frames:
+            if int(inliers.sum()) < MIN_REFINE_FRAMES:
                 break
             shape = refine_hypothesis(
                 self.obs.subset(inliers),
