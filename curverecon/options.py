@@ -46,7 +46,7 @@ class SearchOptions:
 
     near_exact_chi2: float = 0.05
     """chi2 per degree of freedom below which a fit that is not exact counts as nearly
-    noise-free (search harder; flip pairs and triples of frames).  Noise-free 6-frame rate."""
+    noise-free (search harder).  Noise-free 6-frame rate."""
 
     exact_cost: float = 1e-9
     """A (robust) chi2 at or below this is an exact fit: nothing can beat it by the relative 1e-9
@@ -167,10 +167,6 @@ class BranchOptions:
 
     flip_max_frames: int = 12
     """... only with at most this many inlier frames (with more, the others pin the shape)."""
-
-    flip_combo_max: int = 64
-    """Nearly noise-free fits: at most this many pairs and triples of frames switched together
-    (noise-free 5-6 frame rates)."""
 
     alternative_dchi2: float = 4.0
     """Shapes whose chi2 is within this of the best count as fitting equally well."""
@@ -314,7 +310,7 @@ class CurveOptions:
     0.20 %); fourier seed 1306 at 12 frames reached the first start's minimum instead of a
     higher one (the flat start it called for not needed, the same curve).  Held out, seeds
     1403-1407, 2002-2005, 2100 at 20 frames (18 second starts): the same 15 stops, 1.95 ->
-    1.19 s; sharp-ends seed 2005's run to the end now won by a cost of 0.01 (the rough floor)
+    1.19 s; sharp-ends seed 2005's run to the end won by a cost of 0.01 (the rough floor)
     where it had lost by 1.6, a curve 0.52 % off instead of 3.8 %.  Capping also the LM
     after the first pose search (a second search before the test) saved a little more at 20
     frames but lost 3 of the stops at 12 frames (runs sent to higher minima instead)."""
@@ -334,7 +330,7 @@ class CurveOptions:
     parametrisation (sliding control points along the curve), which the images leave free; it
     is zero for cubics but not for the curves fitted, so a heavy weight pulls the curve towards
     a cubic - a bias of the end tangents that the covariance, counting the penalty as
-    information, does not show.  At 2.0 (before) the shape's |error| / std had an RMS of
+    information, does not show.  At 2.0 (the former weight) the shape's |error| / std had an RMS of
     1.17-1.33 per parameter on accepted scenes (1 px, 1 degree, 12 frames, seeds 5000-5004 of
     every family; chi2 per polyline point 0.86-1.05, residuals white along the polylines: not
     the noise model) and 20 noise draws of one scene (random family, seed 5502) showed a
@@ -547,14 +543,10 @@ ESTIMATORS = ("marginal", "ml")
 
 @dataclass(frozen=True)
 class MinimalOptions:
-    """What counts as a real shape among the tracked solutions, and the tracker's options."""
+    """The minimal solver's input checks, its polish, and the tracker's options.  (What counts
+    as real and inside the bounds: ``solvers.minimal.REAL_TOLERANCE``, ``BOUND_TOLERANCE``.)"""
 
     homotopy: HomotopyOptions = field(default_factory=HomotopyOptions)
-    real_tolerance: float = 1e-6
-    """Largest |imaginary part| / (1 + |value|) of a solution taken as real.  Tracked endpoints
-    are polished to about 1e-12; complex pairs of real data sit far above this."""
-    bound_tolerance: float = 1e-6
-    """Slack on C >= c'^2, A, B >= 0 and 0 <= P <= 1 (dimensionless, after scaling)."""
     polish_iterations: int = 6
     """Newton iterations on the tracked (unsquared) system for each real solution; the tracker
     ends every path with up to 3 already, so this is a margin (it stops at 1e-15 relative)."""
@@ -596,9 +588,9 @@ class FrameSampleOptions:
     outliers) the answer was 8.8 degrees off with chi2 44.3 on 16 degrees of freedom (p 2e-4),
     below the outlier test's 54.3 (``implausible_chi2``, five standard deviations plus 10).
     With it that scene is 2.7 degrees off.  Held out (seed 6262, 40 scenes each at 10 % and
-    30 % outliers): the same successes as with the old rule.  Clean 20-frame, 1 px / 1 degree
-    scenes (seed 6161, 300): none below 1e-3 (smallest 0.0017), 2.7 % below 1e-2, so the
-    samples' seconds are not spent on clean data."""
+    30 % outliers): the same successes as with the rule before it (flagged frames only).
+    Clean 20-frame, 1 px / 1 degree scenes (seed 6161, 300): none below 1e-3 (smallest
+    0.0017), 2.7 % below 1e-2, so the samples' seconds are not spent on clean data."""
     min_samples: int = 10
     """Samples drawn at least (PoseLib's ``min_iterations``)."""
     max_samples: int = 30
@@ -612,16 +604,15 @@ class FrameSampleOptions:
     every 30 % scene.  With 30 (and the local optimisation's ``chord_prior``, ``anneal_steps``,
     ``search_answer_start``): bench seed 45 of 50 (90 %) against 44 with 20 (scene 22
     gained), 10 % 49 of 50 as before; held out, seed 7373: 27 of 30 (27 with 20, 25 with the
-    old defaults); tuning seeds 5151 27 of 30 (27 with 20, 28 old), 4242 29 (28 with 20, 29
-    old: 23 lost, 29 gained).  CPU time a scene (``time.process_time``, side by side), bench
-    seed 30 %: 2.24 s (old defaults) -> 2.31 (20 samples) -> 2.86 (30); 10 %: 1.45 -> 1.52.
+    defaults before the three); tuning seeds 5151 27 of 30 (27 with 20, 28 before), 4242 29
+    (28 with 20, 29 before: 23 lost, 29 gained).  CPU time a scene (``time.process_time``, side
+    by side), bench seed 30 %: 2.24 s (defaults before the three) -> 2.31 (20 samples) -> 2.86
+    (30); 10 %: 1.45 -> 1.52.
     (Under the first scores, seeds 777 and 779, 30 gave the same successes as 20.)"""
     success_prob: float = 0.999
     """Probability that some sample was all inliers when the loop stops (adaptive stopping)."""
     dyn_num_trials_mult: float = 2.0
     """Safety factor on the adaptive number of samples (noisy samples give imprecise shapes)."""
-    min_refine_frames: int = 6
-    """Frames a shape must explain before it is refined on them (the local optimisation)."""
     score: str = "fixed_shape"
     """How a sample's shape is scored on all frames: "fixed_shape", the robust cost of
     ``fixed_shape_fit`` (every frame's pose at its best branch, all six residuals: the measure
@@ -639,7 +630,7 @@ class FrameSampleOptions:
     is kept (``robust.ransac.RansacOptions.final_refinements``): a sample near the truth can
     score below a wrong one until it is polished.  Each costs one local optimisation (a few
     hundredths of a second, against 0.17 s a minimal solve).  Random-tangent outliers, 30 %,
-    20 frames, 1 px / 1 degree (``/tmp`` scripts on ``bench.common.make``'s
+    20 frames, 1 px / 1 degree (scripts on ``bench.common.make``'s
     ``outliers_random`` scenes), with ``chord_weight`` 1 and ``OutlierOptions.take_back_chi2``
     9: seed 5151 (tuned on), scenes 0-29, 27 of 30 against 25 of 30 with 0 and ``lo_rounds``
     1 (scenes 2 and 8 gained, none lost; the same mean time, 2.7 s of CPU a scene); seed
@@ -656,7 +647,7 @@ class FrameSampleOptions:
     samples' best by the truncated chi2 alone was 63 degrees off, c 161.8 against the true
     148.0 and a longest chord of 147.2; its truncated chi2 was 9 below the truth's, its chord
     term 24 above.  Random-tangent outliers, 30 %, 20 frames, 1 px / 1 degree, scenes 0-29
-    (``/tmp`` scripts on the bench's scenes of other seeds), with the other new defaults:
+    (scripts on the bench's scenes of other seeds), with the other present defaults:
     weight 0 / 0.5 / 1: seed 4242 (tuned on) 27 / 29 / 29 of 30, seed 5151 (tuned on) 27 /
     28 / 27.  Weight 1 lost scene 27 of 5151: the samples' near-truth shape (2 degrees) had a
     c 4.7 % long (116.4 against 111.2, the c of a 14-frame fit is loose), and the chord term
@@ -673,7 +664,7 @@ class FrameSampleOptions:
     shape whose c came out a few per cent long lost to a wrong one by its chord term alone
     (bench-seed scene 8 at 30 %: c 3.9 % long, 2.0 degrees off, score 144.9 against 144.0 for a
     shape 83 degrees off; with the prior 0.5 degrees).  Alone it gained nothing overall
-    (random-tangent outliers, 30 %, 20 frames, 1 px / 1 degree; ``/tmp`` scripts on the bench's
+    (random-tangent outliers, 30 %, 20 frames, 1 px / 1 degree; scripts on the bench's
     scenes, the bench seed 50 scenes, the others 0-29): bench seed 44 -> 43 of 50 (8 gained;
     34 and 46 lost, at 1.4 and 4.9 degrees before, 5.2 and 6.3 after), seeds 7373, 5151, 4242
     unchanged (25, 28, 29 of 30); the annealing below takes 34 and 46 back.  5151/27, where a
@@ -695,10 +686,10 @@ class FrameSampleOptions:
     best 5.9 degrees off, score 179.7, the truth refined on its inlier frames 161.8, which the
     annealed optimisation reaches (1.0 degrees).  One setting tried (4 and 2 times the
     truncation), not tuned.  With ``chord_prior`` and ``search_answer_start``, against the
-    old defaults (same scenes and scripts as ``chord_prior``): bench seed 44 of 50 both (the
+    defaults before them (same scenes and scripts as ``chord_prior``): bench seed 44 of 50 both (the
     same six failures), 10 % 49 of 50 both (scene 3, where the samples do not run); held out,
     seed 7373: 25 -> 27 of 30 (17 and 28 gained); tuning seeds 5151: 28 -> 27 (20 lost: a shape
-    10.4 degrees off that the old loop did not find scores 153.9 against the truth's 155.6),
+    10.4 degrees off that the loop before them did not find scores 153.9 against the truth's 155.6),
     4242: 29 -> 28 (29 gained; 23 lost, 4.9 -> 5.1 degrees, the truth refined on its inlier
     frames itself 3.2 degrees off).  CPU time a scene (``time.process_time``, the same
     conditions, run side by side): 2.24 -> 2.31 s at 30 %, 1.45 -> 1.51 s at 10 %.  These are
@@ -716,7 +707,7 @@ class FrameSampleOptions:
     from a reweighted fit of all frames, which the outliers pulled again: on scene 91 of the
     bench's random-tangent 10 % scenes (``bench.outliers``) the samples' shape was 1.6 degrees
     off, the answer refitted from it on all frames 5.8.  Random-tangent outliers, 20 frames,
-    1 px / 1 degree (``/tmp`` scripts calling ``bench.robustness.run_scenes``): bench seed
+    1 px / 1 degree (scripts calling ``bench.robustness.run_scenes``): bench seed
     20260521 (diagnosed on), 10 %: 99 of 100 succeed against 98; 30 %, scenes 0-39: 31 of 40
     both (scenes 12 and 19 gained, 8 and 31 lost).  Held-out seed 9001 (the same scripts):
     10 %, scenes 0-29: 29 of 30 both; 30 %, scenes 0-19: 17 of 20 both (the same three fail).
@@ -758,9 +749,6 @@ class FewFrameSampleOptions:
     """Of each sample's solutions, this many with the lowest chi2 on all frames (shape fixed,
     every frame at its best pose) are refined on all frames.  Exact data: the truth's chi2 is
     zero, always the first."""
-    degenerate_skips: int = 10
-    """Degenerate samples (two equal views, a tangent along A'B') skipped, each replaced by the
-    next spread sample, before giving up."""
     precise_p_value: float = 1e-2
     """Beyond ``max_frames``: run when the search's best fit is not exact but its chi2 is
     improbably low for the noise given (lower tail probability, n - 4 degrees of freedom): the

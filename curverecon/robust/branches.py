@@ -11,8 +11,6 @@ Tuned numbers: :class:`curverecon.options.BranchOptions`.
 
 from __future__ import annotations
 
-import itertools
-
 import numpy as np
 
 from curverecon.model.observations import Observations
@@ -37,15 +35,9 @@ def flip_ambiguous_frames(
     current shape (within ``o.flip_dchi2``) can hold the joint fit in a nearby local minimum: e.g.
     a frame with c' close to c (tau near 0), or phi near 0 or 180 degrees where a single frame's
     mirror image fits almost as well.  Each such frame is switched in turn (one batched
-    refinement, one start per frame) and the best refit is kept if it lowers chi2.
-
-    Nearly noise-free data (chi2 below ``search.near_exact_chi2`` per degree of freedom, not exact):
-    when no single switch helps, pairs and triples of those frames are switched together (at
-    most ``o.flip_combo_max`` starts, one batch): several frames near tau = 0 can sit on their
-    other branch at once, a local minimum a hair above the exact fit.  Skipped once the fit is
-    exact (``search.exact_cost``: no refit can beat it by the required margin).
+    refinement, one start per frame) and the best refit is kept if it lowers chi2.  Skipped
+    once the fit is exact (``search.exact_cost``: no refit can beat it by the required margin).
     """
-    dof = max(obs.n_frames - 4, 1)
     for _ in range(rounds):
         if (
             fit.chi2 <= search.exact_cost
@@ -58,16 +50,6 @@ def flip_ambiguous_frames(
         combos = [(int(i),) for i in frames]
         g, p, chi2 = _refit_switched(obs, fit, alt, combos, ps, ts)
         k = int(np.argmin(chi2))
-        if (
-            not chi2[k] < fit.chi2 - 1e-9 * (1.0 + fit.chi2)
-            and fit.chi2 < search.near_exact_chi2 * dof
-        ):
-            combos = [c for m in (2, 3) for c in itertools.combinations(frames.tolist(), m)][
-                : o.flip_combo_max
-            ]
-            if combos:
-                g, p, chi2 = _refit_switched(obs, fit, alt, combos, ps, ts)
-                k = int(np.argmin(chi2))
         if not chi2[k] < fit.chi2 - 1e-9 * (1.0 + fit.chi2):
             return fit
         fit = refine(obs, g[k], p[k], ps, ts, covariance=True)

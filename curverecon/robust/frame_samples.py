@@ -1,4 +1,4 @@
-"""Hypotheses from four-frame samples: LO-RANSAC on the complete minimal solver (issue 12).
+"""Hypotheses from four-frame samples: LO-RANSAC on the complete minimal solver.
 
 With outlier frames the global search (``robust.search``) refines its candidates on all frames,
 and the outliers pull every candidate: on 30 % outlier scenes its best candidate was 40-50
@@ -63,6 +63,11 @@ def fixed_shape_fit(
     poses = switch_branches(obs, shape, poses_from_branches(obs, shape), w8, options=search)
     return refine(obs, shape, poses, point_sigma, tangent_sigma, max_iter=0, covariance=False)
 
+
+MIN_REFINE_FRAMES = 6
+"""Frames a shape must explain before the local optimisation refines it on them (a fit on
+fewer is barely determined; 0 gave the same output on the 13 scenes of
+``bench.options_audit`` that run the samples: ``docs/options-audit.md``)."""
 
 CHORD_BINS = 64
 """Bins of the chord-length convolution in :func:`chord_costs` (each a quarter of the chord's
@@ -233,7 +238,7 @@ class FrameSampleEstimator:
                 self.obs, shape, self.point_sigma, self.tangent_sigma, self.search
             )
             inliers = fit.frame_chi2 < self.options.truncate
-            if int(inliers.sum()) < self.options.min_refine_frames:
+            if int(inliers.sum()) < MIN_REFINE_FRAMES:
                 return shape
             if previous is not None and np.array_equal(inliers, previous):
                 break
@@ -262,7 +267,7 @@ class FrameSampleEstimator:
                 self.obs, shape, self.point_sigma, self.tangent_sigma, self.search
             )
             inliers = fit.frame_chi2 < mult * o.truncate
-            if int(inliers.sum()) < o.min_refine_frames:
+            if int(inliers.sum()) < MIN_REFINE_FRAMES:
                 break
             shape = refine_hypothesis(
                 self.obs.subset(inliers),
@@ -365,25 +370,20 @@ def few_frame_hypotheses(
     minimal_options: MinimalOptions | None = None,
     search: SearchOptions | None = None,
 ) -> list[Candidate]:
-    """Candidates from the real minimal solutions of ``options.samples`` spread samples (a
-    degenerate sample is replaced by the next of :func:`spread_samples`): of
-    each sample's shapes the ``options.refine_per_sample`` with the lowest chi2 on all frames
-    (shape fixed, every frame at its best branch of (10)) are refined on all frames
-    (``refine.start.refine_hypothesis``); best (lowest robust cost) first."""
+    """Candidates from the real minimal solutions of the first ``options.samples`` spread
+    samples (:func:`spread_samples`; a degenerate one gives none): of each sample's shapes the
+    ``options.refine_per_sample`` with the lowest chi2 on all frames (shape fixed, every frame
+    at its best branch of (10)) are refined on all frames (``refine.start.refine_hypothesis``);
+    best (lowest robust cost) first."""
     o = options or FewFrameSampleOptions()
     w8 = np.array([1.0 / point_sigma] * 4 + [1.0 / tangent_sigma] * 2)
     meas = obs.measurements()
     starts: list[np.ndarray] = []
-    solved = 0
-    tries = itertools.islice(iter_spread_samples(obs.n_frames), o.samples + o.degenerate_skips)
-    for sample in tries:
-        if solved >= o.samples:
-            break
+    for sample in itertools.islice(iter_spread_samples(obs.n_frames), o.samples):
         try:
             shapes = minimal.solve(obs.subset(sample), minimal_options).shapes
-        except CurveReconError:  # a degenerate sample (two equal views, a tangent along A'B'):
-            continue  # the next one
-        solved += 1
+        except CurveReconError:  # a degenerate sample (two equal views, a tangent along A'B')
+            continue
         if shapes.shape[0] == 0:
             continue
         poses = switch_branches(obs, shapes, poses_from_branches(obs, shapes), w8)

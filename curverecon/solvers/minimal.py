@@ -1,4 +1,4 @@
-"""The complete minimal solver: four frames, every shape that fits them exactly (issue 12).
+"""The complete minimal solver: four frames, every shape that fits them exactly.
 
 Four frames give four lean equations (``generated/lean_polynomial.py``) in the four unknowns
 (c, tan(alpha), tan(beta), cos(phi)).  ``make derive`` reduces them by their symmetry to
@@ -41,6 +41,13 @@ except ImportError:  # pragma: no cover
 
 FRAMES = 4
 REDUCED_UNKNOWNS = 5
+REAL_TOLERANCE = 1e-6
+"""Largest |imaginary part| / (1 + |value|) of a solution taken as real.  Tracked endpoints are
+polished to about 1e-12; complex pairs of real data sit far above this (1e-3 lists the same
+solutions: ``docs/options-audit.md``)."""
+BOUND_TOLERANCE = 1e-6
+"""Slack on C >= c'^2, A, B >= 0 and 0 <= P <= 1 (dimensionless, after scaling; 1e-3 lists the
+same solutions)."""
 """(C, A, B, P, m) come first in ``minimal_unsquared.UNKNOWNS``."""
 
 
@@ -170,14 +177,14 @@ def solve(obs: Observations, options: MinimalOptions | None = None) -> MinimalRe
     tracked = homotopy.track(_system(), target, o.homotopy)
     x = tracked.solutions
     ok = np.all(np.isfinite(x), axis=1)
-    real = ok & np.all(np.abs(x.imag) <= o.real_tolerance * (1 + np.abs(x)), axis=1)
+    real = ok & np.all(np.abs(x.imag) <= REAL_TOLERANCE * (1 + np.abs(x)), axis=1)
     # Newton's method in float64 on the tracked (unsquared) system at the frames' parameters;
     # real solutions stay real (real system, real start).  Not on the lean equations: where s_i
     # is near 0 (a nearly flat curve, c' near c) their root is near-double, and Newton's method
     # there moved a solution the unsquared system had to 1e-11 by 2e-4 (seed 300005, phi 178.7
     # degrees).
     xr = _system().polish(x[real], target, o.polish_iterations).real
-    tol = o.bound_tolerance
+    tol = BOUND_TOLERANCE
     c2, a2, b2, p2, m = xr[:, :REDUCED_UNKNOWNS].T if xr.size else np.zeros((REDUCED_UNKNOWNS, 0))
     inside = (
         (c2 >= np.max(cp) ** 2 * (1 - tol))

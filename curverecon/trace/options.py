@@ -15,7 +15,7 @@ class TraceOptions:
     """Options of the tracer (``curverecon.trace.stage.trace_frames``)."""
 
     # Line width (full width at half maximum, px); sets the filter scale 0.6 * width.  3 px is
-    # the FWHM of a Gaussian profile of sigma 1.2 px, the issue's rendered lines.
+    # the FWHM of a Gaussian profile of sigma 1.2 px, the rendered lines of trace.render.
     width: float = 3.0
     # The curve is darker than the background (the image is inverted first).
     dark_curve: bool = False

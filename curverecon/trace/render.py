@@ -45,7 +45,7 @@ class RenderOptions:
     """How frames are drawn (grey levels of an 8-bit image; lengths in pixels)."""
 
     size: int = 384
-    line_sigma: float = 1.2  # the issue's rendered sequences: a Gaussian profile of about 1.2 px
+    line_sigma: float = 1.2  # the rendered sequences: a Gaussian profile of about 1.2 px
     amplitude: float = 160.0  # line brightness above the background
     noise: float = 8.0  # standard deviation of the added noise
     background: float = 40.0  # mean background level
