@@ -114,6 +114,13 @@ class SearchOptions:
     """The linearisation seeds the search (from 45 frames) only if its two smallest singular
     values differ this much (nearly noise-free data; at realistic noise it is unusable)."""
 
+    def __post_init__(self) -> None:
+        if self.exact_stage_starts < 1:
+            raise ValueError(
+                "SearchOptions.exact_stage_starts must be at least 1, got "
+                f"{self.exact_stage_starts}"
+            )
+
 
 @dataclass
 class OutlierOptions:

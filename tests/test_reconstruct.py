@@ -184,3 +184,10 @@ def test_alternatives_warning_says_whether_they_differ():
     assert "agree within two standard deviations" in alternatives_warning(best, std, [near])
     assert "distinct shapes" in alternatives_warning(best, std, [near, far])
     assert "distinct shapes" in alternatives_warning(best, None, [near])
+
+
+def test_an_exact_stage_without_starts_is_refused_when_the_options_are_made():
+    from curverecon.options import SearchOptions
+
+    with pytest.raises(ValueError, match="exact_stage_starts"):
+        SearchOptions(exact_stage_starts=0)
