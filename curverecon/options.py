@@ -776,6 +776,54 @@ class FewFrameSampleOptions:
     probability 1e-2 is the tighter rule (chi2 / dof below 0.36), so the figures above stand."""
 
 
+@dataclass(frozen=True)
+class LabelOptions:
+    """Which end is A in each frame, where the input does not say (``robust/labels.py``;
+    ``"ends_identified": false``)."""
+
+    starts: int = 16
+    """Grid minima polished by the label search (a few compass and LM steps)."""
+    candidates: int = 6
+    """Distinct polished shapes scored by their maximum-likelihood chi2 (``frame_labels``)."""
+    distinct: float = 0.02
+    """``robust.search.shape_distance`` below which two polished shapes are one."""
+    truncate_chi2: float = 25.0
+    """A frame's chi2 counts at most this in a candidate's score (outlier frames)."""
+    plausible_score: float = 2.5
+    """The candidates are scored in the pose-free cost's order until one scores at most this
+    per frame (each frame has one degree of freedom beyond its pose: chi2 about 1 a frame,
+    plus the undecided frames' penalty, up to ``undecided_dchi2`` each; on 20-frame scenes
+    the truth scored 0.7-2.4 a frame, wrong candidates 3-10)."""
+    final_rounds: int = 2
+    """The best candidate refined again from its own shape and labels, while its score falls
+    (a frame labelled wrong at the first refinement's shape turns an outlier of the pipeline
+    and costs it an LO-RANSAC run)."""
+    refine_iterations: int = 15
+    """Maximum-likelihood iterations of each candidate before it is scored."""
+    grid_frames_factor: int = 2
+    """The grid of ``GridSpec.for_frames`` for this many times the frames (every frame is
+    costed in both labellings: a grid as coarse as the search's for twice the frames)."""
+    compass_iterations: int = 10
+    """Compass steps of the pose-free cost from each grid minimum."""
+    undecided_dchi2: float = 4.0
+    """A frame whose two labellings' chi2 differ by less is undecided (warned about)."""
+    switch_dchi2: float = 4.0
+    """At the answer, a frame is relabelled (and the pipeline run again) when its other
+    labelling fits better by this: a frame that fits both about equally barely moves the
+    answer, and a rerun costs a whole reconstruction (12 scenes of 20 frames: 3 reruns at 1.0,
+    2 at 4.0)."""
+    max_rounds: int = 2
+    """Pipeline reruns after a frame's labelling changed at the answer."""
+    polyline_check: bool = True
+    """With polylines, judge the labels by the curve's fit to them (``curve.labels``)."""
+    polyline_dchi2: float = 25.0
+    """Frames whose two labellings' chi2 differ by less are judged by their polylines too
+    (every frame where the tangents were fitted to the polylines, and frame 0)."""
+    polyline_ratio: float = 0.6
+    """A polyline decides a frame's labelling where one direction's fit RMS is below this
+    fraction of the other's."""
+
+
 @dataclass
 class ReconstructOptions:
     """Everything :func:`curverecon.reconstruct` can be told.
@@ -811,3 +859,4 @@ class ReconstructOptions:
     minimal: MinimalOptions = field(default_factory=MinimalOptions)
     frame_samples: FrameSampleOptions = field(default_factory=FrameSampleOptions)
     few_frame_samples: FewFrameSampleOptions = field(default_factory=FewFrameSampleOptions)
+    labels: LabelOptions = field(default_factory=LabelOptions)

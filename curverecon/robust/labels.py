@@ -49,7 +49,7 @@ from curverecon.errors import CurveReconError
 from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise
 from curverecon.model.reconstruction import Alternative, Reconstruction
-from curverecon.options import ReconstructOptions
+from curverecon.options import LabelOptions, ReconstructOptions
 from curverecon.refine.ml import refine
 from curverecon.robust.frame_samples import fixed_shape_fit
 from curverecon.robust.search import (
@@ -58,53 +58,6 @@ from curverecon.robust.search import (
     shape_distance,
 )
 from curverecon.solvers import minimal
-
-
-@dataclass(frozen=True)
-class LabelOptions:
-    """Tuned numbers of the labelling stage."""
-
-    starts: int = 16
-    """Grid minima polished by the label search (a few compass and LM steps)."""
-    candidates: int = 6
-    """Distinct polished shapes scored by their maximum-likelihood chi2 (``frame_labels``)."""
-    distinct: float = 0.02
-    """``robust.search.shape_distance`` below which two polished shapes are one."""
-    truncate_chi2: float = 25.0
-    """A frame's chi2 counts at most this in a candidate's score (outlier frames)."""
-    plausible_score: float = 2.5
-    """The candidates are scored in the pose-free cost's order until one scores at most this
-    per frame (each frame has one degree of freedom beyond its pose: chi2 about 1 a frame,
-    plus the undecided frames' penalty, up to ``undecided_dchi2`` each; on 20-frame scenes
-    the truth scored 0.7-2.4 a frame, wrong candidates 3-10)."""
-    final_rounds: int = 2
-    """The best candidate refined again from its own shape and labels, while its score falls
-    (a frame labelled wrong at the first refinement's shape turns an outlier of the pipeline
-    and costs it an LO-RANSAC run)."""
-    refine_iterations: int = 15
-    """Maximum-likelihood iterations of each candidate before it is scored."""
-    grid_frames_factor: int = 2
-    """The grid of ``GridSpec.for_frames`` for this many times the frames (every frame is
-    costed in both labellings: a grid as coarse as the search's for twice the frames)."""
-    compass_iterations: int = 10
-    """Compass steps of the pose-free cost from each grid minimum."""
-    undecided_dchi2: float = 4.0
-    """A frame whose two labellings' chi2 differ by less is undecided (warned about)."""
-    switch_dchi2: float = 4.0
-    """At the answer, a frame is relabelled (and the pipeline run again) when its other
-    labelling fits better by this: a frame that fits both about equally barely moves the
-    answer, and a rerun costs a whole reconstruction (12 scenes of 20 frames: 3 reruns at 1.0,
-    2 at 4.0)."""
-    max_rounds: int = 2
-    """Pipeline reruns after a frame's labelling changed at the answer."""
-    polyline_check: bool = True
-    """With polylines, judge the labels by the curve's fit to them (``curve.labels``)."""
-    polyline_dchi2: float = 25.0
-    """Frames whose two labellings' chi2 differ by less are judged by their polylines too
-    (every frame where the tangents were fitted to the polylines, and frame 0)."""
-    polyline_ratio: float = 0.6
-    """A polyline decides a frame's labelling where one direction's fit RMS is below this
-    fraction of the other's."""
 
 
 @dataclass
@@ -348,11 +301,11 @@ def reconstruct_any_labels(
     obs: Observations,
     opts: ReconstructOptions,
     run: Runner,
-    o: LabelOptions | None = None,
 ) -> Reconstruction:
     """The reconstruction of frames whose labels A and B may differ from frame to frame
-    (module docstring): ``run`` reconstructs consistently labelled frames (the pipeline)."""
-    o = o or LabelOptions()
+    (module docstring): ``run`` reconstructs consistently labelled frames (the pipeline);
+    the stage's numbers are ``opts.labels``."""
+    o = opts.labels
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
     found = label_search(obs, ps, ts, o)
     exchanged = found.exchanged
