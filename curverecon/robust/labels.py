@@ -55,6 +55,7 @@ from curverecon.robust.frame_samples import fixed_shape_fit
 from curverecon.robust.search import (
     GridSpec,
     branch_candidates,
+    frame_misfits,
     shape_distance,
 )
 from curverecon.solvers import minimal
@@ -95,23 +96,6 @@ def _terms(obs: Observations) -> dict[str, np.ndarray]:
         "ua": np.column_stack([np.cos(obs.rel_a), np.sin(obs.rel_a)]),
         "ub": np.column_stack([np.cos(obs.rel_b), np.sin(obs.rel_b)]),
     }
-
-
-def frame_misfits(terms: dict[str, np.ndarray], params: np.ndarray) -> np.ndarray:
-    """(M, N) pose-free misfit of every frame (the best of its four branches of (10)) for
-    shapes (M, 4) given as (gamma, alpha, beta, phi): ``robust.search.reduced_cost`` per frame,
-    untruncated."""
-    cp, ua, ub = terms["cp"], terms["ua"], terms["ub"]
-    c = np.max(cp) / np.cos(params[:, 0])
-    tb = np.tan(params[:, 2])
-    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, c, np.tan(params[:, 1]))
-    x = (c * tb * np.cos(params[:, 3]))[:, None, None]
-    y = (c * tb * np.sin(params[:, 3]))[:, None, None]
-    px = cp[:, None] + s * (x * sin_d + y * cos_d)
-    py = x * cos_d - y * sin_d
-    cross = px * ua[:, 1][:, None] - py * ua[:, 0][:, None]
-    r2 = cross * cross / (px * px + py * py + 1e-300) + r_b * r_b
-    return np.min(r2, axis=2)
 
 
 def _both(obs: Observations) -> Observations:

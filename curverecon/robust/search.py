@@ -194,14 +194,13 @@ def grid_costs(obs: Observations, spec: GridSpec | None = None) -> tuple[np.ndar
     return cost, {"c": c, "alpha": alp, "beta": bet, "phi": phi}
 
 
-def reduced_cost(
-    obs_terms: dict[str, np.ndarray], params: np.ndarray, truncate: float
-) -> np.ndarray:
-    """Robust cost of shapes given as (M, 4) (gamma, alpha, beta, phi); c = max(c') / cos(gamma).
+def frame_misfits(obs_terms: dict[str, np.ndarray], params: np.ndarray) -> np.ndarray:
+    """(M, N) pose-free misfit of every frame for shapes (M, 4) given as (gamma, alpha, beta,
+    phi); c = max(c') / cos(gamma).
 
     The poses are eliminated exactly: per frame the best of the four solutions of (10); the
-    per-frame misfit is the squared sine of the tangent-angle error at A plus (where (10) has no
-    solution) the misfit at B, truncated at ``truncate``.  Returns (M,).
+    misfit is the squared sine of the tangent-angle error at A plus (where (10) has no solution)
+    the misfit at B.
     """
     cp, ua, ub = obs_terms["cp"], obs_terms["ua"], obs_terms["ub"]
     c = np.max(cp) / np.cos(params[:, 0])
@@ -213,7 +212,15 @@ def reduced_cost(
     py = x * cos_d - y * sin_d
     cross = px * ua[:, 1][:, None] - py * ua[:, 0][:, None]
     r2 = cross * cross / (px * px + py * py + 1e-300) + r_b * r_b
-    return np.sum(np.minimum(np.min(r2, axis=2), truncate), axis=1)
+    return np.min(r2, axis=2)
+
+
+def reduced_cost(
+    obs_terms: dict[str, np.ndarray], params: np.ndarray, truncate: float
+) -> np.ndarray:
+    """Robust cost of shapes given as (M, 4) (gamma, alpha, beta, phi): every frame's
+    :func:`frame_misfits` truncated at ``truncate``, summed.  Returns (M,)."""
+    return np.sum(np.minimum(frame_misfits(obs_terms, params), truncate), axis=1)
 
 
 def _branch_residuals(obs_terms: dict[str, np.ndarray], params: np.ndarray) -> np.ndarray:
