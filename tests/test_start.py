@@ -7,8 +7,8 @@ from curverecon.generated import frame_equations
 from test_conventions import canonical_parameters
 
 from curverecon.robust.search import (
-    _frame_terms,
     branch_candidates,
+    frame_terms,
     poses_from_branches,
     reduced_cost,
     robust_start,
@@ -19,7 +19,7 @@ from curverecon.simulate import make_scene
 def test_branches_solve_equation_10():
     sc = make_scene(np.random.default_rng(51), 15)
     obs = sc.observations
-    t = _frame_terms(obs)
+    t = frame_terms(obs)
     c, ta = sc.truth.c * 1.1, np.tan(sc.truth.alpha)
     cos_d, sin_d, s, r_b = branch_candidates(t["cp"], t["ub"], np.array(c), np.array(ta))
     feasible = r_b == 0
@@ -38,7 +38,7 @@ def test_reduced_cost_vanishes_at_the_truth_only():
     c, a, b, p = sc.truth.shape
     gamma = np.arccos(np.max(obs.cp) / c)
     x = np.array([[gamma, a, b, p], [gamma, a + 0.05, b, p], [gamma, a, b, p + 0.1]])
-    cost = reduced_cost(_frame_terms(obs), x, 1.0)
+    cost = reduced_cost(frame_terms(obs), x, 1.0)
     assert cost[0] < 1e-20
     assert cost[1] > 1e-6 and cost[2] > 1e-6
 

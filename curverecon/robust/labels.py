@@ -54,8 +54,10 @@ from curverecon.refine.ml import refine
 from curverecon.robust.frame_samples import fixed_shape_fit
 from curverecon.robust.search import (
     GridSpec,
-    branch_candidates,
     frame_misfits,
+    frame_terms,
+    grid_frame_misfits,
+    grid_terms,
     shape_distance,
 )
 from curverecon.solvers import minimal
@@ -89,15 +91,6 @@ def exchange(obs: Observations, mask: np.ndarray) -> Observations:
     )
 
 
-def _terms(obs: Observations) -> dict[str, np.ndarray]:
-    """The per-frame terms of the pose-free cost (``robust.search.reduced_cost``)."""
-    return {
-        "cp": obs.cp,
-        "ua": np.column_stack([np.cos(obs.rel_a), np.sin(obs.rel_a)]),
-        "ub": np.column_stack([np.cos(obs.rel_b), np.sin(obs.rel_b)]),
-    }
-
-
 def _both(obs: Observations) -> Observations:
     """Every frame twice: as labelled, then with its labels exchanged."""
     return Observations(
@@ -111,45 +104,16 @@ def _both(obs: Observations) -> Observations:
 def _grid_costs(obs: Observations, spec: GridSpec) -> tuple[np.ndarray, dict]:
     """``robust.search.grid_costs`` with every frame in its better labelling: the per-frame
     misfit the better of the frame's two labellings, truncated, summed over frames."""
-    both = _both(obs)
-    t = _terms(both)
-    cp, ua, ub = t["cp"], t["ua"], t["ub"]
-    n = cp.size
-    gam = spec.gammas()
-    alp = np.radians((np.arange(spec.n_alpha) + 0.5) * 90.0 / spec.n_alpha)
-    bet = np.radians((np.arange(spec.n_beta) + 0.5) * 90.0 / spec.n_beta)
-    phi = np.radians(np.linspace(0.0, 180.0, spec.n_phi))
-    c = np.max(cp) / np.cos(gam)
-    cg, ag = np.meshgrid(c, np.tan(alp), indexing="ij")
-    cos_d, sin_d, s, r_b = branch_candidates(cp, ub, cg, ag)  # (G, A, 2N, 4)
-    vx, vy = ua[:, 0][:, None], ua[:, 1][:, None]
-    dt = np.float32
-    ones = np.ones(cos_d.shape)
-    lin_cross = np.stack(
-        [cp[:, None] * vy * ones, s * sin_d * vy - cos_d * vx, s * cos_d * vy + sin_d * vx], -1
-    )
-    lin_px = np.stack([cp[:, None] * ones, s * sin_d, s * cos_d], -1)
-    lin_py = np.stack([0.0 * ones, cos_d, -sin_d], -1)
-    tb = np.tan(bet)
-    xy = np.stack([np.outer(tb, np.cos(phi)).ravel(), np.outer(tb, np.sin(phi)).ravel()])
-    coef = np.concatenate([np.ones((c.size, 1, xy.shape[1])), c[:, None, None] * xy[None]], axis=1)
-    coef = coef[:, None].astype(dt)
-    shp = (spec.n_gamma, spec.n_alpha, n * 4, 3)
-    lin_cross, lin_px, lin_py = (m.reshape(shp).astype(dt) for m in (lin_cross, lin_px, lin_py))
-    rb2 = (r_b * r_b).astype(dt)[..., None]
-    trunc = dt(math.sin(math.radians(spec.truncate_deg)) ** 2)
-    cost = np.empty((spec.n_gamma, spec.n_alpha, coef.shape[-1]))
+    g = grid_terms(frame_terms(_both(obs)), spec)
+    half = g.n // 2
+    trunc = np.float32(math.sin(math.radians(spec.truncate_deg)) ** 2)
+    cost = np.empty((spec.n_gamma, spec.n_alpha, g.coef.shape[-1]))
     for ig in range(spec.n_gamma):
-        cross = lin_cross[ig] @ coef[ig]
-        px = lin_px[ig] @ coef[ig]
-        py = lin_py[ig] @ coef[ig]
-        r2 = cross * cross / (px * px + py * py + dt(1e-30))
-        r2 = r2.reshape(spec.n_alpha, n, 4, -1) + rb2[ig]
-        per_frame = np.min(r2, axis=2)  # (A, 2N, B*P)
-        per_frame = np.minimum(per_frame[:, : n // 2], per_frame[:, n // 2 :])
+        per_frame = grid_frame_misfits(g, ig)  # (A, 2N, B*P)
+        per_frame = np.minimum(per_frame[:, :half], per_frame[:, half:])
         cost[ig] = np.sum(np.minimum(per_frame, trunc), axis=1, dtype=np.float64)
     cost = cost.reshape(spec.n_gamma, spec.n_alpha, spec.n_beta, spec.n_phi)
-    return cost, {"c": c, "alpha": alp, "beta": bet, "phi": phi}
+    return cost, g.axes
 
 
 def _grid_minima(obs: Observations, spec: GridSpec, count: int) -> np.ndarray:
@@ -207,7 +171,7 @@ def label_search(
     steps = 0.5 * np.radians(
         [80.0 / max(spec.n_gamma - 1, 1), 90.0 / spec.n_alpha, 90.0 / spec.n_beta, 10.0]
     )
-    terms = (_terms(obs), _terms(exchange(obs, np.ones(obs.n_frames, bool))))
+    terms = (frame_terms(obs), frame_terms(exchange(obs, np.ones(obs.n_frames, bool))))
     x, f = _compass(terms, x, steps, trunc, o.compass_iterations)
     shapes: list[np.ndarray] = []
     for k in np.argsort(f):

@@ -93,7 +93,9 @@ class Candidate:
     grid_cost: float
 
 
-def _frame_terms(obs: Observations) -> dict[str, np.ndarray]:
+def frame_terms(obs: Observations) -> dict[str, np.ndarray]:
+    """The per-frame terms of the pose-free cost: c' and the unit tangent directions at A and B
+    relative to A'B'."""
     return {
         "cp": obs.cp,
         "ua": np.column_stack([np.cos(obs.rel_a), np.sin(obs.rel_a)]),
@@ -137,10 +139,22 @@ def branch_candidates(
     return np.cos(delta), np.sin(delta), s, r_b
 
 
-def grid_costs(obs: Observations, spec: GridSpec | None = None) -> tuple[np.ndarray, dict]:
-    """Robust cost on the (gamma, alpha, beta, phi) grid; returns (costs, grid axes)."""
-    spec = spec or GridSpec()
-    t = _frame_terms(obs)
+@dataclass
+class GridTerms:
+    """The pose-free cost's terms on the (gamma, alpha, beta, phi) grid of :class:`GridSpec`,
+    each linear in (1, X, Y) with X = c tan(beta) cos(phi), Y = c tan(beta) sin(phi)."""
+
+    lin_cross: np.ndarray  # (G, A, N * 4, 3) float32
+    lin_px: np.ndarray
+    lin_py: np.ndarray
+    coef: np.ndarray  # (G, 1, 3, B*P) float32: (1, X, Y) per (beta, phi)
+    rb2: np.ndarray  # (G, A, N, 4, 1) float32: the misfit at B of each branch, squared
+    n: int
+    axes: dict
+
+
+def grid_terms(t: dict[str, np.ndarray], spec: GridSpec) -> GridTerms:
+    """:class:`GridTerms` of the frames ``t`` (:func:`frame_terms`)."""
     cp, ua, ub = t["cp"], t["ua"], t["ub"]
     n = cp.size
     gam = spec.gammas()
@@ -171,27 +185,40 @@ def grid_costs(obs: Observations, spec: GridSpec | None = None) -> tuple[np.ndar
     shp = (spec.n_gamma, spec.n_alpha, n * 4, 3)
     lin_cross, lin_px, lin_py = (m.reshape(shp).astype(dt) for m in (lin_cross, lin_px, lin_py))
     rb2 = (r_b * r_b).astype(dt)[..., None]  # (G, A, N, 4, 1)
-    trunc = dt(np.sin(np.radians(spec.truncate_deg)) ** 2)
-    cost = np.empty((spec.n_gamma, spec.n_alpha, coef.shape[-1]))
-    for ig in range(spec.n_gamma):  # one gamma at a time: the work arrays stay in cache
-        cross = lin_cross[ig] @ coef[ig]  # (A, N * 4, B*P)
-        px = lin_px[ig] @ coef[ig]
-        py = lin_py[ig] @ coef[ig]
-        np.multiply(cross, cross, out=cross)
-        np.multiply(px, px, out=px)
-        np.multiply(py, py, out=py)
-        np.add(px, py, out=px)
-        px += dt(1e-30)
-        np.divide(cross, px, out=cross)  # sin^2 of the angle error at A
-        r2 = cross.reshape(spec.n_alpha, n, 4, -1)
-        r2 += rb2[ig]
-        per_frame = np.minimum(
-            np.minimum(r2[:, :, 0], r2[:, :, 1]), np.minimum(r2[:, :, 2], r2[:, :, 3])
-        )  # (A, N, B*P)
+    axes = {"c": c, "alpha": alp, "beta": bet, "phi": phi}
+    return GridTerms(lin_cross, lin_px, lin_py, coef, rb2, n, axes)
+
+
+def grid_frame_misfits(g: GridTerms, ig: int) -> np.ndarray:
+    """(A, N, B*P) every frame's misfit (its best branch of (10)), untruncated, float32, on the
+    grid's gamma number ``ig`` (one gamma at a time: the work arrays stay in cache)."""
+    dt = np.float32
+    cross = g.lin_cross[ig] @ g.coef[ig]  # (A, N * 4, B*P)
+    px = g.lin_px[ig] @ g.coef[ig]
+    py = g.lin_py[ig] @ g.coef[ig]
+    np.multiply(cross, cross, out=cross)
+    np.multiply(px, px, out=px)
+    np.multiply(py, py, out=py)
+    np.add(px, py, out=px)
+    px += dt(1e-30)
+    np.divide(cross, px, out=cross)  # sin^2 of the angle error at A
+    r2 = cross.reshape(cross.shape[0], g.n, 4, -1)
+    r2 += g.rb2[ig]
+    return np.minimum(np.minimum(r2[:, :, 0], r2[:, :, 1]), np.minimum(r2[:, :, 2], r2[:, :, 3]))
+
+
+def grid_costs(obs: Observations, spec: GridSpec | None = None) -> tuple[np.ndarray, dict]:
+    """Robust cost on the (gamma, alpha, beta, phi) grid; returns (costs, grid axes)."""
+    spec = spec or GridSpec()
+    g = grid_terms(frame_terms(obs), spec)
+    trunc = np.float32(np.sin(np.radians(spec.truncate_deg)) ** 2)
+    cost = np.empty((spec.n_gamma, spec.n_alpha, g.coef.shape[-1]))
+    for ig in range(spec.n_gamma):
+        per_frame = grid_frame_misfits(g, ig)  # (A, N, B*P)
         np.minimum(per_frame, trunc, out=per_frame)
         cost[ig] = np.sum(per_frame, axis=1, dtype=np.float64)  # (A, B*P)
     cost = cost.reshape(spec.n_gamma, spec.n_alpha, spec.n_beta, spec.n_phi)
-    return cost, {"c": c, "alpha": alp, "beta": bet, "phi": phi}
+    return cost, g.axes
 
 
 def frame_misfits(obs_terms: dict[str, np.ndarray], params: np.ndarray) -> np.ndarray:
@@ -329,7 +356,7 @@ def poses_from_branches(obs: Observations, shape: np.ndarray) -> np.ndarray:
     single = shapes.ndim == 1
     shapes = np.atleast_2d(shapes)
     c, alpha, beta, phi = (shapes[:, i] for i in range(4))
-    t = _frame_terms(obs)
+    t = frame_terms(obs)
     cp, ua, ub = t["cp"], t["ua"], t["ub"]
     cos_d, sin_d, s, r_b = branch_candidates(cp, ub, c, np.tan(alpha))  # (K, N, 4)
     x = (c * np.tan(beta) * np.cos(phi))[:, None, None]
@@ -369,7 +396,7 @@ def switch_branches(
     shapes = np.atleast_2d(shapes)  # (K, 4)
     poses = np.asarray(poses, float).reshape(shapes.shape[0], -1, 5)  # (K, N, 5)
     kk, n = poses.shape[:2]
-    t = _frame_terms(obs)
+    t = frame_terms(obs)
     cos_d, sin_d, s, _ = branch_candidates(
         t["cp"], t["ub"], shapes[:, 0], np.tan(shapes[:, 1])
     )  # (K, N, 4)
@@ -444,7 +471,7 @@ def branch_alternatives(
     (poses (N, 5), chi2 (N,)); chi2 is inf where no other branch exists.
     """
     c, alpha = float(shape[0]), float(shape[1])
-    t = _frame_terms(obs)
+    t = frame_terms(obs)
     cos_d, sin_d, s, _ = branch_candidates(t["cp"], t["ub"], np.array(c), np.array(np.tan(alpha)))
     n = obs.n_frames
     sets = []
@@ -650,7 +677,7 @@ def search_start(
     spec = spec or GridSpec.for_frames(n)
     n_search = (4 if few else 2) * n_candidates
     trunc = np.sin(np.radians(spec.truncate_deg)) ** 2
-    terms = _frame_terms(obs)
+    terms = frame_terms(obs)
     extra = [np.asarray(e, float) for e in (extra_shapes or []) if np.all(np.isfinite(e))]
 
     def polish(x: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
