@@ -45,6 +45,10 @@ DOMAIN_TOLERANCE = 1e-2
 """Slack on W >= 0 and W + k_f >= 0 of a candidate before polishing."""
 DUPLICATE = 1e-9
 """Polished solutions closer than this (max |dz|, unit scale) are one solution."""
+DEGENERATE = 1e-12
+"""Largest |cofactor C_f| (or |k_f|) taken as zero (unit scale): all C_f vanish when the image
+differences lie on one line (axis in the image plane), all k_f when the image lengths are equal
+(axis along the viewing direction); either way the cubic vanishes identically."""
 POLISH_STEPS = 8
 POLISH_TOLERANCE = 1e-12
 """Largest residual of the polished system (unit scale) of an accepted solution."""
@@ -111,6 +115,10 @@ def solve(points: np.ndarray, times: np.ndarray) -> RigidSolutions:
     scale = scale_of(v, ROW)
     vn = v / scale
     coefficients, cof, k = gen.fixed_axis_cubic(*vn.ravel())
+    if np.abs(cof).max() <= DEGENERATE or np.abs(k).max() <= DEGENERATE or not np.any(coefficients):
+        # a curve of solutions (image differences on one line: axis in the image plane; equal
+        # image lengths: axis along the viewing direction; frames alike): no finite set
+        return assemble(pts, [], [], [], N_COMPLEX_SOLUTIONS)
     roots = np.roots(coefficients / np.max(np.abs(coefficients)))
     found: list[np.ndarray] = []
     for z in _polish(_starts(roots, k), cof, k):
