@@ -465,6 +465,68 @@ def force_field_jacobian_ranks(seed: int = CHECK_SEED) -> dict[int, tuple[int, f
     return out
 
 
+@cache
+def _closed_forms() -> tuple:
+    """The closed forms as float functions of the data: (cubic in W and the data, quadratic in M
+    and the data, uniform rotation's atan2 arguments)."""
+    v4, v3, u3 = v_symbols(4), v_symbols(3), v_symbols(3, "u")
+    cof, k = fixed_axis_cofactors(v4)
+    subs = dict(zip(sp.symbols("C1:4", real=True), cof, strict=True))
+    subs.update(zip(sp.symbols("k1:4", real=True), k, strict=True))
+    cubic = sum(
+        c.xreplace(subs) * W ** (3 - i) for i, c in enumerate(fixed_axis_cubic_in_cofactors())
+    )
+    m = sp.Symbol("M", real=True)
+    quad = sum(c * m ** (2 - i) for i, c in enumerate(free_3pt_quadratic()["quadratic"]))
+    args, out = uniform_rotation_angles()
+    return (
+        sp.lambdify((W, *[x for p in v4 for x in p]), cubic, "numpy"),
+        sp.lambdify((m, *[x for p in v3 + u3 for x in p]), quad, "numpy"),
+        sp.lambdify(args, out["atan2_args"], "numpy"),
+    )
+
+
+def _root_error(poly: object, root: float, data: np.ndarray) -> float:
+    """|p(root)| / (|p'(root)| |root|): the relative distance from ``root`` to a root of the
+    polynomial ``poly(x, *data)`` (first order; derivative by a central difference)."""
+    h = 1e-6 * abs(root)
+    val = poly(root, *data)  # type: ignore[operator]
+    slope = (poly(root + h, *data) - poly(root - h, *data)) / (2 * h)  # type: ignore[operator]
+    return float(abs(val) / (abs(slope) * abs(root)))
+
+
+@cache
+def closed_form_checks() -> dict[str, tuple[float, float]]:
+    """(median, max) over N_CHECK random 3-D constructions of: the true W = z_0^2 as a root of
+    the cubic and the true M = z_0 e_0 as a root of the quadratic (relative distance to the
+    nearest root, :func:`_root_error`), and the uniform rotation's equation
+    wrap(theta_21 - rho theta_1) at the true z_0 and signs with general times (radians)."""
+    cubic, quad, angles = _closed_forms()
+    rng = np.random.default_rng(CHECK_SEED + 1)
+    found: dict[str, list[float]] = {
+        "fixed_axis_cubic": [],
+        "free_3pt_quadratic": [],
+        "uniform_rotation_angles": [],
+    }
+    for _ in range(N_CHECK):
+        x3 = construct_np("fixed_axis", rng, 4)["X3"]
+        d = x3[:, 1] - x3[:, 0]
+        found["fixed_axis_cubic"].append(_root_error(cubic, d[0, 2] ** 2, d[:, :2].ravel()))
+        x3 = construct_np("free_3pt", rng, 3)["X3"]
+        d, e = x3[:, 1] - x3[:, 0], x3[:, 2] - x3[:, 0]
+        data = np.concatenate([d[:, :2].ravel(), e[:, :2].ravel()])
+        found["free_3pt_quadratic"].append(_root_error(quad, d[0, 2] * e[0, 2], data))
+        scene = construct_np("uniform_rotation", rng, 3)
+        d = scene["X3"][:, 1] - scene["X3"][:, 0]
+        s = np.sign(d[1:, 2])
+        y1, x1, y21, x21 = angles(d[0, 2], s[0], s[1], *d[:, :2].ravel())
+        t = scene["times"]
+        rho = (t[2] - t[1]) / (t[1] - t[0])
+        res = np.angle(np.exp(1j * (np.arctan2(y21, x21) - rho * np.arctan2(y1, x1))))
+        found["uniform_rotation_angles"].append(float(abs(res)))
+    return {k: (float(np.median(v)), float(np.max(v))) for k, v in found.items()}
+
+
 # ---------------------------------------------------------------------------------------------
 # counts (msolve over GF(p), derivations.minimal_count)
 # ---------------------------------------------------------------------------------------------

@@ -107,6 +107,11 @@ def test_force_field_count_on_another_random_instance() -> None:
 
 def test_equations_vanish_at_the_3d_construction() -> None:
     assert max(s2.checks().values()) < 1e-10
+    closed = s2.closed_form_checks()
+    assert closed["fixed_axis_cubic"][0] < 1e-10  # median; the max is the cubic's cancellation
+    assert closed["fixed_axis_cubic"][1] < 1e-4
+    assert closed["free_3pt_quadratic"][1] < 1e-8
+    assert closed["uniform_rotation_angles"][1] < 1e-10
 
 
 def test_force_field_needs_nine_frames() -> None:
