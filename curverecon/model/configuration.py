@@ -48,14 +48,14 @@ SOLVER_MODULES = {
 
 MIN_FRAMES = {
     "free": 3,
-    "uniform-rotation": 4,
+    "uniform-rotation": 3,
     "fixed-axis": 4,
     "force-field": 9,
 }
-"""Least frame counts when a row's solver module is absent (planning counts, NOTES item 8:
-fixed axis 3 + k = 2k unknowns against measurements, k = 3 later frames; uniform rotation the
-table's 4; free with three points 2 + 3k = 4k, k = 2; force field one quartic per frame in nine
-unknowns).  A solver module's ``FRAMES`` overrides them (``min_frames``)."""
+"""Least frame counts of the rows (docs/derivation.md), used where a row's solver module is
+absent: a solver module's ``FRAMES`` decides (``min_frames``).  Free motion needs three points;
+with more points than a row's two the same counts apply (a conservative bound)."""
+
 
 DEGENERACY_QUANTILE = 0.999
 """A frame sequence is refused as showing no rotation out of the image plane when every image
