@@ -173,6 +173,12 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         "(derivations/minimal.py)",
         lambda: _system_kernel_module("derivations.minimal", "minimal_unsquared_kernel.py"),
     ),
+    (
+        "section2_minimal.py",
+        "the seed's Section 2 orthographic rows: closed forms and residuals of their minimal "
+        "problems (derivations/section2.py)",
+        lambda: _function_module("derivations.section2", "section2_minimal.py"),
+    ),
 )
 
 

@@ -18,6 +18,8 @@
   (derivations/minimal.py)
 - ``minimal_unsquared_kernel``: the same system as straight-line numba kernels: F, F_x, F_t by way
   of W(q) (derivations/minimal.py)
+- ``section2_minimal``: the seed's Section 2 orthographic rows: closed forms and residuals of their
+  minimal problems (derivations/section2.py)
 """
 
 __all__ = (
@@ -28,4 +30,5 @@ __all__ = (
     "polynomial_12p",
     "minimal_unsquared",
     "minimal_unsquared_kernel",
+    "section2_minimal",
 )
