@@ -173,6 +173,12 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         "(derivations/minimal.py)",
         lambda: _system_kernel_module("derivations.minimal", "minimal_unsquared_kernel.py"),
     ),
+    (
+        "rigid_model.py",
+        "the orthographic rigid-body measurement model of the Section 2 rows and its Jacobians "
+        "(derivations/rigid_model.py)",
+        lambda: _function_module("derivations.rigid_model", "rigid_model.py"),
+    ),
 )
 
 

@@ -18,6 +18,8 @@
   (derivations/minimal.py)
 - ``minimal_unsquared_kernel``: the same system as straight-line numba kernels: F, F_x, F_t by way
   of W(q) (derivations/minimal.py)
+- ``rigid_model``: the orthographic rigid-body measurement model of the Section 2 rows and its
+  Jacobians (derivations/rigid_model.py)
 """
 
 __all__ = (
@@ -28,4 +30,5 @@ __all__ = (
     "polynomial_12p",
     "minimal_unsquared",
     "minimal_unsquared_kernel",
+    "rigid_model",
 )
