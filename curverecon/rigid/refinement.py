@@ -39,6 +39,9 @@ class RigidFit:
     leverage: np.ndarray | None = None
     iterations: int = 0
     converged: bool = False
+    full_state: RigidState | None = None
+    """With outlier frames left out: the state over every frame (the outlier frames keep their
+    parameters from before they were left out)."""
 
 
 def _blocks(layout: Layout, jg: np.ndarray, jl: np.ndarray, r: np.ndarray):
@@ -65,8 +68,16 @@ def schur(u, w, v, fixed):
     return 0.5 * (s + s.T), vinv
 
 
-def _step(u, w, v, bg, bl, fixed, lam):
-    """The damped Gauss-Newton step (dg, dl) or None when the system is singular."""
+def _step(u, w, v, bg, bl, fixed, lam, fix_globals=False):
+    """The damped Gauss-Newton step (dg, dl) or None when the system is singular
+    (``fix_globals``: the frames' parameters alone, dg = 0)."""
+    if fix_globals:
+        idx = np.arange(v.shape[1])
+        vd = _fix_gauge(v, fixed)
+        vd[:, idx, idx] += lam * np.maximum(vd[:, idx, idx], 1e-12)
+        dl = -np.linalg.solve(vd, bl[..., None])[..., 0]
+        dl[fixed] = 0.0
+        return np.zeros(u.shape[0]), dl
     ud = u + lam * np.diag(np.maximum(np.diag(u), 1e-12))
     idx = np.arange(v.shape[1])
     vd = v.copy()
@@ -90,8 +101,10 @@ def refine(
     max_iter: int = 100,
     covariance: bool = True,
     tol: float = 1e-12,
+    fix_globals: bool = False,
 ) -> RigidFit:
-    """The maximum-likelihood state from ``state`` (Levenberg-Marquardt, Schur complement)."""
+    """The maximum-likelihood state from ``state`` (Levenberg-Marquardt, Schur complement);
+    ``fix_globals``: the frames' own parameters alone (body and motion held)."""
     fixed = fixed_locals(layout, data.n_frames)
     r, jg, jl = residuals_and_jacobians(layout, state, data)
     cost = float(np.sum(r * r))
@@ -99,7 +112,7 @@ def refine(
     while it < max_iter:
         it += 1
         u, w, v, bg, bl = _blocks(layout, jg, jl, r)
-        step = _step(u, w, v, bg, bl, fixed, lam)
+        step = _step(u, w, v, bg, bl, fixed, lam, fix_globals)
         if step is None:
             lam *= 10.0
             if lam > 1e12:
