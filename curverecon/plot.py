@@ -171,9 +171,10 @@ def plot_reconstruction_file(path: str, rec, obs) -> None:
 
 def plot_configuration_file(path: str, rec, obs) -> None:
     """Draw a reconstruction of a configuration beyond the paper's own (``RigidObservations``)
-    to a PNG file: every frame's traceable points in 3-D (each frame's camera coordinates, A at
-    z = 0, frame 0 darkest) with the recovered curve of frame 0 if any, and per frame the
-    observed points (and polyline) beside the reconstructed points' projections (x, y).
+    to a PNG file: every frame's traceable points in 3-D relative to A (each frame's camera
+    axes, A at the origin, frame 0 darkest: the body turning as the camera saw it) with the
+    recovered curve of frame 0 if any, and per frame the observed points (and polyline) beside
+    the reconstructed points' projections (x, y).
 
     Raises ``CurveReconError`` when the reconstruction has no per-frame points or the path is
     not writable."""
@@ -199,18 +200,27 @@ def plot_configuration_file(path: str, rec, obs) -> None:
     gs = fig.add_gridspec(nrows, ncols + 2, width_ratios=[1.6, 0.1] + [1.0] * ncols)
     ax3 = fig.add_subplot(gs[:, 0], projection="3d")
     shade = np.linspace(1.0, 0.25, obs.n_frames)
+    rel = p3 - p3[:, :1]
     for i in range(obs.n_frames):
-        ax3.plot(*p3[i].T, "-o", color=(0.1, 0.3, 0.7, shade[i]), ms=3, lw=0.8)
+        ax3.plot(*rel[i].T, "-o", color=(0.1, 0.3, 0.7, shade[i]), ms=3, lw=0.8)
+    shown = rel.reshape(-1, 3)
     if rec.curve3d is not None:
-        c = np.asarray(rec.curve3d, float)
+        c = np.asarray(rec.curve3d, float) - p3[0, 0]
         ax3.plot(*c.T, color="C1", lw=1.8, label="curve (frame 0)")
         ax3.legend(loc="upper left", fontsize=7)
+        shown = np.concatenate([shown, c])
+    shown = shown[np.all(np.isfinite(shown), axis=1)]
+    if len(shown):
+        span = float(np.ptp(shown, axis=0).max()) or 1.0
+        centre = 0.5 * (shown.min(axis=0) + shown.max(axis=0))
+        for setlim, m in zip((ax3.set_xlim, ax3.set_ylim, ax3.set_zlim), centre, strict=True):
+            setlim(m - 0.55 * span, m + 0.55 * span)
     ax3.invert_yaxis()  # image y points down
     ax3.set_xlabel("x")
     ax3.set_ylabel("y")
     ax3.set_zlabel("z (depth)")
-    motion = obs.configuration.motion
-    ax3.set_title(f"{'-'.join(names)} in every frame\n(motion {motion})", fontsize=9)
+    motion = (rec.configuration or {}).get("motion", obs.configuration.motion)
+    ax3.set_title(f"{', '.join(names)} in every frame, A at 0\n(motion {motion})", fontsize=9)
     ax3.tick_params(labelsize=6)
     for slot, i in enumerate(frames):
         ax = fig.add_subplot(gs[slot // ncols, 2 + slot % ncols])

@@ -337,3 +337,25 @@ def test_plot_of_a_configuration(tmp_path):
         plot_configuration_file(
             str(path), Reconstruction(rec.shape, rec.poses, None, rec.inliers), obs
         )
+
+
+def test_the_command_writes_what_the_library_returns(tmp_path):
+    """A configuration through ``curverecon reconstruct --plot`` and through
+    ``curverecon.reconstruct``: the same document, with the configuration's keys."""
+    from curverecon.io import write_json
+    from curverecon.pipeline import reconstruct
+
+    doc = _scene("fixed-axis", "ABC", frames=8, with_curve=True)
+    inp, out, png = tmp_path / "in.json", tmp_path / "out.json", tmp_path / "rec.png"
+    inp.write_text(json.dumps(doc))
+    argv = ["reconstruct", str(inp), "-o", str(out), "--quiet", "--plot", str(png)]
+    assert main(argv) == 0
+    written = json.loads(out.read_text())
+    write_json(tmp_path / "library.json", reconstruct(observations_from_dict(doc)).to_json_dict())
+    assert json.loads((tmp_path / "library.json").read_text()) == written
+    assert isinstance(written["alpha_deg"], float)  # from the curve (no tangents given)
+    assert written["configuration"]["motion"] == "fixed-axis"
+    assert written["configuration"]["points"] == ["A", "B", "C"]
+    assert set(written["frames"][3]["points3"]) == {"A", "B", "C"}
+    assert written["frames"][3]["points3"]["A"][2] == 0.0
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
