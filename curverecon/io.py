@@ -318,6 +318,12 @@ def _rigid_observations(
     if any(c is not None for c in curves) and any(c is None for c in curves):
         warnings.append("polylines ignored: they are used only when every frame carries one")
     has_tangents = len(tangents) == len(frames)
+    from_curve = data.get("tangents_from_curve", False)
+    if not isinstance(from_curve, bool):
+        raise CurveReconError('"tangents_from_curve" must be true or false')
+    if has_tangents and from_curve and all(c is not None for c in curves):
+        has_tangents = False  # fits to the polylines: not measurements beside them
+        warnings.append("tangents fitted to the polylines are not used beside the polylines")
     cfg = Configuration("orthographic", motion, ("A", "B", *names), has_tangents)
     return RigidObservations(
         cfg,

@@ -67,6 +67,15 @@ def test_defaults_and_partial_keys():
     assert any("polylines ignored" in w for w in obs.warnings)
 
 
+def test_traced_tangents_are_not_used_beside_their_polylines():
+    doc = _scene("fixed-axis", "AB", frames=6, tangent_noise_deg=1.0, with_curve=True)
+    assert observations_from_dict(doc).tangents is not None
+    doc["tangents_from_curve"] = True
+    obs = observations_from_dict(doc)
+    assert obs.tangents is None and obs.curves is not None
+    assert any("fitted to the polylines" in w for w in obs.warnings)
+
+
 def test_the_paper_setting_reads_as_before():
     doc = observations_to_dict(make_scene(np.random.default_rng(0), 6, 0.5, 0.5).observations)
     plain = observations_from_dict(doc)

@@ -320,7 +320,8 @@ def in_plane_motion(
         return "all frames alike (no motion within the noise): the shape is not determined"
     return (
         "no rotation out of the image plane (every distance between the points constant within "
-        "the noise): the depth is not determined"
+        f"the noise assumed, {point_sigma:g} per coordinate, --point-sigma): the depth is not "
+        "determined"
     )
 
 
