@@ -474,6 +474,7 @@ def _tilted_axis(rng: np.random.Generator) -> np.ndarray:
 
 
 def _rot(rotvec: np.ndarray) -> np.ndarray:
+    """Rotation matrices (..., 3, 3) of rotation vectors (..., 3) (radians)."""
     return Rotation.from_rotvec(rotvec).as_matrix()
 
 
@@ -528,7 +529,7 @@ def _axis_motion(
         steps = rng.uniform(0.5, 1.5, size=len(t) - 1)
         angles = np.concatenate([[0.0], np.cumsum(steps / steps.sum() * sweep)])
         params = {"axis": n.tolist(), "angle_deg": angles.tolist()}
-    return np.array([_rot(n * np.radians(a)) for a in angles]), params
+    return _rot(np.outer(np.radians(angles), n)), params
 
 
 def _force_field_motion(
@@ -541,7 +542,7 @@ def _force_field_motion(
     sweep = np.radians(min(rng.uniform(*SWEEP_DEG), 60.0 * (len(t) - 1)))
     w1 = _tilted_axis(rng) * sweep / span
     w2 = _unit(rng.normal(size=3)) * rng.uniform(0.0, 0.5) * sweep / span**2
-    rel = np.array([_rot(w1 * x + w2 * x**2 / 2) for x in tau])
+    rel = _rot(np.outer(tau, w1) + np.outer(tau**2 / 2, w2))
     acc = _unit(rng.normal(size=2)) * rng.uniform(200.0, 400.0) * 2 / span**2
     vel = rng.uniform(-100.0, 100.0, size=2) / span - acc * span / 2
     pos = rng.uniform(-50.0, 50.0, size=2)
