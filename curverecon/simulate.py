@@ -261,3 +261,387 @@ def truth_to_dict(scene: Scene, seed: int | None = None) -> dict:
     if scene.curve_3d is not None:
         out["curve3d"] = scene.curve_3d.tolist()
     return out
+
+
+# ---------------------------------------------------------------- the Section 2 table's rows
+CONFIG_MOTIONS = ("free", "uniform-rotation", "fixed-axis", "force-field")
+"""Motion models ``simulate_configuration`` draws (the contract's, less "rotation-free", which
+shows no depth, and "auto", which is a choice of the reconstruction)."""
+
+MIN_AXIS_TILT_DEG = 35.0
+"""A rotation axis is drawn at least this far from the viewing direction (well-conditioned: an
+axis along the view turns the body in the image plane and shows no depth)."""
+
+MIN_AXIS_TO_CHORD_DEG = 20.0
+"""AB at least this far from the rotation axis (a chord along the axis hardly moves)."""
+
+SWEEP_DEG = (180.0, 300.0)
+"""Total rotation over a sequence (uniform in this range, at most 60 degrees a frame): angles
+spread, and with equal time steps below the rate's alias (180 degrees a step)."""
+
+MIN_DISTANCE_STD = 0.05
+"""Some image distance between the points varies over the frames with a standard deviation of at
+least this fraction of c (a rotation out of the image plane that shows depth well above the
+noise; ``model.configuration.in_plane_motion`` refuses sequences that show none)."""
+
+MIN_POINT_OFFSET = 0.15
+"""A further point C is at least this fraction of c from the line AB (else A, B, C are nearly
+collinear and the third point adds little)."""
+
+
+def simulate_configuration(
+    motion: str,
+    points: str = "AB",
+    frames: int = 20,
+    seed: int = 0,
+    noise_px: float = 0.0,
+    tangent_noise_deg: float | None = None,
+    with_curve: bool = False,
+    curve_noise_px: float | None = None,
+    times: np.ndarray | None = None,
+    *,
+    family: str = "bezier",
+    chord: tuple[float, float] = (100.0, 300.0),
+    outlier_fraction: float = 0.0,
+    n_curve_points: int = 150,
+) -> tuple[dict, dict]:
+    """A scene of a row of the seed's Section 2 table: its observations document and its truth.
+
+    The 3-D construction: a random curve of ``family`` (``curve_families``) with A, B its ends
+    and every further point (C, D, ...) a marked point on the curve (at arc parameter s in
+    [0.25, 0.75], at least ``MIN_POINT_OFFSET`` c from line AB); the body moves rigidly by
+    ``motion`` and is projected orthographically (x, y kept):
+
+    - ``free``: a random rotation per frame (``Rotation.random``);
+    - ``fixed-axis``: Rot(n, theta_f) R0, n at least ``MIN_AXIS_TILT_DEG`` from the viewing
+      direction, the angles increasing with random steps over a total sweep in ``SWEEP_DEG``;
+    - ``uniform-rotation``: the same with theta_f = w (t_f - t_0), w > 0 in degrees per unit t;
+    - ``force-field``: the mass centre (the centroid of the curve, a homogeneous wire) on a
+      parabola x_G(t) = g0 + g1 t + g2 t^2 / 2 in the image plane, the rotation smooth and free
+      (rotation vector w1 (t - t0) + w2 (t - t0)^2 / 2).
+
+    Every frame shows AB and every A-to-point vector at least ``MIN_FORESHORTENING`` of its
+    length, and some image distance between the points varies by ``MIN_DISTANCE_STD`` (the
+    whole motion is redrawn otherwise; free motion redraws single frames).
+
+    Args:
+        motion: one of ``CONFIG_MOTIONS``.
+        points: the traceable point names, "AB" then further capital letters ("ABC").
+        frames: number of frames; times: (frames,) increasing times (default 0, 1, 2, ...).
+        seed: the random stream's seed (everything comes from it).
+        noise_px: Gaussian noise on every image coordinate of the points (input units).
+        tangent_noise_deg: None writes no tangents; else the tangents at A and B with this
+            Gaussian noise on their angles (degrees).
+        with_curve: also write every frame's projected polyline (A' to B', ``n_curve_points``),
+            with noise ``curve_noise_px`` per coordinate (default ``noise_px``).
+        family: the curve family; chord: range of c = |AB| (input units, uniform).
+        outlier_fraction: fraction of frames (rounded) whose points (and tangents) are replaced
+            by uniformly random ones within c of the true A'; the truth lists them.
+    Returns:
+        (the ``curverecon.observations/1`` document, the ``curverecon.truth/1`` document):
+        the truth has per frame ``points3`` (camera coordinates, A at z = 0), ``rotation``
+        (X_f - A_f = R_f (X_0 - A_0)), A3, B3 and unit tangents; ``motion_parameters``
+        (``axis`` in frame 0's camera coordinates, ``angle_deg`` per frame, ``rate_deg`` per
+        unit of t, ``acceleration``, ``velocity``, ``position`` of the mass centre's image,
+        ``mass_centre`` relative to A); c, alpha, beta, phi; the ``body`` (points and curve in
+        frame 0's camera coordinates, relative to A) and ``curve3d`` (frame 0, A at z = 0).
+    Raises:
+        CurveReconError: an unknown motion, bad point names, too few frames or a configuration
+            orthographic projection cannot determine.
+    """
+    from curverecon.errors import CurveReconError
+    from curverecon.model.configuration import Configuration, motion_determined
+
+    names = _point_names(points)
+    if motion not in CONFIG_MOTIONS:
+        raise CurveReconError(f'unknown motion "{motion}" (choose {", ".join(CONFIG_MOTIONS)})')
+    reason = motion_determined(motion, len(names), tangent_noise_deg is not None)
+    if reason is not None:
+        raise CurveReconError(reason)
+    t = _scene_times(times, frames)
+    rng = np.random.default_rng(seed)
+    if family == "bezier":
+        curve = bezier_curve(random_curve(rng, chord))
+    else:
+        curve = draw_curve(rng, family, chord)
+    body = _scene_body(rng, curve, names, n_curve_points)
+    rots, centre, params = _scene_motion(rng, motion, t, body, tangent_noise_deg is not None)
+    cam = np.einsum("nij,pj->npi", rots, body["points"])  # (N, P, 3) relative to A
+    shift = np.zeros((len(t), 3))
+    shift[:, :2] = rng.uniform(-200.0, 200.0, size=(len(t), 2))
+    if centre is not None:  # A's image from the mass centre's path
+        shift[:, :2] = centre - np.einsum("nij,j->ni", rots, body["centre"])[:, :2]
+    pts3 = cam + shift[:, None, :]
+    cfg = Configuration("orthographic", motion, names, tangent_noise_deg is not None)
+    noise = (noise_px, tangent_noise_deg, noise_px if curve_noise_px is None else curve_noise_px)
+    doc, inliers = _scene_document(
+        rng, cfg, t, pts3, rots, body, noise, with_curve, outlier_fraction
+    )
+    truth = _scene_truth(cfg, t, pts3, rots, body, params, inliers, noise, seed, family)
+    return doc, truth
+
+
+def _point_names(points: str) -> tuple[str, ...]:
+    """("A", "B", "C", ...) from "ABC"; anything else is a one-line error."""
+    from curverecon.errors import CurveReconError
+
+    names = tuple(points)
+    if names[:2] != ("A", "B") or len(set(names)) != len(names) or not points.isalpha():
+        raise CurveReconError(
+            f'points "{points}" must be "AB" followed by further distinct letters (e.g. "ABC")'
+        )
+    if len(names) > 8:
+        raise CurveReconError("at most 8 points (A, B and six more)")
+    return names
+
+
+def _scene_times(times: np.ndarray | None, frames: int) -> np.ndarray:
+    from curverecon.errors import CurveReconError
+
+    if times is None:
+        if frames < 2:
+            raise CurveReconError("a scene needs at least 2 frames")
+        return np.arange(float(frames))
+    t = np.asarray(times, dtype=float)
+    if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
+        raise CurveReconError("times must be at least 2 finite, increasing numbers")
+    return t
+
+
+def _scene_body(rng: np.random.Generator, curve, names: tuple[str, ...], n_curve: int) -> dict:
+    """The rigid body in the curve's own coordinates (A = 0): the named points, the end
+    tangents (unit, into the curve), the sampled curve and its centroid (a homogeneous wire)."""
+    a, b, ta, tb = curve.ends()
+    c = float(np.linalg.norm(b - a))
+    e = (b - a) / c
+    marks = [0.0, 1.0]
+    for _ in names[2:]:
+        best, best_off = 0.5, -1.0
+        for _ in range(200):
+            s = float(rng.uniform(0.25, 0.75))
+            p = curve.points(np.array([s]))[0]
+            off = float(np.linalg.norm(p - (p @ e) * e))
+            if min(abs(s - m) for m in marks) >= 0.08 and off > best_off:
+                best, best_off = s, off
+            if best_off >= MIN_POINT_OFFSET * c:
+                break
+        marks.append(best)
+    s = np.linspace(0.0, 1.0, 2001)
+    speed = np.linalg.norm(curve.derivative(s), axis=1)
+    weight = speed * np.gradient(s)
+    dense = curve.points(s)
+    return {
+        "names": names,
+        "s": marks,
+        "points": curve.points(np.array(marks)),
+        "ta": _unit(ta),
+        "tb": _unit(tb),
+        "curve": curve.points(np.linspace(0.0, 1.0, n_curve)),
+        "centre": weight @ dense / weight.sum(),
+        "shape": shape_from_geometry(a, b, ta, tb),
+    }
+
+
+def _frame_ok(m: np.ndarray, body: dict, tangents: bool) -> bool:
+    """A view ``m`` shows every A-to-point vector at least MIN_FORESHORTENING of its length
+    (and, with tangents, the ends as ``observable_view`` asks)."""
+    pts = body["points"]
+    if tangents and not observable_view(m, pts[1], body["ta"], body["tb"]):
+        return False
+    img = np.linalg.norm((pts[1:] @ m.T)[:, :2], axis=1)
+    return bool(np.all(img >= MIN_FORESHORTENING * np.linalg.norm(pts[1:], axis=1)))
+
+
+def _shows_depth(rots: np.ndarray, body: dict) -> bool:
+    """Some image distance between two of the points has a standard deviation over the frames
+    of at least ``MIN_DISTANCE_STD`` c."""
+    img = np.einsum("nij,pj->npi", rots, body["points"])[..., :2]
+    p = img.shape[1]
+    spread = max(
+        float(np.std(np.linalg.norm(img[:, j] - img[:, i], axis=1)))
+        for i in range(p)
+        for j in range(i + 1, p)
+    )
+    return spread >= MIN_DISTANCE_STD * float(body["shape"][0])
+
+
+def _tilted_axis(rng: np.random.Generator) -> np.ndarray:
+    """A unit axis at least MIN_AXIS_TILT_DEG from the viewing direction (camera z)."""
+    while True:
+        n = _unit(rng.normal(size=3))
+        if abs(n[2]) <= np.cos(np.radians(MIN_AXIS_TILT_DEG)):
+            return n
+
+
+def _rot(rotvec: np.ndarray) -> np.ndarray:
+    """Rotation matrices (..., 3, 3) of rotation vectors (..., 3) (radians)."""
+    return Rotation.from_rotvec(rotvec).as_matrix()
+
+
+def _scene_motion(
+    rng: np.random.Generator, motion: str, t: np.ndarray, body: dict, tangents: bool
+) -> tuple[np.ndarray, np.ndarray | None, dict]:
+    """(N, 3, 3) body-to-camera rotations, the mass centre's image path (N, 2) for the force
+    field (else None) and the true motion parameters; redrawn until every frame is observable."""
+    from curverecon.errors import CurveReconError
+
+    for _ in range(2000):
+        if motion == "free":
+            rots = []
+            while len(rots) < len(t):
+                m = Rotation.random(random_state=rng).as_matrix()
+                if _frame_ok(m, body, tangents):
+                    rots.append(m)
+            if _shows_depth(np.array(rots), body):
+                return np.array(rots), None, {}
+            continue
+        r0 = Rotation.random(random_state=rng).as_matrix()
+        if motion == "force-field":
+            rel, centre, params = _force_field_motion(rng, t, r0 @ body["centre"])
+        else:
+            rel, params = _axis_motion(rng, motion, t, r0 @ body["points"][1])
+            centre = None
+        if rel is None:
+            continue
+        rots = rel @ r0
+        if all(_frame_ok(m, body, tangents) for m in rots) and _shows_depth(rots, body):
+            return rots, centre, params
+    raise CurveReconError(  # pragma: no cover - a few draws suffice in practice
+        f"could not draw an observable {motion} motion over {len(t)} frames"
+    )
+
+
+def _axis_motion(
+    rng: np.random.Generator, motion: str, t: np.ndarray, chord0: np.ndarray
+) -> tuple[np.ndarray | None, dict]:
+    """Rotations relative to frame 0 about one axis (fixed axis: increasing random angles;
+    uniform rotation: a constant rate), or None when the axis is too close to the chord."""
+    n = _tilted_axis(rng)
+    cosang = abs(n @ chord0) / np.linalg.norm(chord0)
+    if cosang > np.cos(np.radians(MIN_AXIS_TO_CHORD_DEG)):
+        return None, {}
+    sweep = min(rng.uniform(*SWEEP_DEG), 60.0 * (len(t) - 1))
+    if motion == "uniform-rotation":
+        rate = sweep / (t[-1] - t[0])
+        angles = rate * (t - t[0])
+        params = {"axis": n.tolist(), "rate_deg": float(rate), "angle_deg": angles.tolist()}
+    else:
+        steps = rng.uniform(0.5, 1.5, size=len(t) - 1)
+        angles = np.concatenate([[0.0], np.cumsum(steps / steps.sum() * sweep)])
+        params = {"axis": n.tolist(), "angle_deg": angles.tolist()}
+    return _rot(np.outer(np.radians(angles), n)), params
+
+
+def _force_field_motion(
+    rng: np.random.Generator, t: np.ndarray, centre0: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, dict]:
+    """A smooth free rotation (rotation vector w1 tau + w2 tau^2 / 2, tau = t - t0, w1 at least
+    MIN_AXIS_TILT_DEG from the view) and the mass centre's image on a parabola in t."""
+    span = t[-1] - t[0]
+    tau = t - t[0]
+    sweep = np.radians(min(rng.uniform(*SWEEP_DEG), 60.0 * (len(t) - 1)))
+    w1 = _tilted_axis(rng) * sweep / span
+    w2 = _unit(rng.normal(size=3)) * rng.uniform(0.0, 0.5) * sweep / span**2
+    rel = _rot(np.outer(tau, w1) + np.outer(tau**2 / 2, w2))
+    acc = _unit(rng.normal(size=2)) * rng.uniform(200.0, 400.0) * 2 / span**2
+    vel = rng.uniform(-100.0, 100.0, size=2) / span - acc * span / 2
+    pos = rng.uniform(-50.0, 50.0, size=2)
+    path = pos + np.outer(tau, vel) + np.outer(tau**2, acc) / 2
+    # the same parabola in absolute t: x_G(t) = g0 + g1 t + g2 t^2 / 2
+    g1 = vel - acc * t[0]
+    g0 = pos - vel * t[0] + acc * t[0] ** 2 / 2
+    params = {
+        "acceleration": acc.tolist(),
+        "velocity": g1.tolist(),
+        "position": g0.tolist(),
+        "mass_centre": np.asarray(centre0, float).tolist(),
+    }
+    return rel, path, params
+
+
+def _scene_document(rng, cfg, t, pts3, rots, body, noise, with_curve, outlier_fraction):
+    """The observations document (noisy points, tangents, polylines, outlier frames) and the
+    inlier mask.  ``noise``: (point px, tangent deg or None, curve px)."""
+    point_sigma, tangent_sigma, curve_sigma = noise
+    n, p = pts3.shape[:2]
+    img = pts3[:, :, :2] + rng.normal(scale=point_sigma, size=(n, p, 2))
+    ang = None
+    if tangent_sigma is not None:
+        tan3 = np.stack([rots @ body["ta"], rots @ body["tb"]], axis=1)
+        ang = np.arctan2(tan3[..., 1], tan3[..., 0])
+        ang = ang + rng.normal(scale=np.radians(tangent_sigma), size=(n, 2))
+    inliers = np.ones(n, dtype=bool)
+    n_out = int(round(outlier_fraction * n))
+    c = float(body["shape"][0])
+    for i in rng.choice(n, size=n_out, replace=False) if n_out else []:
+        inliers[i] = False
+        img[i] = pts3[i, 0, :2] + rng.uniform(-c, c, size=(p, 2))
+        if ang is not None:
+            ang[i] = rng.uniform(-np.pi, np.pi, size=2)
+    frames = []
+    for i in range(n):
+        frame = {"t": float(t[i]), "A": img[i, 0].tolist(), "B": img[i, 1].tolist()}
+        if p > 2:
+            frame["points"] = {k: img[i, j].tolist() for j, k in enumerate(cfg.points) if j >= 2}
+        if ang is not None:
+            frame["tangent_A"] = [float(np.cos(ang[i, 0])), float(np.sin(ang[i, 0]))]
+            frame["tangent_B"] = [float(np.cos(ang[i, 1])), float(np.sin(ang[i, 1]))]
+        if with_curve:
+            cam = body["curve"] @ rots[i].T + pts3[i, 0]
+            noisy = cam[:, :2] + rng.normal(scale=curve_sigma, size=(len(cam), 2))
+            frame["curve"] = np.round(noisy, 6).tolist()
+        frames.append(frame)
+    doc = {
+        "format": "curverecon.observations/1",
+        "projection": cfg.projection,
+        "motion": cfg.motion,
+        "frames": frames,
+    }
+    return doc, inliers
+
+
+def _scene_truth(cfg, t, pts3, rots, body, params, inliers, noise, seed, family) -> dict:
+    """The ``curverecon.truth/1`` document of a configuration scene (see
+    ``simulate_configuration``)."""
+    c, alpha, beta, phi = body["shape"]
+    rel = rots @ rots[0].T
+    frames = []
+    for i in range(len(t)):
+        frames.append(
+            {
+                "t": float(t[i]),
+                "points3": {k: pts3[i, j].tolist() for j, k in enumerate(cfg.points)},
+                "A3": pts3[i, 0].tolist(),
+                "B3": pts3[i, 1].tolist(),
+                "tangent_A3": (rots[i] @ body["ta"]).tolist(),
+                "tangent_B3": (rots[i] @ body["tb"]).tolist(),
+                "rotation": rel[i].tolist(),
+                "inlier": bool(inliers[i]),
+            }
+        )
+    r0 = rots[0]
+    return {
+        "format": "curverecon.truth/1",
+        "configuration": cfg.to_json_dict(),
+        "seed": int(seed),
+        "family": family,
+        "c": float(c),
+        "alpha_deg": float(np.degrees(alpha)),
+        "beta_deg": float(np.degrees(beta)),
+        "phi_deg": float(np.degrees(phi)),
+        "times": [float(v) for v in t],
+        "frames": frames,
+        "motion_parameters": params,
+        "body": {
+            "points": {
+                k: (r0 @ x).tolist() for k, x in zip(cfg.points, body["points"], strict=True)
+            },
+            "curve_s": dict(zip(cfg.points, body["s"], strict=True)),
+            "mass_centre": (r0 @ body["centre"]).tolist(),
+        },
+        "curve3d": (body["curve"] @ r0.T + pts3[0, 0]).tolist(),
+        "point_noise": float(noise[0]),
+        "tangent_noise_deg": None if noise[1] is None else float(noise[1]),
+        "curve_noise": float(noise[2]),
+        "outlier_frames": [int(i) for i in np.flatnonzero(~inliers)],
+    }

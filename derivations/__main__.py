@@ -179,6 +179,12 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         "problems (derivations/section2.py)",
         lambda: _function_module("derivations.section2", "section2_minimal.py"),
     ),
+    (
+        "rigid_model.py",
+        "the orthographic rigid-body measurement model of the Section 2 rows and its Jacobians "
+        "(derivations/rigid_model.py)",
+        lambda: _function_module("derivations.rigid_model", "rigid_model.py"),
+    ),
 )
 
 

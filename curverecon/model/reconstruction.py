@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from curverecon.generated import measurement_model
+from curverecon.model.configuration import PAPER_CONFIGURATION
 from curverecon.model.observations import Observations, wrap_line_angle
 from curverecon.model.pose import rotations, translations
 
@@ -63,6 +64,17 @@ class Reconstruction:
             ambiguous (``BranchOptions.ambiguous_dchi2``).
         ends_exchanged: (N,) with ``"ends_identified": false`` input: the frames whose labels
             A and B the answer exchanged (A and B are named as in frame 0); None otherwise.
+        points3: per frame {name: [x, y, z]}, every traceable point in that frame's camera
+            coordinates (A at z = 0), or None: then A and B from the shape and poses.
+        configuration: the output's ``"configuration"`` (``Configuration.to_json_dict``), or
+            None for the paper's own row.
+        motion_parameters: the fitted motion (``"axis"``: unit vector in frame 0's camera
+            coordinates, ``"rate_deg"``: degrees per unit of t, ``"angle_deg"``: per frame,
+            ``"acceleration"``: whichever the model has), or None (free motion: ``{}``).
+        motion_scores: with ``--motion auto``, every candidate model's score, or None.
+
+    For the rows of the Section 2 table without tangents, ``shape``'s alpha, beta and phi and
+    the per-frame poses may be NaN: they are written as null.
     """
 
     shape: np.ndarray
@@ -83,6 +95,10 @@ class Reconstruction:
     curve_bundle: dict | None = None
     ambiguous_dchi2: float = 4.0
     ends_exchanged: np.ndarray | None = None
+    points3: list[dict[str, list[float]]] | None = None
+    configuration: dict | None = None
+    motion_parameters: dict | None = None
+    motion_scores: dict | None = None
 
     @property
     def c(self) -> float:
@@ -126,20 +142,24 @@ class Reconstruction:
     def to_json_dict(self) -> dict:
         """The ``curverecon.reconstruction/1`` document (degrees; extra keys beyond the contract:
         per-frame theta_deg, tx, ty, inlier, chi2; top-level method, std, chi2, outlier_frames,
-        alternatives, warnings; curve3d and curve_bundle when there are polylines)."""
+        alternatives, warnings; curve3d and curve_bundle when there are polylines).  Every
+        configuration also writes per-frame ``points3`` and top-level ``configuration`` and
+        ``motion_parameters`` (``{}`` for free motion), and ``motion_scores`` when fitted."""
         a3, b3, ta3, tb3 = self.points_3d()
         frames = []
         for i in range(len(self.poses)):
             d, t, th, tx, ty = self.poses[i]
+            points3 = self._frame_points3(i, a3[i], b3[i])
             frame = {
                 "delta_deg": math.degrees(d),
                 "tau_deg": math.degrees(t),
-                "A3": a3[i].tolist(),
-                "B3": b3[i].tolist(),
+                "A3": points3["A"],
+                "B3": points3["B"],
                 "tangent_A3": ta3[i].tolist(),
                 "tangent_B3": tb3[i].tolist(),
                 "theta_deg": math.degrees(th),
                 "inlier": bool(self.inliers[i]),
+                "points3": points3,
             }
             if self.frame_chi2 is not None:
                 frame["chi2"] = float(self.frame_chi2[i])
@@ -172,6 +192,10 @@ class Reconstruction:
         ]
         if self.ends_exchanged is not None:
             out["ends_identified"] = False
+        out["configuration"] = dict(self.configuration or PAPER_CONFIGURATION.to_json_dict())
+        out["motion_parameters"] = dict(self.motion_parameters or {})
+        if self.motion_scores is not None:
+            out["motion_scores"] = self.motion_scores
         out["warnings"] = list(self.warnings)
         if self.curve3d is not None:
             out["curve3d"] = np.asarray(self.curve3d, float).tolist()
@@ -182,6 +206,12 @@ class Reconstruction:
         if self.curve_bundle is not None:
             out["curve_bundle"] = self.curve_bundle
         return out
+
+    def _frame_points3(self, i: int, a3: np.ndarray, b3: np.ndarray) -> dict[str, list[float]]:
+        """Frame ``i``'s ``points3``: the given ones, else A and B from the shape and pose."""
+        if self.points3 is None:
+            return {"A": a3.tolist(), "B": b3.tolist()}
+        return {k: [float(v) for v in xyz] for k, xyz in self.points3[i].items()}
 
 
 def _exchanged_key(exchanged: np.ndarray | None) -> dict:

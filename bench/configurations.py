@@ -1,0 +1,360 @@
+"""The orthographic Section 2 rows: ``python -m bench --only configurations``.
+
+Rows (key names): ``ortho_uniform_rotation`` (A, B), ``ortho_fixed_axis`` (A, B),
+``ortho_free_3pt`` (A, B, C), ``ortho_force_field`` (A, B); scenes from
+``bench.rigid_scenes`` (an independent 3-D construction), each seeded by a SeedSequence of
+(bench seed, kind, row, scene).  Keys per row ``config_<row>_...``:
+
+- ``noise_free_max_error``: the largest error of any point of any frame (points3, relative to
+  the chord c) of ``reconstruct_rigid`` on noise-free scenes of ``UNIQUE_FRAMES`` frames (up to
+  the symmetries: the mirror, and for a planar body each frame's depth reversal);
+- ``rmse_over_crlb``: over ``ACCURACY_SCENES`` scenes (20 frames, 30 for the force field, 1 px),
+  the root mean square over scenes of each shape and motion parameter's error divided by its
+  Cramer-Rao bound (the Fisher information at the truth), the worst parameter; with
+  ``_oracle`` the same for the maximum likelihood started at the truth;
+- ``std_coverage_3sigma``: the fraction of (scene, parameter) whose error is within three of the
+  answer's standard deviations;
+- ``success_rate_20pct_outliers``: a fifth of the frames with random points (``OUTLIER_SCENES``);
+  success: every outlier frame flagged, at most one good frame flagged, c within 5 standard
+  deviations;
+- ``curve_within_1pct_rate``: with 0.5 px polylines (and points), 20 frames: every curve3d
+  point within 1 % of the curve's length of the true curve;
+- ``config_motion_auto_correct_rate``: ``--motion auto`` on scenes of each motion with A, B, C
+  (20 frames, 1 px): the chosen model is the scene's.
+
+The minimal solvers' keys come from ``bench.config_minimal.run(seed, scenes)`` where it exists.
+``python -m bench.configurations [--seed N] [--quick]`` prints the keys as JSON (a held-out
+seed), without touching the report.
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import time  # noqa: E402
+import warnings  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from bench.common import Task, chunks, run_tasks  # noqa: E402
+from bench.rigid_scenes import RigidScene, make_rigid_scene  # noqa: E402
+
+ROWS = {
+    "ortho_uniform_rotation": ("uniform-rotation", "AB"),
+    "ortho_fixed_axis": ("fixed-axis", "AB"),
+    "ortho_free_3pt": ("free", "ABC"),
+    "ortho_force_field": ("force-field", "AB"),
+}
+UNIQUE_FRAMES = {"uniform-rotation": 8, "fixed-axis": 8, "free": 6, "force-field": 14}
+"""Frames of the noise-free scenes: a few above the least count, where the answer is unique up
+to its symmetries."""
+ACCURACY_SCENES = 200
+NOISE_FREE_SCENES = 40
+OUTLIER_SCENES = 40
+CURVE_SCENES = 20
+AUTO_SCENES = 20
+CHUNK = 5
+WORKERS = 2
+DEFAULT_SEED = 2026
+KINDS = ("noise_free", "accuracy", "outliers", "curve", "auto")
+
+
+def scene_seed(seed: int, kind: str, row: int, index: int) -> int:
+    return int(np.random.SeedSequence([seed, KINDS.index(kind), row, index]).generate_state(1)[0])
+
+
+def observations(scene: RigidScene, motion: str):
+    """The scene as ``RigidObservations`` under ``motion``."""
+    from curverecon.model.configuration import Configuration, RigidObservations
+
+    tan = None
+    if scene.angles is not None:
+        tan = np.stack([np.cos(scene.angles), np.sin(scene.angles)], axis=-1)
+    cfg = Configuration("orthographic", motion, scene.names, tan is not None)
+    return RigidObservations(cfg, scene.times, scene.points, tan, scene.curves)
+
+
+def _points3(rec, names) -> np.ndarray:
+    return np.array([[p[n] for n in names] for p in rec.points3])
+
+
+def points_error(scene: RigidScene, rec) -> float:
+    """Largest point error over every frame relative to c, up to the mirror and (a planar body)
+    each frame's depth reversal."""
+    est = _points3(rec, scene.names)
+    truth = scene.points3
+    c = float(np.linalg.norm(truth[0, 1] - truth[0, 0]))
+    flip = np.array([1.0, 1.0, -1.0])
+    best = np.inf
+    for mirror in (1.0, -1.0):
+        t = truth * (flip if mirror < 0 else 1.0)
+        err = np.abs(est - t).max(axis=(1, 2))
+        if len(scene.names) <= 3 and scene.angles is None:
+            err = np.minimum(err, np.abs(est - t * flip).max(axis=(1, 2)))
+        best = min(best, float(err.max()))
+    return best / c
+
+
+def _truth_state(scene: RigidScene, layout, data):
+    from curverecon.rigid.geometry import state_from_geometry
+    from curverecon.rigid.measurements import RigidData
+
+    exact = RigidData(scene.times, scene.points3[:, :, :2], scene.angles, 1.0, 1.0)
+    state = state_from_geometry(layout, exact, scene.points3, scene.rotations)
+    if scene.angles is not None:
+        from curverecon.rigid.model import axis_angles
+
+        state.directions = np.array([axis_angles(u) for u in scene.tangents3])
+    return state
+
+
+def parameter_vector(layout, state, times) -> np.ndarray:
+    """The shape and motion parameters compared with the truth (normalised state)."""
+    from curverecon.rigid.model import normalise
+
+    s = normalise(layout, state, times)
+    parts = [s.body.ravel()]
+    if s.directions is not None:
+        parts.append(s.directions.ravel())
+    if s.axis is not None:
+        parts.append(s.axis)
+    if s.rate is not None:
+        parts.append([s.rate])
+    if s.parabola is not None:
+        parts.append(s.parabola.ravel())
+    return np.concatenate(parts)
+
+
+def _wrap_diff(layout, d: np.ndarray) -> np.ndarray:
+    """Angle parameters' differences wrapped to (-pi, pi]."""
+    names = layout.global_names()
+    out = np.array(d, float)
+    for i, name in enumerate(names):
+        if name.endswith(("azimuth", "lam", "kappa", "polar")):
+            out[i] = np.angle(np.exp(1j * out[i]))
+    return out
+
+
+def accuracy_scenes(seed: int, row: int, indices: range) -> list[dict]:
+    """Per scene: errors / CRLB of the answer and of the oracle, and the 3-sigma coverage."""
+    from curverecon.rigid import fit_motion, reconstruct_rigid, rigid_data  # noqa: F401
+    from curverecon.rigid.measurements import RigidData
+    from curverecon.rigid.model import Layout
+    from curverecon.rigid.refinement import fisher_information, refine
+
+    motion, names = list(ROWS.values())[row]
+    frames = 30 if motion == "force-field" else 20
+    out = []
+    for i in indices:
+        sc = make_rigid_scene(motion, names, frames, scene_seed(seed, "accuracy", row, i))
+        layout = Layout(motion, tuple(names), False)
+        data = RigidData(sc.times, sc.points, None, 1.0, 1.0)
+        truth = _truth_state(sc, layout, data)
+        crlb = np.sqrt(np.diag(np.linalg.inv(fisher_information(layout, truth, data))))
+        tv = parameter_vector(layout, truth, sc.times)
+        oracle = refine(layout, truth, data, covariance=False, max_iter=200)
+        z_oracle = _wrap_diff(layout, parameter_vector(layout, oracle.state, sc.times) - tv) / crlb
+        rec = {"index": i}
+        try:
+            lay, fit, inl = fit_motion(observations(sc, motion), motion, _options())
+            est = fit.full_state or fit.state
+            d = _wrap_diff(layout, parameter_vector(layout, est, sc.times) - tv)
+            rec["z"] = (d / crlb).tolist()
+            sd = np.sqrt(np.diag(fit.covariance)) if fit.covariance is not None else np.zeros_like(d)
+            rec["covered"] = (np.abs(d) <= 3 * sd).tolist()
+            rec["outliers_flagged"] = int(np.count_nonzero(~inl))
+        except Exception as exc:  # noqa: BLE001 (a failure is counted, not raised)
+            rec["error"] = str(exc)
+        rec["z_oracle"] = z_oracle.tolist()
+        out.append(rec)
+    return out
+
+
+def _options():
+    from curverecon.options import ReconstructOptions
+
+    return ReconstructOptions()
+
+
+def noise_free_scenes(seed: int, row: int, indices: range) -> list[dict]:
+    from curverecon.rigid import reconstruct_rigid
+
+    motion, names = list(ROWS.values())[row]
+    out = []
+    for i in indices:
+        sc = make_rigid_scene(
+            motion, names, UNIQUE_FRAMES[motion], scene_seed(seed, "noise_free", row, i), 0.0
+        )
+        try:
+            rec = reconstruct_rigid(observations(sc, motion))
+            out.append({"index": i, "error": points_error(sc, rec)})
+        except Exception as exc:  # noqa: BLE001
+            out.append({"index": i, "error": float("inf"), "message": str(exc)})
+    return out
+
+
+def outlier_scenes(seed: int, row: int, indices: range) -> list[dict]:
+    from curverecon.rigid import reconstruct_rigid
+
+    motion, names = list(ROWS.values())[row]
+    frames = 30 if motion == "force-field" else 20
+    out = []
+    for i in indices:
+        sc = make_rigid_scene(
+            motion, names, frames, scene_seed(seed, "outliers", row, i), outlier_fraction=0.2
+        )
+        c = float(np.linalg.norm(sc.points3[0, 1] - sc.points3[0, 0]))
+        try:
+            rec = reconstruct_rigid(observations(sc, motion))
+            flagged = ~np.asarray(rec.inliers)
+            ok = (
+                bool(np.all(flagged[sc.outliers]))
+                and int(np.count_nonzero(flagged & ~sc.outliers)) <= 1
+                and abs(rec.c - c) <= 5.0 * max(float(rec.std[0]), 1e-9)
+            )
+        except Exception:  # noqa: BLE001
+            ok = False
+        out.append({"index": i, "success": ok})
+    return out
+
+
+def curve_error(scene: RigidScene, curve3d: np.ndarray) -> float:
+    """Largest distance of a curve3d point from the true curve, relative to its length (the
+    mirror image of the truth taken where it is closer)."""
+    best = np.inf
+    for flip in (np.array([1.0, 1.0, 1.0]), np.array([1.0, 1.0, -1.0])):
+        t = scene.curve3d * flip
+        d = np.linalg.norm(curve3d[:, None, :] - t[None, :, :], axis=2).min(axis=1)
+        best = min(best, float(d.max()))
+    return best / scene.curve_length
+
+
+def curve_scenes(seed: int, row: int, indices: range) -> list[dict]:
+    from curverecon.rigid import reconstruct_rigid
+
+    motion, names = list(ROWS.values())[row]
+    out = []
+    for i in indices:
+        sc = make_rigid_scene(
+            motion, names, 20, scene_seed(seed, "curve", row, i), 0.5, with_curve=True
+        )
+        try:
+            rec = reconstruct_rigid(observations(sc, motion))
+            err = curve_error(sc, rec.curve3d) if rec.curve3d is not None else float("inf")
+        except Exception:  # noqa: BLE001
+            err = float("inf")
+        out.append({"index": i, "error": err})
+    return out
+
+
+def auto_scenes(seed: int, row: int, indices: range) -> list[dict]:
+    from curverecon.rigid import reconstruct_rigid
+
+    motion = list(ROWS.values())[row][0]
+    out = []
+    for i in indices:
+        sc = make_rigid_scene(motion, "ABC", 20, scene_seed(seed, "auto", row, i))
+        try:
+            chosen = reconstruct_rigid(observations(sc, "auto")).configuration["motion"]
+        except Exception as exc:  # noqa: BLE001
+            chosen = f"error: {exc}"
+        out.append({"index": i, "chosen": chosen, "truth": motion})
+    return out
+
+
+def _summarise(groups: dict[str, list[dict]]) -> dict:
+    out: dict = {}
+    for row, key in enumerate(ROWS):
+        acc = groups.get(f"accuracy|{row}", [])
+        ok = [r for r in acc if "z" in r]
+        if ok:
+            z = np.array([r["z"] for r in ok])
+            out[f"config_{key}_rmse_over_crlb"] = round(float(np.sqrt(np.mean(z**2, 0)).max()), 3)
+            out[f"config_{key}_rmse_over_crlb_median_param"] = round(
+                float(np.median(np.sqrt(np.mean(z**2, 0)))), 3
+            )
+            out[f"config_{key}_std_coverage_3sigma"] = round(
+                float(np.mean([r["covered"] for r in ok])), 4
+            )
+        if acc:
+            zo = np.array([r["z_oracle"] for r in acc])
+            out[f"config_{key}_rmse_over_crlb_oracle"] = round(
+                float(np.sqrt(np.mean(zo**2, 0)).max()), 3
+            )
+            out[f"config_{key}_accuracy_scenes"] = len(acc)
+            out[f"config_{key}_accuracy_failures"] = len(acc) - len(ok)
+        nf = groups.get(f"noise_free|{row}", [])
+        if nf:
+            out[f"config_{key}_noise_free_max_error"] = float(max(r["error"] for r in nf))
+            out[f"config_{key}_noise_free_scenes"] = len(nf)
+        ol = groups.get(f"outliers|{row}", [])
+        if ol:
+            out[f"config_{key}_success_rate_20pct_outliers"] = round(
+                float(np.mean([r["success"] for r in ol])), 3
+            )
+        cv = groups.get(f"curve|{row}", [])
+        if cv:
+            out[f"config_{key}_curve_within_1pct_rate"] = round(
+                float(np.mean([r["error"] <= 0.01 for r in cv])), 3
+            )
+    auto = [r for row in range(len(ROWS)) for r in groups.get(f"auto|{row}", [])]
+    if auto:
+        out["config_motion_auto_correct_rate"] = round(
+            float(np.mean([r["chosen"] == r["truth"] for r in auto])), 3
+        )
+        out["config_motion_auto_scenes"] = len(auto)
+    return out
+
+
+def run(quick: bool = False, seed: int | None = None, workers: int = WORKERS) -> dict:
+    """The section's report keys for ``seed`` (default ``DEFAULT_SEED``)."""
+    seed = DEFAULT_SEED if seed is None else seed
+    t0 = time.time()
+    warnings.filterwarnings("ignore", category=RuntimeWarning)
+    counts = {
+        "accuracy": (accuracy_scenes, 4 if quick else ACCURACY_SCENES),
+        "noise_free": (noise_free_scenes, 2 if quick else NOISE_FREE_SCENES),
+        "outliers": (outlier_scenes, 2 if quick else OUTLIER_SCENES),
+        "curve": (curve_scenes, 1 if quick else CURVE_SCENES),
+        "auto": (auto_scenes, 1 if quick else AUTO_SCENES),
+    }
+    tasks = [
+        Task(fn, (seed, row, r), len(r), f"{kind}|{row}")
+        for kind, (fn, n) in counts.items()
+        for row in range(len(ROWS))
+        for r in chunks(n, CHUNK)
+    ]
+    groups = run_tasks(tasks, workers, "configurations", progress=True)
+    out = _summarise(groups)
+    out.update(_minimal(seed, quick))
+    out["config_seed"] = seed
+    out["config_seconds"] = round(time.time() - t0, 1)
+    return out
+
+
+def _minimal(seed: int, quick: bool) -> dict:
+    """cfgderive's minimal-solver keys (``bench.config_minimal``) where that module exists."""
+    try:
+        from bench import config_minimal  # type: ignore[attr-defined]
+    except ImportError:
+        return {}
+    return config_minimal.run(seed, 20 if quick else None)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m bench.configurations")
+    parser.add_argument("--seed", type=int, default=None)
+    parser.add_argument("--quick", action="store_true")
+    parser.add_argument("--workers", type=int, default=WORKERS)
+    args = parser.parse_args(argv)
+    print(json.dumps(run(args.quick, args.seed, args.workers), indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

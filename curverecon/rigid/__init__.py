@@ -1,0 +1,134 @@
+"""The orthographic Section 2 rows: a rigid body under a motion model, estimated from its frames.
+
+``reconstruct_rigid(obs, options)`` is the stage's entry (``pipeline.reconstruct`` dispatches
+``RigidObservations`` to it).  Files (PoseLib / COLMAP layout):
+
+- ``model.py``: the parametrisation (body, motion model, per-frame parameters, the mirror);
+- ``measurements.py``: standardised residuals and Jacobians from ``generated/rigid_model.py``;
+- ``refinement.py``: maximum likelihood (Levenberg-Marquardt, Schur complement), covariance,
+  Fisher information (Cramer-Rao bound);
+- ``starts.py``: start states from every frame (robust scores); ``geometry.py``: a state from
+  3-D points and rotations (a minimal solver's or a simulator's);
+- ``estimate.py``: one row's fit, outlier frames, degenerate fits refused;
+- ``select.py``: ``--motion auto`` (BIC with a robust chi2);
+- ``answer.py``: the answer in the toolkit's conventions; ``curve.py``: section 4 on the row's
+  poses.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from curverecon.errors import CurveReconError
+from curverecon.model.configuration import RigidObservations, min_frames
+from curverecon.model.reconstruction import Reconstruction
+from curverecon.options import ReconstructOptions
+from curverecon.rigid.answer import (
+    chord_std,
+    motion_parameters,
+    paper_answer,
+    points3_dicts,
+)
+from curverecon.rigid.estimate import fit_row
+from curverecon.rigid.measurements import RigidData
+from curverecon.rigid.model import Layout, frame_angles, normalise, tangent_vectors, with_frames
+
+
+def rigid_data(obs: RigidObservations, options: ReconstructOptions) -> RigidData:
+    """The measurements of ``obs`` with the options' noise levels (input units, radians)."""
+    angles = None
+    if obs.tangents is not None:
+        angles = np.arctan2(obs.tangents[..., 1], obs.tangents[..., 0])
+    return RigidData(
+        np.asarray(obs.times, float),
+        np.asarray(obs.points, float),
+        angles,
+        float(options.point_sigma),
+        float(np.radians(options.tangent_sigma_deg)),
+    )
+
+
+def fit_motion(obs: RigidObservations, motion: str, options: ReconstructOptions):
+    """(layout, fit, inliers) of one motion model on ``obs``."""
+    cfg = obs.configuration
+    layout = Layout(motion, tuple(cfg.points), bool(cfg.tangents))
+    data = rigid_data(obs, options)
+    need = min_frames(motion, obs.n_points)
+    fit, inliers = fit_row(layout, data, need, options.outliers)
+    return layout, fit, inliers
+
+
+def answer(
+    obs: RigidObservations,
+    layout: Layout,
+    fit,
+    inliers: np.ndarray,
+    options: ReconstructOptions,
+) -> Reconstruction:
+    """The Reconstruction of a fitted row (every frame; outlier frames with their last pose)."""
+    from curverecon.rigid.curve import curve_on_poses
+
+    data = rigid_data(obs, options)
+    idx = np.flatnonzero(inliers)
+    sub = data.subset(idx)
+    full = normalise(layout, fit.full_state or fit.state, data.times)
+    state = with_frames(full, idx)
+    tangents3 = tangent_vectors(state)
+    warnings = list(obs.warnings)
+    curve3d = None
+    if obs.curves is not None:
+        curve3d, tangents3, more = curve_on_poses(layout, full, data, obs.curves, tangents3)
+        warnings += more
+    shape, poses = paper_answer(layout, full, data.times, tangents3)
+    std = np.array([chord_std(layout, state, fit.covariance), np.nan, np.nan, np.nan])
+    mp = motion_parameters(layout, replace(fit, state=state), sub)
+    if "angle_deg" in mp:
+        mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()
+    frame_chi2 = np.full(data.n_frames, np.nan)
+    frame_chi2[idx] = fit.frame_chi2
+    cfg = obs.configuration.to_json_dict()
+    cfg["motion"] = layout.motion
+    return Reconstruction(
+        shape=shape,
+        poses=poses,
+        std=std,
+        inliers=inliers,
+        warnings=warnings,
+        method="auto",
+        chi2=float(fit.chi2),
+        frame_chi2=frame_chi2,
+        estimator="ml",
+        curve3d=curve3d,
+        points3=points3_dicts(layout, full, data.times),
+        configuration=cfg,
+        motion_parameters=mp,
+    )
+
+
+def reconstruct_rigid(
+    obs: RigidObservations, options: ReconstructOptions | None = None
+) -> Reconstruction:
+    """The reconstruction of a configuration of the Section 2 table (orthographic rows).
+
+    ``obs.configuration.motion`` "auto" fits every model the points allow and chooses by BIC
+    (``rigid.select``), filling ``motion_scores``.  Raises CurveReconError (one line) for input
+    the model cannot determine (too few frames or points, a degenerate fitted motion).
+    """
+    options = options or ReconstructOptions()
+    cfg = obs.configuration
+    if cfg.projection != "orthographic":
+        raise CurveReconError(f'projection "{cfg.projection}" is not supported by the rigid stage')
+    if cfg.motion == "auto":
+        from curverecon.rigid.select import reconstruct_auto
+
+        return reconstruct_auto(obs, options)
+    obs.require_reconstructable(options.point_sigma, options.tangent_sigma_deg)
+    if cfg.motion == "free" and obs.n_points < 3 and not cfg.tangents:
+        raise CurveReconError("free motion with A and B alone needs tangents or a third point")
+    layout, fit, inliers = fit_motion(obs, cfg.motion, options)
+    return answer(obs, layout, fit, inliers, options)
+
+
+__all__ = ["reconstruct_rigid"]

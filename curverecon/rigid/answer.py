@@ -1,0 +1,134 @@
+"""A row's fit as the toolkit's answer: shape, the paper's poses, points3, motion parameters.
+
+The paper's pose convention (``model/pose.py``: X_cam = R_z(theta) R_y(tau) R_x(delta) X + t,
+the curve frame with A at the origin, B on +x and the tangent at B in the xy plane) is reached
+from a row's rotations R_f by the curve frame's axes in frame 0: e1 along AB, e2 the part of the
+tangent at B (or, without tangents, of C - A, or of the viewing axis) normal to AB, e3 = e1 x e2;
+the curve-to-camera rotation of frame f is R_f [e1 e2 e3].  alpha, beta, phi follow from the
+tangent directions (given, or the curve's end tangents) by the contract's definitions
+(t_B = (-cos alpha, sin alpha, 0), t_A = (cos beta, sin beta cos phi, sin beta sin phi)), NaN
+where neither tangents nor curves are given.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from curverecon.model.pose import normalise as normalise_pose
+from curverecon.rigid.measurements import RigidData
+from curverecon.rigid.model import (
+    Layout,
+    RigidState,
+    axis_vector,
+    body_vectors,
+    frame_angles,
+    frame_rotations,
+    points3,
+)
+from curverecon.rigid.refinement import RigidFit
+
+
+def curve_frame(chord: np.ndarray, reference: np.ndarray) -> np.ndarray:
+    """(3, 3) columns e1 (along ``chord``), e2 (``reference``'s part normal to it), e3."""
+    e1 = chord / np.linalg.norm(chord)
+    r = reference - (reference @ e1) * e1
+    if np.linalg.norm(r) < 1e-9 * max(np.linalg.norm(reference), 1.0):
+        r = np.array([0.0, 0.0, 1.0]) - e1[2] * e1
+    e2 = r / np.linalg.norm(r)
+    return np.column_stack([e1, e2, np.cross(e1, e2)])
+
+
+def decompose(m: np.ndarray) -> np.ndarray:
+    """(N, 3) delta, tau, theta of rotations m = R_z(theta) R_y(tau) R_x(delta) (radians)."""
+    theta = np.arctan2(m[:, 1, 0], m[:, 0, 0])
+    tau = np.arctan2(-m[:, 2, 0], np.hypot(m[:, 0, 0], m[:, 1, 0]))
+    delta = np.arctan2(m[:, 2, 1], m[:, 2, 2])
+    return np.column_stack([delta, tau, theta])
+
+
+def shape_angles(frame: np.ndarray, t_a: np.ndarray, t_b: np.ndarray) -> tuple[float, ...]:
+    """(alpha, beta, phi) of unit tangents into the curve at A and B in the curve frame."""
+    a, b = frame.T @ t_a, frame.T @ t_b
+    alpha = math.atan2(b[1], -b[0])
+    beta = math.atan2(math.hypot(a[1], a[2]), a[0])
+    phi = math.atan2(a[2], a[1])
+    return alpha, beta, phi
+
+
+def paper_answer(
+    layout: Layout,
+    state: RigidState,
+    times: np.ndarray,
+    tangents3: np.ndarray | None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """(shape (4,), poses (N, 5)) in the paper's convention (see the module docstring)."""
+    q = body_vectors(layout, state)
+    chord = q[1] - q[0]
+    if tangents3 is not None:
+        ref = tangents3[1]
+    elif len(q) > 2:
+        ref = q[2] - q[0]
+    else:
+        ref = np.array([0.0, 0.0, 1.0])
+    frame = curve_frame(chord, ref)
+    rot, _ = frame_rotations(layout, state, times)
+    p3 = points3(layout, state, times)
+    angles = decompose(np.einsum("fij,jk->fik", rot, frame))
+    poses = np.column_stack([angles, p3[:, 0, :2]])
+    c = float(np.linalg.norm(chord))
+    if tangents3 is None:
+        return np.array([c, np.nan, np.nan, np.nan]), poses
+    alpha, beta, phi = shape_angles(frame, tangents3[0], tangents3[1])
+    return normalise_pose(np.array([c, alpha, beta, phi]), poses)
+
+
+def chord_std(layout: Layout, state: RigidState, cov: np.ndarray | None) -> float:
+    """Standard deviation of c = |B - A| from the globals' covariance (delta method)."""
+    if cov is None:
+        return math.nan
+    q = body_vectors(layout, state)
+    d = q[1] - q[0]
+    grad = np.zeros(cov.shape[0])
+    if layout.centred:
+        grad[0:3], grad[3:6] = -d / np.linalg.norm(d), d / np.linalg.norm(d)
+    else:
+        grad[0:3] = d / np.linalg.norm(d)
+    return float(np.sqrt(max(grad @ cov @ grad, 0.0)))
+
+
+def motion_parameters(layout: Layout, fit: RigidFit, data: RigidData) -> dict:
+    """The contract's ``motion_parameters`` of a fit, with ``std`` where the covariance gives it
+    (degrees, input units per unit of t squared)."""
+    s, cov = fit.state, fit.covariance
+    out: dict = {}
+    g0 = 3 * layout.n_body + (4 if layout.tangents else 0)
+    sd = None if cov is None else np.sqrt(np.maximum(np.diag(cov), 0.0))
+    std: dict = {}
+    if s.axis is not None:
+        out["axis"] = axis_vector(s.axis).tolist()
+        out["angle_deg"] = np.degrees(frame_angles(layout, s, data.times)).tolist()
+        if sd is not None:
+            std["axis_deg"] = float(
+                np.degrees(math.hypot(sd[g0], math.sin(s.axis[0]) * sd[g0 + 1]))
+            )
+    if layout.motion == "uniform-rotation":
+        out["rate_deg"] = math.degrees(s.rate)
+        if sd is not None:
+            std["rate_deg"] = math.degrees(sd[g0 + 2])
+    if layout.centred:
+        out["acceleration"] = np.asarray(s.parabola[2], float).tolist()
+        out["velocity"] = np.asarray(s.parabola[1], float).tolist()
+        out["position"] = np.asarray(s.parabola[0], float).tolist()
+        if sd is not None:
+            std["acceleration"] = sd[g0 + 4 : g0 + 6].tolist()
+    if std:
+        out["std"] = std
+    return out
+
+
+def points3_dicts(layout: Layout, state: RigidState, times: np.ndarray) -> list[dict]:
+    """Per frame {name: [x, y, z]} (camera coordinates, A at z = 0)."""
+    p3 = points3(layout, state, times)
+    return [{n: p3[f, k].tolist() for k, n in enumerate(layout.points)} for f in range(len(p3))]

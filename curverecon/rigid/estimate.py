@@ -1,0 +1,202 @@
+"""One row's estimate: starts, maximum likelihood, outlier frames, degenerate fits refused.
+
+Hypotheses come from every frame at once (``rigid.starts``: robust, trimmed scores, so outlier
+frames do not decide); each is refined by maximum likelihood (``rigid.refinement``) and the
+lowest chi2 kept.  Outlier frames are found as for the paper's row (``robust/outliers.py``):
+each frame's studentised chi2 (chi2 / (1 - leverage)) against the chi-square quantile of its
+degrees of freedom (measurements minus its own parameters) at ``OutlierOptions.false_alarm``,
+scaled up when the median says the noise is larger; the worst frame above it is dropped and the
+fit redone, at most (N - FRAMES) // 2 frames.
+
+A fitted motion that does not determine the body is refused with one line
+(:func:`check_degenerate`): an axis along the viewing direction, a zero rate, a singular
+Fisher information.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.stats import chi2 as chi2_dist
+
+from curverecon.errors import CurveReconError
+from curverecon.options import OutlierOptions
+from curverecon.rigid.measurements import RigidData
+from curverecon.rigid.model import Layout, axis_vector, with_frames
+from curverecon.rigid.refinement import RigidFit, information_inverse, refine
+from curverecon.rigid.starts import starts
+
+MIN_AXIS_TILT_DEG = 2.0
+"""An axis within this of the viewing direction shows no depth: refused."""
+
+MIN_TURN_DEG = 1.0
+"""A fitted motion whose frames turn less than this in all (the largest angle from frame 0) is
+refused: a zero rate, all frames alike."""
+
+
+def _refine(layout, state, data, **kw) -> RigidFit | None:
+    try:
+        fit = refine(layout, state, data, covariance=False, **{"max_iter": 200, **kw})
+    except (np.linalg.LinAlgError, FloatingPointError, ValueError):
+        return None
+    return fit if np.isfinite(fit.chi2) else None
+
+
+def consensus_fit(
+    layout: Layout, data: RigidData, state, threshold: float, keep: float = 0.7
+) -> tuple[RigidFit, np.ndarray, float] | None:
+    """(fit on the consensus frames with the state over every frame, consensus (N,), robust
+    cost) from one start: refined on all frames, then on the ``keep`` fraction of frames that
+    fit it best, every frame's own parameters fitted to that body and motion, the frames below
+    ``threshold`` (frame 0 always) refined together.  The robust cost is
+    sum_f min(chi2_f, threshold) over every frame."""
+    n = data.n_frames
+    fit = _refine(layout, state, data)
+    if fit is None:
+        return None
+    cons = np.ones(n, bool)
+    for _ in range(2):
+        order = np.argsort(fit.frame_chi2, kind="stable")
+        sub = np.zeros(n, bool)
+        sub[order[: max(int(np.ceil(keep * n)), 1)]] = True
+        sub[0] = True
+        idx = np.flatnonzero(sub)
+        part = _refine(layout, with_frames(fit.state, idx), data.subset(idx))
+        if part is None:
+            break
+        all_frames = _refine(
+            layout, _expand(layout, part.state, idx, fit.state), data, fix_globals=True
+        )
+        if all_frames is None:
+            break
+        cons = all_frames.frame_chi2 <= threshold
+        cons[0] = True
+        idx = np.flatnonzero(cons)
+        part = _refine(layout, with_frames(all_frames.state, idx), data.subset(idx))
+        if part is None:
+            break
+        fit = _refine(layout, _expand(layout, part.state, idx, all_frames.state), data, max_iter=0)
+        if fit is None:
+            return None
+        if cons.all():
+            break
+    cost = float(np.sum(np.minimum(fit.frame_chi2, threshold)))
+    return fit, cons, cost
+
+
+def best_fit(layout: Layout, data: RigidData, threshold: float) -> tuple[RigidFit, np.ndarray]:
+    """The lowest robust cost over the starts' consensus fits: (fit over every frame, the
+    consensus frames)."""
+    best = None
+    for state in starts(layout, data):
+        got = consensus_fit(layout, data, state, threshold)
+        if got is not None and (best is None or got[2] < best[2]):
+            best = got
+    if best is None:
+        raise CurveReconError(f"motion {layout.motion}: no start converged")
+    return best[0], best[1]
+
+
+def frame_dof(layout: Layout) -> int:
+    """Degrees of freedom of one frame's residuals: measurements minus its own parameters."""
+    return max(layout.n_measurements - layout.n_local, 1)
+
+
+def outlier_frames(
+    layout: Layout,
+    data: RigidData,
+    fit: RigidFit,
+    min_frames: int,
+    o: OutlierOptions,
+    start: np.ndarray | None = None,
+) -> tuple[np.ndarray, RigidFit]:
+    """(N,) inlier mask and the fit on the inliers (see the module docstring); ``start``: the
+    frames the test starts from (a consensus set; all frames by default)."""
+    n = data.n_frames
+    max_out = max(0, (n - min_frames) // 2)
+    inliers = np.ones(n, bool)
+    if start is not None and np.count_nonzero(~start) <= max_out:
+        inliers = np.array(start, bool)
+    dof = frame_dof(layout)
+    base = float(chi2_dist.isf(o.false_alarm, dof))
+    median = float(chi2_dist.median(dof))
+    state = fit.state  # over every frame
+    best: tuple[np.ndarray, RigidFit] | None = None
+    while True:
+        idx = np.flatnonzero(inliers)
+        cur = refine(layout, with_frames(state, idx), data.subset(idx), max_iter=200)
+        if cur.leverage is None:  # these frames do not determine the body: the last fit stays
+            break
+        state = _expand(layout, cur.state, idx, state)
+        cur.full_state = state
+        best = (inliers.copy(), cur)
+        if np.count_nonzero(~inliers) >= max_out:
+            break
+        expected = np.maximum(layout.n_measurements - cur.leverage, 0.05 * dof)
+        st = cur.frame_chi2 * dof / expected
+        thr = base * max(1.0, float(np.median(st)) / median)
+        worst = int(np.argmax(st))
+        if st[worst] <= thr or idx[worst] == 0:
+            break
+        inliers[idx[worst]] = False
+    if best is None:
+        idx = np.flatnonzero(inliers)
+        cur = refine(layout, with_frames(state, idx), data.subset(idx), covariance=False)
+        cur.full_state = _expand(layout, cur.state, idx, state)
+        best = (inliers, cur)
+    return best
+
+
+def _expand(layout, sub_state, idx, full_state):
+    """The full-length state with the subset's values (the dropped frame keeps its old ones)."""
+    s = full_state.copy()
+    s.body, s.directions, s.axis = sub_state.body, sub_state.directions, sub_state.axis
+    s.rate, s.parabola = sub_state.rate, sub_state.parabola
+    for name in ("angles", "rotations", "shifts"):
+        v = getattr(sub_state, name)
+        if v is not None:
+            arr = np.array(getattr(s, name))
+            arr[idx] = v
+            setattr(s, name, arr)
+    return s
+
+
+def check_degenerate(layout: Layout, fit: RigidFit, data: RigidData) -> None:
+    """Refuse (CurveReconError, one line) a fitted motion that does not determine the body."""
+    if fit.state.axis is not None:
+        n = axis_vector(fit.state.axis)
+        tilt = np.degrees(np.arccos(min(abs(float(n[2])), 1.0)))
+        if tilt < MIN_AXIS_TILT_DEG:
+            raise CurveReconError(
+                f"motion {layout.motion}: the fitted axis is {tilt:.2f} degrees from the viewing "
+                "direction (a turn about the line of sight shows no depth): not determined"
+            )
+        if layout.motion == "uniform-rotation":
+            turn = abs(fit.state.rate) * float(np.ptp(data.times))
+        else:
+            turn = float(np.max(np.abs(fit.state.angles)))
+        if np.degrees(turn) < MIN_TURN_DEG:
+            raise CurveReconError(
+                f"motion {layout.motion}: the fitted rotation turns {np.degrees(turn):.3f} "
+                "degrees in all (a rate of zero, all frames alike): the depth is not determined"
+            )
+    if fit.covariance is None:
+        cov, lev = information_inverse(layout, fit.state, data)
+        if cov is None:
+            raise CurveReconError(
+                f"motion {layout.motion}: the Fisher information of the fit is singular "
+                "(a degenerate motion for these points): the shape is not determined"
+            )
+        fit.covariance, fit.leverage = cov, lev
+
+
+def fit_row(
+    layout: Layout, data: RigidData, min_frames: int, o: OutlierOptions | None = None
+) -> tuple[RigidFit, np.ndarray]:
+    """(the fit on the inliers with its covariance, the (N,) inlier mask)."""
+    o = o or OutlierOptions()
+    threshold = float(chi2_dist.isf(o.false_alarm, frame_dof(layout)))
+    fit, consensus = best_fit(layout, data, threshold)
+    inliers, fit = outlier_frames(layout, data, fit, min_frames, o, consensus)
+    sub = data.subset(np.flatnonzero(inliers))
+    check_degenerate(layout, fit, sub)
+    return fit, inliers
