@@ -136,3 +136,24 @@ def test_trace_flags(tmp_path):
         assert doc.get("ends_identified", True) is identified
         assert observations_from_dict(doc).ends_identified is identified
     assert main(["trace", str(folder), "-o", str(out), "--ordered", "--unordered"]) == 2
+
+
+def test_trace_calls_independent_orientations_unidentified():
+    """Continuity's contrast (the two orders' costs, link by link) tells a sequence in
+    independent random orientations from a smooth one: the true projected polylines of seed
+    2004 pass the ambiguous-link and shape-change tests, and their continuity labels are wrong
+    in half the frames."""
+    from curverecon.trace.ends import MAX_AMBIGUOUS_LINKS, SMOOTH_CHANGE, assign_ends
+    from curverecon.trace.render import tumbling_scene
+
+    verdicts = []
+    for independent in (False, True):
+        scene = tumbling_scene(np.random.default_rng(2004), 16, independent=independent)
+        curves = [c[::5] for c in scene.observations.curves]  # A first in every frame
+        found = assign_ends(curves, 1.5, use_reconstruction=False)
+        verdicts.append((ends_identified(found), int(np.count_nonzero(found.flip))))
+    # the other two tests pass it: the contrast decides
+    assert len(found.ambiguous) <= MAX_AMBIGUOUS_LINKS and found.change <= SMOOTH_CHANGE
+    assert verdicts[0] == (True, 0)
+    assert verdicts[1][0] is False and verdicts[1][1] > 0
+    assert not ends_identified(EndAssignment(np.zeros(8, bool), [], False, 0.1, 2.0))
