@@ -136,3 +136,50 @@ def test_trace_flags(tmp_path):
         assert doc.get("ends_identified", True) is identified
         assert observations_from_dict(doc).ends_identified is identified
     assert main(["trace", str(folder), "-o", str(out), "--ordered", "--unordered"]) == 2
+
+
+def test_trace_calls_independent_orientations_unidentified():
+    """Continuity's contrast (the two orders' costs, link by link) tells a sequence in
+    independent random orientations from a smooth one: the true projected polylines of seed
+    2004 pass the ambiguous-link and shape-change tests, and their continuity labels are wrong
+    in half the frames."""
+    from curverecon.trace.ends import MAX_AMBIGUOUS_LINKS, SMOOTH_CHANGE, assign_ends
+    from curverecon.trace.render import tumbling_scene
+
+    verdicts = []
+    for independent in (False, True):
+        scene = tumbling_scene(np.random.default_rng(2004), 16, independent=independent)
+        curves = [c[::5] for c in scene.observations.curves]  # A first in every frame
+        found = assign_ends(curves, 1.5, use_reconstruction=False)
+        verdicts.append((ends_identified(found), int(np.count_nonzero(found.flip))))
+    # the other two tests pass it: the contrast decides
+    assert len(found.ambiguous) <= MAX_AMBIGUOUS_LINKS and found.change <= SMOOTH_CHANGE
+    assert verdicts[0] == (True, 0)
+    assert verdicts[1][0] is False and verdicts[1][1] > 0
+    assert not ends_identified(EndAssignment(np.zeros(8, bool), [], False, 0.1, 2.0))
+
+
+def test_a_polyline_is_fitted_in_its_own_direction():
+    """A hooked 3-D curve turned at random and projected orthographically (0.3 px noise): the
+    curve placed A on the polyline's first point fits at the noise level, placed the other way
+    round by pixels."""
+    from scipy.spatial.transform import Rotation
+
+    from curverecon.curve.labels import placed_rms
+
+    s = np.linspace(0.0, 1.0, 150)
+    turn = np.clip(s - 0.7, 0.0, None) / 0.3 * 2.5
+    body = np.column_stack(
+        [
+            np.where(s < 0.7, 120.0 * s / 0.7, 120.0 + 25.0 * np.sin(turn)),
+            25.0 * (1.0 - np.cos(turn)),
+            10.0 * turn / 2.5,
+        ]
+    )
+    rng = np.random.default_rng(3)
+    for _ in range(4):
+        rot = Rotation.random(random_state=rng).as_matrix()
+        polyline = (body @ rot.T)[:, :2] + [50.0, 60.0]
+        polyline = polyline + rng.normal(0.0, 0.3, polyline.shape)
+        right, wrong = placed_rms(body, polyline), placed_rms(body, polyline[::-1])
+        assert right < 1.0 and wrong > 3.0 * right

@@ -182,11 +182,17 @@ def label_search(
         if len(shapes) == o.candidates:
             break
     best = None
+    # with polylines every candidate is scored: where the noise is below the stated sigma a
+    # wrong labelling's refined shape can score below the plausible level and stop the scoring
+    # (held-out curve scenes of seed 7, 0.5 px, 16 frames: the stop at 40 kept labellings at
+    # 18-29 that the polylines could not repair; with the polyline placement, 8 misses among
+    # 48 scenes with the stop, 7 without; the candidates' refinements take about 5 ms each)
+    enough = o.plausible_score * obs.n_frames if obs.curves is None else -np.inf
     for shape in shapes:
         found = _refined(obs, shape, point_sigma, tangent_sigma, o)
         if best is None or found.cost < best.cost:
             best = found
-        if best.cost <= o.plausible_score * obs.n_frames:
+        if best.cost <= enough:
             break  # a fit as close as the noise allows: the next candidates cannot do much better
     for _ in range(o.final_rounds):  # refined again from its own labels and shape
         again = _refined(obs, best.shape, point_sigma, tangent_sigma, o)
@@ -350,7 +356,7 @@ def _label_flips(
         if every_frame or obs.tangents_from_curve or not obs.ends_given:
             check[:] = True  # tangents fitted to the polylines: weak evidence of their own
         check[0] = True
-        rms_same, rms_other = polyline_misfits(rec, obs, fit.poses[:n], fit.poses[n:], check)
+        rms_same, rms_other = polyline_misfits(rec, obs, check)
         with np.errstate(invalid="ignore"):
             low = np.minimum(rms_same, rms_other)
             clear = low < o.polyline_ratio * np.maximum(rms_same, rms_other)
