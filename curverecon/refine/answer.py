@@ -9,6 +9,7 @@ warnings and alternatives are written.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -17,6 +18,7 @@ from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise
 from curverecon.model.reconstruction import Alternative, Reconstruction, alternatives_warning
 from curverecon.options import BranchOptions, SearchOptions
+from curverecon.refine.bias import ml_bias
 from curverecon.refine.marginal import KAPPA_MIN, refine_marginal
 from curverecon.refine.ml import RefineResult, optimise_poses, refine
 from curverecon.robust.branches import second_branches
@@ -31,6 +33,23 @@ deviations at 1,000 frames and -5.9 at 10,000 (marginal likelihood), 14.3 at 30,
 at 100,000 (maximum likelihood, ``ReconstructOptions.marginal_max_frames``))."""
 
 
+def _bias_corrected(
+    sub: Observations, fit: RefineResult, ps: float, ts: float
+) -> tuple[RefineResult, str]:
+    """The fit with its shape's estimated bias subtracted and the estimate's own covariance
+    added (``refine.bias``), and the estimator's name; the fit itself where no correction
+    applies (noise-free data, singular information)."""
+    if fit.covariance is None:
+        return fit, "ml"
+    bc = ml_bias(sub.measurements(), fit.shape, fit.poses, ps, ts, fit.frame_chi2, fit.covariance)
+    if bc is None or not np.all(np.isfinite(bc.bias)):
+        return fit, "ml"
+    out = dataclasses.replace(
+        fit, shape=fit.shape - bc.bias, covariance=fit.covariance + bc.covariance
+    )
+    return out, "ml-bias-corrected"
+
+
 def final_estimate(
     obs: Observations,
     inliers: np.ndarray,
@@ -41,6 +60,7 @@ def final_estimate(
     warnings: list[str],
     branches: BranchOptions | None = None,
     search: SearchOptions | None = None,
+    correct_bias: bool = False,
 ) -> Reconstruction:
     """The reconstruction from the equally good fits on the inlier frames (best first).
 
@@ -49,6 +69,8 @@ def final_estimate(
         ps, ts: point noise (input units), tangent noise (radians).
         marginal: the marginal-likelihood estimate (else maximum likelihood).
         warnings: the warnings so far (extended here).
+        correct_bias: (with ``marginal`` False) the maximum-likelihood shape minus its
+            estimated bias, its covariance plus that estimate's (``refine.bias``).
     """
     branches = branches or BranchOptions()
     search = search or SearchOptions()
@@ -97,6 +119,8 @@ def final_estimate(
             estimator = "marginal"
         else:
             final = r0
+    elif correct_bias:
+        final, estimator = _bias_corrected(sub, final, ps, ts)
 
     # Poses of outlier frames: best pose for the final shape (shape held fixed).
     poses = np.array(poses_from_shape(obs, final.shape)[0])
@@ -116,7 +140,7 @@ def final_estimate(
             "the shape is poorly determined by these frames (standard deviation "
             f"c {std[0]:.3g}, angles {', '.join(f'{math.degrees(s):.1f}' for s in std[1:])} deg)"
         )
-    if std is not None and int(inliers.sum()) >= BIAS_WARNING_FRAMES:
+    if std is not None and estimator == "ml" and int(inliers.sum()) >= BIAS_WARNING_FRAMES:
         warnings.append(
             f"with {int(inliers.sum())} frames the standard deviations are below the "
             "estimator's bias (the poses are nuisance parameters; on simulated 1 px / 1 deg "
