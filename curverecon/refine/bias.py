@@ -46,8 +46,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from curverecon.generated import measurement_model
-from curverecon.refine.marginal import KAPPA_MIN
 from curverecon.model.observations import wrap_angle, wrap_line_angle
+from curverecon.refine.marginal import KAPPA_MIN
 from curverecon.refine.ml import optimise_poses, split_params
 from curverecon.robust.search import branch_alternatives, switch_branches
 
