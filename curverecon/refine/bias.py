@@ -64,6 +64,11 @@ DRAWS = 8
 TAIL_DRAWS = 256
 """Draws for a frame whose ``DRAWS``-draw average is uncertain by more than ``TAIL_STD``."""
 
+MAX_TAIL = 50
+"""At most this many frames (the most uncertain) get ``TAIL_DRAWS`` draws: with a subset of
+100,000 frames every simulated term counts 33 times, and hundreds passed ``TAIL_STD`` (the
+correction took 4.6 s of CPU time, 1.2 s with this limit)."""
+
 TAIL_STD = 0.05
 """A frame's simulated term whose uncertainty moves the shape by more than this many of the
 shape's standard deviations gets ``TAIL_DRAWS`` draws."""
@@ -225,7 +230,9 @@ def _frame_terms(
     other = np.concatenate([alt, p[two]])
     mean, mcov, chi2 = _simulated(g, rows, w8, kappa, DRAWS, rng, other)
     spread = np.sqrt(np.einsum("ij,mjk,ik->mi", spread_scale, mcov, spread_scale))
-    tail = np.flatnonzero(np.max(spread, axis=1) > TAIL_STD)
+    worst = np.max(spread, axis=1)
+    tail = np.flatnonzero(worst > TAIL_STD)
+    tail = tail[np.argsort(-worst[tail])[:MAX_TAIL]]
     if tail.size:
         mean[tail], mcov[tail], chi2[tail] = _simulated(
             g, rows[tail], w8, kappa, TAIL_DRAWS, rng, other[tail]
