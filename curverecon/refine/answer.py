@@ -26,11 +26,12 @@ from curverecon.robust.search import branch_alternatives, switch_branches
 from curverecon.solvers.pose import poses_from_shape
 
 BIAS_WARNING_FRAMES = 3000
-"""From this many inlier frames on, the answer warns that its standard deviations understate its
-error: the estimators' remaining bias does not shrink with more frames while the standard
-deviations do (``python -m bench --only scale``, ``scale_error_std``: c off by 0.8 standard
-deviations at 1,000 frames and -5.9 at 10,000 (marginal likelihood), 14.3 at 30,000 and 27.1
-at 100,000 (maximum likelihood, ``ReconstructOptions.marginal_max_frames``))."""
+"""From this many inlier frames on, the uncorrected maximum-likelihood answer
+(``estimator="ml"``) warns that its standard deviations understate its error: its bias does not
+shrink with more frames while the standard deviations do (``python -m bench --only scale``
+before the correction: c off by 14.3 standard deviations at 30,000 frames and 27.1 at 100,000).
+The default answer from ``refine.bias.BIAS_CORRECTED_FRAMES`` frames on is corrected for its bias
+and its standard deviations include the correction's uncertainty: no warning."""
 
 
 def _bias_corrected(
@@ -140,12 +141,13 @@ def final_estimate(
             "the shape is poorly determined by these frames (standard deviation "
             f"c {std[0]:.3g}, angles {', '.join(f'{math.degrees(s):.1f}' for s in std[1:])} deg)"
         )
-    if std is not None and estimator == "ml" and int(inliers.sum()) >= BIAS_WARNING_FRAMES:
+    if std is not None and not correct_bias and int(inliers.sum()) >= BIAS_WARNING_FRAMES:
         warnings.append(
             f"with {int(inliers.sum())} frames the standard deviations are below the "
-            "estimator's bias (the poses are nuisance parameters; on simulated 1 px / 1 deg "
-            "scenes c came out 6 to 37 standard deviations off at 10,000 to 100,000 frames): "
-            "read them as the precision, not the accuracy"
+            "maximum-likelihood estimator's bias (the poses are nuisance parameters; on "
+            "simulated 1 px / 1 deg scenes c came out 6 to 37 standard deviations off at 10,000 "
+            "to 100,000 frames; the default estimator corrects it): read them as the precision, "
+            "not the accuracy"
         )
     outliers = np.flatnonzero(~inliers)
     if outliers.size:
