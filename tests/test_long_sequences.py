@@ -120,7 +120,7 @@ def test_beyond_marginal_max_frames_the_answer_is_maximum_likelihood_and_says_so
     from curverecon.options import ReconstructOptions
     from curverecon.pipeline import reconstruct
 
-    obs = _scene(14, 300).observations
+    obs = _scene(14, 280).observations  # below BIAS_CORRECTED_FRAMES
     capped = reconstruct(obs, options=ReconstructOptions(marginal_max_frames=250))
     ml_answer = reconstruct(obs, options=ReconstructOptions(estimator="ml"))
     default = reconstruct(obs)
