@@ -1,39 +1,46 @@
-"""The maximum-likelihood shape's bias, estimated at the estimate and subtracted.
+"""The maximum-likelihood shape's bias, estimated by simulation at the estimate and subtracted.
 
 Why.  Each frame has five pose parameters of its own for six measurements (Neyman-Scott): the
 maximum-likelihood shape carries a bias of order sigma^2 that does not shrink with more frames,
-while its standard deviation shrinks as 1/sqrt(N).  On 1 px / 1 deg scenes fitted from the truth
-(``python -m bench.honest``) c came out 3-5 standard deviations long at 1,000 frames, 9-14 at
-10,000 and 32-33 at 100,000.
+while its standard deviation shrinks as 1/sqrt(N).  On 1 px / 1 deg ``make_scene`` scenes c
+came out 3-6.5 standard deviations long at 1,000 frames and 5-18 at 10,000.  The bias comes
+from frames seen near the fold tau = 0 of (10) (|A'B'| = c cos tau is flat there: a noisy |A'B'|
+above c pins the frame at the fold and pulls c long) and from frames whose two branches of (10)
+fit alike (each takes the branch its noise prefers).  A second-order expansion (Kanatani's
+hyper-accurate correction) fails on exactly those frames: fitted from the truth at 10,000
+frames, 99.7 % of its bias sat in the 11 % of frames where its second-order residual is not
+small against the first-order one, and there it diverged.
 
 What.  The estimate solves sum_i U_i(g) = 0, U_i = J_g,i^T r_i at frame i's best pose for shape g
-(the profile score, standardised residuals).  At the truth E[U_i] = b_i is not zero; to first
-order the bias is -S^-1 sum_i b_i, S the Schur-reduced information (``schur_information``).  Each
-frame's b_i is computed at the estimate (shape and that frame's pose), in one of two ways:
+(the profile score, standardised residuals); to first order the bias is -S^-1 sum_i E[U_i], S
+the Schur-reduced information (the fit's covariance is S^-1).  Each frame's E[U_i] is simulated
+(``_simulated``): ``DRAWS`` noisy copies of the frame predicted at (g, its pose), each copy's
+pose solved from the frame's pose and from its other branch's (the better kept, as the fit
+does), and U minus its first-order part B^T (P - I) e averaged (that part has mean zero and
+carries nearly all of U's variance: a control variate; A, B the frame's standardised pose and
+shape Jacobians, P = A (A^T A)^-1 A^T).  A frame whose other branch fits within a few noise
+scales enters as the mixture of both, weighted 1 / (1 + exp(dchi2 / (2 kappa))) for the other
+(``_branch_mixture``).  Frames whose average stays uncertain get ``TAIL_DRAWS`` draws.  Beyond
+``MAX_SIMULATED`` frames a random subset is simulated and the sum scaled up.  The noise scale is
+the one whose simulation reproduces the frames' chi2 (chi2 / (N - 4) of the fit is low: every
+frame takes the better of its branches).
 
-- analytic, second order in the noise (Kanatani's hyper-accurate correction, the same expansion):
-  with A, B the frame's standardised pose and shape Jacobians, C = (A^T A)^-1, P = A C A^T and
-  t_k = tr(d2 r_k / dp2 C), b_i = (kappa / 2) B^T (I - P) t.  (The pose's second-order error and
-  the residual's first-order part are independent, so no other term has a mean.)
-- by simulation where the expansion fails: where sqrt(kappa) max_k |t_k| > ``EXPANSION_LIMIT``
-  (the second-order residual not small against the first; frames seen near the fold tau = 0 of
-  (10), or with a tangent seen nearly end-on).  Those frames carry nearly all of the bias (at
-  10,000 frames 99.7 % of it, on 11-18 % of the frames).  Each is simulated ``DRAWS`` times at
-  the estimate (noise of scale kappa), its pose re-solved from the estimate's pose and from its
-  mirror tau -> -tau (the better kept), and U minus its first-order part B^T (P - I) e averaged
-  (that part has mean zero and carries nearly all of U's variance: a control variate).  Frames
-  whose average is still uncertain (more than ``TAIL_STD`` of the shape's standard deviation)
-  get ``TAIL_DRAWS`` draws.  Beyond ``MAX_SIMULATED`` such frames a random subset of that many is
-  simulated and the sum scaled up.
+Where.  Evaluated at the fit the bias comes out short: the fit's poses belong to its biased
+shape (with c long, frames near the fold come out away from it).  So it is evaluated twice
+(``ITERATIONS``): at the fit, and at the fit minus that bias with the simulated frames' poses
+re-solved for it; the answer subtracts the mean of the two.  (Iterating further did not settle:
+on some scenes the evaluation ran away.)
 
-The simulation's own uncertainty (the draws' spread, the subset's sampling) is returned as a
-covariance, which the answer adds to its own: the error bar covers what the correction does not
-know.  Draws come from a fixed seed: the same input gives the same answer.
+The error bar.  The returned covariance (the answer adds it to its own) holds the simulation's
+error (the draws' spread, the subset's sampling), half the difference of the two evaluations
+squared, and ``SYSTEMATIC_FRACTION`` of the correction along it: what the correction does not
+know is in the error bar, not hidden.  Draws come from a fixed seed: the same input gives the
+same answer.  docs/accuracy.md has the figures (``python -m bench.honest``).
 
-Reference: K. Kanatani, "Statistical Optimization for Geometric Computation", Elsevier 1996,
-ch. 14 (second-order bias of maximum likelihood in geometric fitting), and "Ellipse fitting with
-hyperaccuracy", IEICE Trans. Inf. Syst. E89-D (2006) 2653-2660; J. Neyman and E. L. Scott,
-Econometrica 16 (1948) 1-32 (incidental parameters).
+References: J. Neyman and E. L. Scott, Econometrica 16 (1948) 1-32 (incidental parameters);
+K. Kanatani, "Statistical Optimization for Geometric Computation", Elsevier 1996, ch. 14 (the
+second-order bias of maximum likelihood in geometric fitting); B. Efron and R. J. Tibshirani, "An
+Introduction to the Bootstrap", Chapman & Hall 1993, ch. 10 (bias correction by the bootstrap).
 
 Units: shapes (c, alpha, beta, phi) and poses (N, 5) as in ``refine``; radians.
 """
@@ -61,7 +68,8 @@ scene's phi); at 1,000 frames on 24 scenes the marginal optimum 85 % within 3, t
 largest 20.9 (``python -m bench.honest`` for the corrected answer's figures)."""
 
 DRAWS = 8
-"""Simulated draws per frame whose bias term is simulated."""
+"""Simulated draws per frame (1,000 frames: 0.3 s of CPU time for the correction; its
+simulation error, in the covariance, about 0.2 standard deviations of c)."""
 
 TAIL_DRAWS = 256
 """Draws for a frame whose ``DRAWS``-draw average is uncertain by more than ``TAIL_STD``."""
@@ -76,15 +84,16 @@ TAIL_STD = 0.05
 shape's standard deviations gets ``TAIL_DRAWS`` draws."""
 
 MAX_SIMULATED = 3000
-"""At most this many frames are simulated (a random subset of those beyond the expansion's
-limit, the sum scaled up and the subset's sampling error added to the covariance)."""
+"""At most this many frames are simulated (beyond, a random subset, the sum scaled up and the
+subset's sampling error added to the covariance): the correction's time does not grow with the
+frames beyond it (100,000 frames: 1.2 s of CPU time)."""
 
 ITERATIONS = 2
 """Evaluations of the bias: first at the fit, then at the fit minus the bias found, every
-frame's pose re-solved for that shape (the fit's poses belong to its biased shape: with c too
-long, frames seen near the fold tau = 0 of (10) come out away from it, and the bias they make
-is missed; 1,000 frames, one scene: c's bias 2.4 standard deviations at the fit, 7.0 at the
-true shape with the poses re-solved for it, 7.3 at the true poses)."""
+simulated frame's pose re-solved for that shape (the fit's poses belong to its biased shape:
+with c too long, frames seen near the fold tau = 0 of (10) come out away from it, and the bias
+they make is missed; 1,000 frames, one scene: c's bias 2.4 standard deviations at the fit,
+7.0 at the true shape with the poses re-solved for it, 7.3 at the true poses)."""
 
 SYSTEMATIC_FRACTION = 0.6
 """The correction's systematic error, as a fraction of the correction (a standard deviation
