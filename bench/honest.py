@@ -6,7 +6,8 @@ scene))``), reconstructed with the defaults (``curverecon.pipeline.reconstruct``
 z = (estimate - truth) / std for c, alpha, beta and phi (angles wrapped), the statistician's
 figure: ``honest_z_abs_max_by_frames`` (the largest |z|) and ``honest_z_within_3_rate_by_frames``
 (the share of (scene, parameter) pairs with |z| <= 3), keyed by frames; the targets: at least
-0.98 within 3, none above 4.5.  Also the reconstruction's median seconds and the bias
+0.98 within 3, none above 4.5; ``honest_z_beyond_3_by_frames`` lists the pairs beyond 3 (scene,
+parameter, z).  Also the reconstruction's median seconds and the bias
 correction's (``curverecon.refine.bias.ml_bias``) median seconds per size.
 
 ``python -m bench.honest [--quick] [--seed S]`` prints the figures as JSON; ``python -m bench
@@ -74,8 +75,12 @@ def _scenes(seed: int, frames: int, indices: range) -> list[dict]:
     return [_scene(seed, frames, i) for i in indices]
 
 
-def run(quick: bool = False, seed: int = SEED, workers: int = WORKERS) -> dict:
+def run(
+    quick: bool = False, seed: int = SEED, workers: int = WORKERS, only: int | None = None
+) -> dict:
     sizes = SCENES_QUICK if quick else SCENES
+    if only is not None:  # one size alone
+        sizes = {only: sizes[only]}
     # the largest first: the pool's last tasks are short
     tasks = [
         Task(_scenes, (seed, n, range(i, i + 1)), 1, str(n))
@@ -83,7 +88,7 @@ def run(quick: bool = False, seed: int = SEED, workers: int = WORKERS) -> dict:
         for i in range(sizes[n])
     ]
     out = run_tasks(tasks, workers, "honest")
-    zmax, within, secs, corr, n_scenes = {}, {}, {}, {}, {}
+    zmax, within, secs, corr, n_scenes, beyond = {}, {}, {}, {}, {}, {}
     for key, recs in out.items():
         zs = np.array([r["z"] if r["z"] is not None else [np.inf] * 4 for r in recs])
         zmax[key] = round(float(np.max(np.abs(zs))), 2)
@@ -92,6 +97,13 @@ def run(quick: bool = False, seed: int = SEED, workers: int = WORKERS) -> dict:
         c = [r["correction_seconds"] for r in recs if r["correction_seconds"] is not None]
         corr[key] = round(float(np.median(c)), 2) if c else None
         n_scenes[key] = len(recs)
+        # every (scene, parameter) pair beyond 3: which scene, which parameter, z
+        beyond[key] = [
+            [r["index"], "c alpha beta phi".split()[j], round(float(zs[i, j]), 2)]
+            for i, r in enumerate(recs)
+            for j in range(4)
+            if abs(zs[i, j]) > 3.0
+        ]
     suffix = "" if seed == SEED else f"_seed_{seed}"
     return {
         f"honest_z_abs_max_by_frames{suffix}": zmax,
@@ -99,6 +111,7 @@ def run(quick: bool = False, seed: int = SEED, workers: int = WORKERS) -> dict:
         f"honest_reconstruct_seconds_median_by_frames{suffix}": secs,
         f"honest_correction_seconds_median_by_frames{suffix}": corr,
         f"honest_scenes_by_frames{suffix}": n_scenes,
+        f"honest_z_beyond_3_by_frames{suffix}": beyond,
     }
 
 
@@ -107,5 +120,6 @@ if __name__ == "__main__":
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--seed", type=int, default=SEED)
     parser.add_argument("--workers", type=int, default=WORKERS)
+    parser.add_argument("--frames", type=int, default=None, help="one size alone")
     a = parser.parse_args()
-    print(json.dumps(run(a.quick, a.seed, a.workers), indent=1))
+    print(json.dumps(run(a.quick, a.seed, a.workers, a.frames), indent=1))
