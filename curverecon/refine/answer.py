@@ -2,7 +2,9 @@
 
 Maximum likelihood takes the best fit.  The marginal likelihood (the default) takes every fit
 that is about as good by chi2 to its basin's marginal optimum (``refine.marginal``; every
-frame's pose integrated out, one noise scale for all) and keeps the highest optimum.  Then the
+frame's pose integrated out, one noise scale for all) and keeps the highest optimum; from
+``refine.bias.BIAS_CORRECTED_FRAMES`` frames the default is instead the best fit minus its
+simulated bias, its covariance widened by the correction's uncertainty.  Then the
 outlier frames get their best pose for the answer's shape, the shape is normalised, and the
 warnings and alternatives are written.
 """
