@@ -283,6 +283,7 @@ EXTRA_SECTIONS = {
     "batch": "bench.batch",
     "bundle": "bench.bundle",
     "fuzz": "bench.fuzz",
+    "honest": "bench.honest",
     "minimal": "bench.minimal",
     "outliers": "bench.outliers",
     "scale": "bench.scale",

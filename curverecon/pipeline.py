@@ -42,6 +42,7 @@ from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ESTIMATORS, METHODS, ReconstructOptions, SearchOptions
 from curverecon.progress import StageProgress
 from curverecon.refine.answer import final_estimate
+from curverecon.refine.bias import BIAS_CORRECTED_FRAMES
 from curverecon.refine.ml import refine
 from curverecon.robust.alternatives import equally_good_fits
 from curverecon.robust.branches import flip_ambiguous_frames
@@ -220,7 +221,12 @@ def answer_from_hypotheses(
     # 5. the final estimate
     progress.step("final estimate")
     marginal = opts.estimator == "marginal"
-    if marginal and int(inliers.sum()) >= opts.marginal_max_frames:
+    # from BIAS_CORRECTED_FRAMES inlier frames the default answer is the maximum-likelihood
+    # fit minus its estimated bias (refine.bias): honest error bars at any number of frames
+    corrected = marginal and int(inliers.sum()) >= BIAS_CORRECTED_FRAMES
+    if corrected:
+        marginal = False
+    elif marginal and int(inliers.sum()) >= opts.marginal_max_frames:
         marginal = False
         warnings.append(
             f"with {int(inliers.sum())} frames the answer is the maximum-likelihood fit: the "
@@ -237,6 +243,7 @@ def answer_from_hypotheses(
         warnings,
         opts.branches,
         opts.search,
+        corrected,
     )
     return rec
 

@@ -99,13 +99,16 @@ def test_long_sequence_outliers_are_dropped_in_one_round(seed):
 
 
 def test_many_frames_warn_that_the_std_is_the_precision_not_the_accuracy():
-    """From ``BIAS_WARNING_FRAMES`` inlier frames on the answer says its standard deviations
-    understate its error; below, it does not."""
+    """From ``BIAS_WARNING_FRAMES`` inlier frames on the uncorrected maximum-likelihood answer
+    (``estimator="ml"``) says its standard deviations understate its error; below, it does
+    not."""
+    from curverecon.options import ReconstructOptions
     from curverecon.pipeline import reconstruct
     from curverecon.refine.answer import BIAS_WARNING_FRAMES
 
-    many = reconstruct(_scene(13, BIAS_WARNING_FRAMES + 50).observations)
-    few = reconstruct(_scene(13, 300).observations)
+    ml = ReconstructOptions(estimator="ml")
+    many = reconstruct(_scene(13, BIAS_WARNING_FRAMES + 50).observations, options=ml)
+    few = reconstruct(_scene(13, 300).observations, options=ml)
     assert any("precision, not the accuracy" in w for w in many.warnings)
     assert not any("precision, not the accuracy" in w for w in few.warnings)
 
@@ -117,7 +120,7 @@ def test_beyond_marginal_max_frames_the_answer_is_maximum_likelihood_and_says_so
     from curverecon.options import ReconstructOptions
     from curverecon.pipeline import reconstruct
 
-    obs = _scene(14, 300).observations
+    obs = _scene(14, 280).observations  # below BIAS_CORRECTED_FRAMES
     capped = reconstruct(obs, options=ReconstructOptions(marginal_max_frames=250))
     ml_answer = reconstruct(obs, options=ReconstructOptions(estimator="ml"))
     default = reconstruct(obs)

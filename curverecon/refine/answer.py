@@ -2,13 +2,16 @@
 
 Maximum likelihood takes the best fit.  The marginal likelihood (the default) takes every fit
 that is about as good by chi2 to its basin's marginal optimum (``refine.marginal``; every
-frame's pose integrated out, one noise scale for all) and keeps the highest optimum.  Then the
+frame's pose integrated out, one noise scale for all) and keeps the highest optimum; from
+``refine.bias.BIAS_CORRECTED_FRAMES`` frames the default is instead the best fit minus its
+simulated bias, its covariance widened by the correction's uncertainty.  Then the
 outlier frames get their best pose for the answer's shape, the shape is normalised, and the
 warnings and alternatives are written.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -17,6 +20,7 @@ from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise
 from curverecon.model.reconstruction import Alternative, Reconstruction, alternatives_warning
 from curverecon.options import BranchOptions, SearchOptions
+from curverecon.refine.bias import ml_bias
 from curverecon.refine.marginal import KAPPA_MIN, refine_marginal
 from curverecon.refine.ml import RefineResult, optimise_poses, refine
 from curverecon.robust.branches import second_branches
@@ -24,11 +28,29 @@ from curverecon.robust.search import branch_alternatives, switch_branches
 from curverecon.solvers.pose import poses_from_shape
 
 BIAS_WARNING_FRAMES = 3000
-"""From this many inlier frames on, the answer warns that its standard deviations understate its
-error: the estimators' remaining bias does not shrink with more frames while the standard
-deviations do (``python -m bench --only scale``, ``scale_error_std``: c off by 0.8 standard
-deviations at 1,000 frames and -5.9 at 10,000 (marginal likelihood), 14.3 at 30,000 and 27.1
-at 100,000 (maximum likelihood, ``ReconstructOptions.marginal_max_frames``))."""
+"""From this many inlier frames on, the uncorrected maximum-likelihood answer
+(``estimator="ml"``) warns that its standard deviations understate its error: its bias does not
+shrink with more frames while the standard deviations do (``python -m bench --only scale``
+before the correction: c off by 14.3 standard deviations at 30,000 frames and 27.1 at 100,000).
+The default answer from ``refine.bias.BIAS_CORRECTED_FRAMES`` frames on is corrected for its bias
+and its standard deviations include the correction's uncertainty: no warning."""
+
+
+def _bias_corrected(
+    sub: Observations, fit: RefineResult, ps: float, ts: float
+) -> tuple[RefineResult, str]:
+    """The fit with its shape's estimated bias subtracted and the estimate's own covariance
+    added (``refine.bias``), and the estimator's name; the fit itself where no correction
+    applies (noise-free data, singular information)."""
+    if fit.covariance is None:
+        return fit, "ml"
+    bc = ml_bias(sub.measurements(), fit.shape, fit.poses, ps, ts, fit.frame_chi2, fit.covariance)
+    if bc is None or not np.all(np.isfinite(bc.bias)):
+        return fit, "ml"
+    out = dataclasses.replace(
+        fit, shape=fit.shape - bc.bias, covariance=fit.covariance + bc.covariance
+    )
+    return out, "ml-bias-corrected"
 
 
 def final_estimate(
@@ -41,6 +63,7 @@ def final_estimate(
     warnings: list[str],
     branches: BranchOptions | None = None,
     search: SearchOptions | None = None,
+    correct_bias: bool = False,
 ) -> Reconstruction:
     """The reconstruction from the equally good fits on the inlier frames (best first).
 
@@ -49,6 +72,8 @@ def final_estimate(
         ps, ts: point noise (input units), tangent noise (radians).
         marginal: the marginal-likelihood estimate (else maximum likelihood).
         warnings: the warnings so far (extended here).
+        correct_bias: (with ``marginal`` False) the maximum-likelihood shape minus its
+            estimated bias, its covariance plus that estimate's (``refine.bias``).
     """
     branches = branches or BranchOptions()
     search = search or SearchOptions()
@@ -97,6 +122,8 @@ def final_estimate(
             estimator = "marginal"
         else:
             final = r0
+    elif correct_bias:
+        final, estimator = _bias_corrected(sub, final, ps, ts)
 
     # Poses of outlier frames: best pose for the final shape (shape held fixed).
     poses = np.array(poses_from_shape(obs, final.shape)[0])
@@ -116,12 +143,13 @@ def final_estimate(
             "the shape is poorly determined by these frames (standard deviation "
             f"c {std[0]:.3g}, angles {', '.join(f'{math.degrees(s):.1f}' for s in std[1:])} deg)"
         )
-    if std is not None and int(inliers.sum()) >= BIAS_WARNING_FRAMES:
+    if std is not None and not correct_bias and int(inliers.sum()) >= BIAS_WARNING_FRAMES:
         warnings.append(
             f"with {int(inliers.sum())} frames the standard deviations are below the "
-            "estimator's bias (the poses are nuisance parameters; on simulated 1 px / 1 deg "
-            "scenes c came out 6 to 37 standard deviations off at 10,000 to 100,000 frames): "
-            "read them as the precision, not the accuracy"
+            "maximum-likelihood estimator's bias (the poses are nuisance parameters; on "
+            "simulated 1 px / 1 deg scenes c came out 6 to 37 standard deviations off at 10,000 "
+            "to 100,000 frames; the default estimator corrects it): read them as the precision, "
+            "not the accuracy"
         )
     outliers = np.flatnonzero(~inliers)
     if outliers.size:
