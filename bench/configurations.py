@@ -85,8 +85,8 @@ def _points3(rec, names) -> np.ndarray:
 
 
 def points_error(scene: RigidScene, rec) -> float:
-    """Largest point error over every frame relative to c, up to the mirror and (a planar body)
-    each frame's depth reversal."""
+    """Largest point error over every frame relative to c, up to the mirror and (a planar body
+    under free rotations: A, B, C or A, B and the mass centre) each frame's depth reversal."""
     est = _points3(rec, scene.names)
     truth = scene.points3
     c = float(np.linalg.norm(truth[0, 1] - truth[0, 0]))
@@ -95,7 +95,8 @@ def points_error(scene: RigidScene, rec) -> float:
     for mirror in (1.0, -1.0):
         t = truth * (flip if mirror < 0 else 1.0)
         err = np.abs(est - t).max(axis=(1, 2))
-        if len(scene.names) <= 3 and scene.angles is None:
+        planar = len(scene.names) <= 3 and scene.angles is None
+        if planar and scene.motion in ("free", "force-field"):
             err = np.minimum(err, np.abs(est - t * flip).max(axis=(1, 2)))
         best = min(best, float(err.max()))
     return best / c
