@@ -179,6 +179,12 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         "(derivations/rigid_model.py)",
         lambda: _function_module("derivations.rigid_model", "rigid_model.py"),
     ),
+    (
+        "section2_minimal.py",
+        "the seed's Section 2 orthographic rows: closed forms and residuals of their minimal "
+        "problems (derivations/section2.py)",
+        lambda: _function_module("derivations.section2", "section2_minimal.py"),
+    ),
 )
 
 

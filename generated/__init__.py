@@ -20,6 +20,8 @@
   of W(q) (derivations/minimal.py)
 - ``rigid_model``: the orthographic rigid-body measurement model of the Section 2 rows and its
   Jacobians (derivations/rigid_model.py)
+- ``section2_minimal``: the seed's Section 2 orthographic rows: closed forms and residuals of their
+  minimal problems (derivations/section2.py)
 """
 
 __all__ = (
@@ -31,4 +33,5 @@ __all__ = (
     "minimal_unsquared",
     "minimal_unsquared_kernel",
     "rigid_model",
+    "section2_minimal",
 )
