@@ -15,8 +15,9 @@ Rows (key names): ``ortho_uniform_rotation`` (A, B), ``ortho_fixed_axis`` (A, B)
 - ``std_coverage_3sigma``: the fraction of (scene, parameter) whose error is within three of the
   answer's standard deviations;
 - ``success_rate_20pct_outliers``: a fifth of the frames with random points (``OUTLIER_SCENES``);
-  success: every outlier frame flagged, at most one good frame flagged, c within 5 standard
-  deviations;
+  success as for the paper's row, by the answer's accuracy: c within 5 % of the truth (a frame of
+  random points that happens to fit within the noise is no error); beside it
+  ``outlier_frames_flagged_rate`` (outlier frames flagged) and ``good_frames_flagged_rate``;
 - ``curve_within_1pct_rate``: with 0.5 px polylines (and points), 20 frames: curve3d's
   symmetric mean distance from the true curve within 1 % of its length (the curve bench's
   measure, ``bench.curve_end_to_end.curve_error``);
@@ -55,10 +56,12 @@ UNIQUE_FRAMES = {"uniform-rotation": 8, "fixed-axis": 8, "free": 6, "force-field
 """Frames of the noise-free scenes: a few above the least count, where the answer is unique up
 to its symmetries."""
 ACCURACY_SCENES = 200
-NOISE_FREE_SCENES = 40
+NOISE_FREE_SCENES = 30
 OUTLIER_SCENES = 40
 CURVE_SCENES = 20
-AUTO_SCENES = 20
+AUTO_SCENES = 15
+MINIMAL_SCENES = 1000
+"""Noise-free scenes per row of the minimal solvers' keys (``bench.config_minimal``)."""
 CHUNK = 5
 WORKERS = 2
 DEFAULT_SEED = 2026
@@ -215,17 +218,16 @@ def outlier_scenes(seed: int, row: int, indices: range) -> list[dict]:
             motion, names, frames, scene_seed(seed, "outliers", row, i), outlier_fraction=0.2
         )
         c = float(np.linalg.norm(sc.points3[0, 1] - sc.points3[0, 0]))
+        rec_out = {"index": i, "success": False, "flagged": 0.0, "good_flagged": 0.0}
         try:
             rec = reconstruct_rigid(observations(sc, motion))
             flagged = ~np.asarray(rec.inliers)
-            ok = (
-                bool(np.all(flagged[sc.outliers]))
-                and int(np.count_nonzero(flagged & ~sc.outliers)) <= 1
-                and abs(rec.c - c) <= 5.0 * max(float(rec.std[0]), 1e-9)
-            )
+            rec_out["success"] = bool(abs(rec.c - c) <= 0.05 * c)
+            rec_out["flagged"] = float(np.mean(flagged[sc.outliers]))
+            rec_out["good_flagged"] = float(np.mean(flagged[~sc.outliers]))
         except Exception:  # noqa: BLE001
-            ok = False
-        out.append({"index": i, "success": ok})
+            pass
+        out.append(rec_out)
     return out
 
 
@@ -300,6 +302,12 @@ def _summarise(groups: dict[str, list[dict]]) -> dict:
             out[f"config_{key}_success_rate_20pct_outliers"] = round(
                 float(np.mean([r["success"] for r in ol])), 3
             )
+            out[f"config_{key}_outlier_frames_flagged_rate"] = round(
+                float(np.mean([r["flagged"] for r in ol])), 3
+            )
+            out[f"config_{key}_good_frames_flagged_rate"] = round(
+                float(np.mean([r["good_flagged"] for r in ol])), 3
+            )
         cv = groups.get(f"curve|{row}", [])
         if cv:
             out[f"config_{key}_curve_within_1pct_rate"] = round(
@@ -346,7 +354,7 @@ def _minimal(seed: int, quick: bool) -> dict:
         from bench import config_minimal  # type: ignore[attr-defined]
     except ImportError:
         return {}
-    return config_minimal.run(seed, 20 if quick else None)
+    return config_minimal.run(seed, 20 if quick else MINIMAL_SCENES)
 
 
 def main(argv: list[str] | None = None) -> int:
