@@ -27,6 +27,7 @@ __version__ = "0.1.0"
 _PUBLIC = {
     "Alternative": ("curverecon.model.reconstruction", "Alternative"),
     "BranchOptions": ("curverecon.options", "BranchOptions"),
+    "Configuration": ("curverecon.model.configuration", "Configuration"),
     "CurveOptions": ("curverecon.options", "CurveOptions"),
     "CurveReconError": ("curverecon.errors", "CurveReconError"),
     "MinimalOptions": ("curverecon.options", "MinimalOptions"),
@@ -35,6 +36,7 @@ _PUBLIC = {
     "OutlierOptions": ("curverecon.options", "OutlierOptions"),
     "ReconstructOptions": ("curverecon.options", "ReconstructOptions"),
     "Reconstruction": ("curverecon.model.reconstruction", "Reconstruction"),
+    "RigidObservations": ("curverecon.model.configuration", "RigidObservations"),
     "RefineResult": ("curverecon.refine", "RefineResult"),
     "Scene": ("curverecon.simulate", "Scene"),
     "SearchOptions": ("curverecon.options", "SearchOptions"),
@@ -44,6 +46,7 @@ _PUBLIC = {
     "poses_from_shape": ("curverecon.solvers.pose", "poses_from_shape"),
     "reconstruct": ("curverecon.pipeline", "reconstruct"),
     "refine_marginal": ("curverecon.refine", "refine_marginal"),
+    "simulate_configuration": ("curverecon.simulate", "simulate_configuration"),
     "solve_linear": ("curverecon.solvers.linear", "solve_linear"),
     "solve_minimal": ("curverecon.solvers.minimal", "solve"),
 }
@@ -51,6 +54,7 @@ _PUBLIC = {
 __all__ = [
     "Alternative",
     "BranchOptions",
+    "Configuration",
     "CurveOptions",
     "CurveReconError",
     "MinimalOptions",
@@ -60,6 +64,7 @@ __all__ = [
     "ReconstructOptions",
     "Reconstruction",
     "RefineResult",
+    "RigidObservations",
     "Scene",
     "SearchOptions",
     "__version__",
@@ -69,6 +74,7 @@ __all__ = [
     "poses_from_shape",
     "reconstruct",
     "refine_marginal",
+    "simulate_configuration",
     "solve_linear",
     "solve_minimal",
 ]
@@ -95,6 +101,7 @@ def __dir__() -> list[str]:
 
 if TYPE_CHECKING:  # pragma: no cover - for type checkers and editors only
     from curverecon.errors import CurveReconError
+    from curverecon.model.configuration import Configuration, RigidObservations
     from curverecon.model.observations import Observations
     from curverecon.model.reconstruction import Alternative, Reconstruction
     from curverecon.options import (
@@ -107,7 +114,7 @@ if TYPE_CHECKING:  # pragma: no cover - for type checkers and editors only
     )
     from curverecon.pipeline import reconstruct
     from curverecon.refine import RefineResult, crlb, refine_marginal
-    from curverecon.simulate import Scene, make_scene
+    from curverecon.simulate import Scene, make_scene, simulate_configuration
     from curverecon.solvers.flat import match_flat
     from curverecon.solvers.linear import solve_linear
     from curverecon.solvers.minimal import MinimalResult

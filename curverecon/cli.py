@@ -35,6 +35,13 @@ FAMILIES = tuple(dict.fromkeys(SCENE_FAMILIES + IMAGE_FAMILIES))
 OUTLIER_MODELS = ("gross", "random")
 """``curverecon.simulate.OUTLIER_MODELS``."""
 
+MOTIONS = ("free", "uniform-rotation", "fixed-axis", "force-field", "auto")
+"""``reconstruct --motion``: the models the rigid stage fits, and "auto" (named here so that the
+parser does not import NumPy; ``curverecon.model.configuration.FITTED_MOTIONS``)."""
+
+SIMULATED_MOTIONS = MOTIONS[:-1]
+"""``simulate --motion``: ``curverecon.simulate.CONFIG_MOTIONS``."""
+
 
 class _Parser(argparse.ArgumentParser):
     """argparse with one-line errors (status 2, no usage dump)."""
@@ -64,6 +71,13 @@ def _add_reconstruct(rec: argparse.ArgumentParser) -> None:
     rec.add_argument(
         "--tangent-sigma", type=float, default=1.0, help="tangent direction noise (degrees)"
     )
+    rec.add_argument(
+        "--motion",
+        choices=list(MOTIONS),
+        help='the motion model, overriding the document\'s "motion" (free: any rotation per '
+        "frame; uniform-rotation, fixed-axis: about one axis; force-field: the mass centre on a "
+        "parabola; auto: every model the points allow, chosen by model selection)",
+    )
     rec.add_argument("--plot", help="also draw the reconstruction to this PNG file")
     rec.add_argument(
         "--quiet", action="store_true", help="no progress bar (shown only on a terminal anyway)"
@@ -81,7 +95,10 @@ def _add_simulate(sim: argparse.ArgumentParser) -> None:
     sim.add_argument("-o", "--output", required=True, help="scene (observations) JSON")
     sim.add_argument("--truth", help="write the truth to this JSON file")
     sim.add_argument("--frames", type=int, default=20)
-    sim.add_argument("--point-noise", type=float, default=0.0, help="pixels (std)")
+    sim.add_argument(
+        "--point-noise", "--noise-px", dest="point_noise", type=float, default=0.0,
+        help="pixels (std)",
+    )  # fmt: skip
     sim.add_argument("--tangent-noise", type=float, default=0.0, help="degrees (std)")
     sim.add_argument("--outlier-fraction", type=float, default=0.0)
     sim.add_argument(
@@ -94,6 +111,26 @@ def _add_simulate(sim: argparse.ArgumentParser) -> None:
     sim.add_argument("--chord", type=float, nargs=2, default=(100.0, 300.0), metavar=("MIN", "MAX"))
     sim.add_argument("--seed", type=int, default=0)
     sim.add_argument("--with-curve", action="store_true", help="also write projected polylines")
+    sim.add_argument(
+        "--motion",
+        choices=list(SIMULATED_MOTIONS),
+        help="a scene of another row of the seed's Section 2 table: the body (the curve, A and B "
+        "its ends, further points marked on it) moved by this model, with per-frame times "
+        "(default: the paper's own setting, free motion with tangents)",
+    )
+    sim.add_argument(
+        "--points",
+        default="AB",
+        help='with --motion: the traceable points, "AB" or "ABC" (C a marked point on the curve)',
+    )
+    sim.add_argument(
+        "--tangents",
+        action="store_true",
+        help="with --motion: also write the tangents at A and B (noise --tangent-noise)",
+    )
+    sim.add_argument(
+        "--curve-noise", type=float, help="with --motion: polyline noise, px (default --noise-px)"
+    )
     sim.add_argument(
         "--family",
         choices=list(FAMILIES),
@@ -160,6 +197,7 @@ def _add_match_flat(flat: argparse.ArgumentParser) -> None:
 
 def _cmd_reconstruct(args: argparse.Namespace) -> int:
     from curverecon.io import load_observations, write_json
+    from curverecon.model.configuration import RigidObservations
     from curverecon.options import CurveOptions, ReconstructOptions
     from curverecon.pipeline import reconstruct
 
@@ -167,7 +205,7 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
         raise CurveReconError("--point-sigma must be a positive number")
     if not (math.isfinite(args.tangent_sigma) and args.tangent_sigma > 0):
         raise CurveReconError("--tangent-sigma must be a positive number")
-    obs = load_observations(args.input)
+    obs = load_observations(args.input, motion=args.motion)
     options = ReconstructOptions(
         method=args.method,
         estimator=args.estimator,
@@ -181,9 +219,12 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
         _warn(w)
     write_json(args.output, rec.to_json_dict())
     if args.plot:
-        from curverecon.plot import plot_reconstruction_file
+        from curverecon.plot import plot_configuration_file, plot_reconstruction_file
 
-        plot_reconstruction_file(args.plot, rec, obs)
+        if isinstance(obs, RigidObservations):
+            plot_configuration_file(args.plot, rec, obs)
+        else:
+            plot_reconstruction_file(args.plot, rec, obs)
     return 0
 
 
@@ -196,6 +237,15 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.frames < 1:
         raise CurveReconError("--frames must be at least 1")
     _check_family(args.family, bool(args.images))
+    if args.motion is not None:
+        return _simulate_configuration(args)
+    for flag, given in (
+        ("--points", args.points != "AB"),
+        ("--tangents", args.tangents),
+        ("--curve-noise", args.curve_noise is not None),
+    ):
+        if given:
+            raise CurveReconError(f"{flag} needs --motion")
     if args.images:
         return _simulate_images(args)
     if args.frames > MAX_SIMULATED_FRAMES:
@@ -225,6 +275,47 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     write_json(args.output, observations_to_dict(scene.observations))
     if args.truth:
         write_json(args.truth, truth_to_dict(scene, seed=args.seed))
+    return 0
+
+
+def _simulate_configuration(args: argparse.Namespace) -> int:
+    """``simulate --motion``: a scene of another row of the Section 2 table and its truth."""
+    from curverecon.io import write_json
+    from curverecon.simulate import simulate_configuration
+
+    if args.images:
+        raise CurveReconError("--images draws the paper's own setting only (not with --motion)")
+    if args.frames > MAX_SIMULATED_FRAMES // 10:
+        raise CurveReconError(
+            f"--frames must be at most {MAX_SIMULATED_FRAMES // 10} with --motion"
+        )
+    if args.seed < 0:
+        raise CurveReconError("--seed must be a non-negative integer")
+    for name in ("point_noise", "tangent_noise", "outlier_fraction", "curve_noise"):
+        v = getattr(args, name)
+        if v is not None and not (math.isfinite(v) and v >= 0):
+            raise CurveReconError(f"--{name.replace('_', '-')} must be a non-negative number")
+    if args.outlier_fraction > 1:
+        raise CurveReconError("--outlier-fraction must be at most 1")
+    lo, hi = args.chord
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo <= hi):
+        raise CurveReconError("--chord needs 0 < MIN <= MAX")
+    doc, truth = simulate_configuration(
+        args.motion,
+        args.points,
+        frames=args.frames,
+        seed=args.seed,
+        noise_px=args.point_noise,
+        tangent_noise_deg=args.tangent_noise if args.tangents else None,
+        with_curve=args.with_curve,
+        curve_noise_px=args.curve_noise,
+        family=args.family,
+        chord=(lo, hi),
+        outlier_fraction=args.outlier_fraction,
+    )
+    write_json(args.output, doc)
+    if args.truth:
+        write_json(args.truth, truth)
     return 0
 
 

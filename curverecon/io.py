@@ -19,6 +19,13 @@ import numpy as np
 
 from curverecon.curve.polyline import bin_average
 from curverecon.errors import CurveReconError
+from curverecon.model.configuration import (
+    MOTIONS,
+    PROJECTIONS,
+    Configuration,
+    RigidObservations,
+    motion_determined,
+)
 from curverecon.model.observations import Observations
 
 OBSERVATIONS_FORMAT = "curverecon.observations/1"
@@ -76,6 +83,8 @@ def _finite(x: Any) -> Any:
 
 def _xy(frame: dict, key: str, i: int) -> list[float]:
     value = frame[key]
+    if key not in ("A", "B", "tangent_A", "tangent_B"):
+        key = f'point "{key}"'
     if (
         not isinstance(value, list)
         or len(value) != 2
@@ -108,12 +117,16 @@ the curve bundle's time grows with the points (200,000 points in one frame: 73 s
 while 1,000 points resolve a curve of a few hundred pixels to a fraction of a pixel."""
 
 
-def observations_from_dict(data: Any) -> Observations:
+def observations_from_dict(data: Any) -> Observations | RigidObservations:
     """Observations from a parsed ``curverecon.observations/1`` document.
 
-    A frame carrying "curve" may omit the tangents (they come from
-    ``curverecon.curve.polyline.end_tangents``) and A, B (the polyline's end points are used).
-    Curves are kept only when every frame carries one.
+    The paper's own setting (no ``"motion"`` or ``"motion": "free"``, no further ``"points"``)
+    reads as :class:`Observations`, exactly as before the other configurations existed: a
+    frame carrying "curve" may omit the tangents (they come from
+    ``curverecon.curve.polyline.end_tangents``) and A, B (the polyline's end points are used);
+    curves are kept only when every frame carries one.  Every other configuration (a motion
+    model, further points) reads as :class:`RigidObservations` (``_rigid_observations``).
+    Per-frame ``"t"`` is checked in every document (finite, increasing; all frames or none).
     """
     if not isinstance(data, dict):
         raise CurveReconError("input must be a JSON object")
@@ -124,32 +137,46 @@ def observations_from_dict(data: Any) -> Observations:
         raise CurveReconError(f'wrong format tag "{fmt}" (expected "{OBSERVATIONS_FORMAT}")')
     projection = data.get("projection", "orthographic")
     if projection != "orthographic":
+        if projection in PROJECTIONS:
+            raise CurveReconError(
+                f'projection "{projection}" is not supported yet (only "orthographic")'
+            )
         raise CurveReconError(f'projection "{projection}" is not supported (only "orthographic")')
     frames = data.get("frames")
     if frames is None:
         raise CurveReconError('missing key "frames"')
     if not isinstance(frames, list):
         raise CurveReconError('"frames" must be a list')
-    a, b, ta, tb, curves = [], [], [], [], []
-    long: list[int] = []  # frames whose polylines were averaged down
     for i, frame in enumerate(frames):
         if not isinstance(frame, dict):
             raise CurveReconError(f"frame {i} must be a JSON object")
-        curve = _polyline(frame, i) if "curve" in frame else None
-        if curve is not None and len(curve) > MAX_POLYLINE_POINTS:
-            curve = bin_average(curve, MAX_POLYLINE_POINTS)
-            long.append(i)
+    motion = data.get("motion", "free")
+    if not isinstance(motion, str) or motion not in MOTIONS:
+        raise CurveReconError(f"unknown motion {json.dumps(motion)} (choose {', '.join(MOTIONS)})")
+    times = _times(frames)
+    names = _further_points(frames)
+    if motion == "free" and not names:
+        if "motion" in data and frames and not _any_tangents_or_curve(frames):
+            raise CurveReconError(motion_determined("free", 2, False) or "")
+        return _paper_observations(data, frames)
+    return _rigid_observations(data, frames, motion, times, names)
+
+
+def _paper_observations(data: dict, frames: list) -> Observations:
+    """The paper's own setting: A', B', tangents (or polylines) in every frame."""
+    a, b, ta, tb, curves = [], [], [], [], []
+    long: list[int] = []  # frames whose polylines were averaged down
+    for i, frame in enumerate(frames):
+        curve = _frame_polyline(frame, i, long)
         curves.append(curve)
-        for key in ("A", "B"):
-            if key not in frame and curve is None:
-                raise CurveReconError(f'frame {i}: missing key "{key}"')
-        a.append(_xy(frame, "A", i) if "A" in frame else list(curve[0]))
-        b.append(_xy(frame, "B", i) if "B" in frame else list(curve[-1]))
+        a.append(_end_point(frame, "A", curve, i))
+        b.append(_end_point(frame, "B", curve, i))
         has_ta, has_tb = "tangent_A" in frame, "tangent_B" in frame
         if not (has_ta and has_tb):
             if curve is None:
                 missing = "tangent_A" if not has_ta else "tangent_B"
-                raise CurveReconError(f'frame {i}: missing key "{missing}" (and no "curve")')
+                hint = "" if _any_tangents_or_curve(frames) else NO_TANGENTS_HINT
+                raise CurveReconError(f'frame {i}: missing key "{missing}" (and no "curve"){hint}')
             est_a, est_b = _end_tangents(curve, i)
         ta.append(_xy(frame, "tangent_A", i) if has_ta else list(est_a))
         tb.append(_xy(frame, "tangent_B", i) if has_tb else list(est_b))
@@ -157,12 +184,7 @@ def observations_from_dict(data: Any) -> Observations:
         raise CurveReconError('"frames" is empty')
     keep = None if any(c is None for c in curves) else curves
     given = all(all(k in f for k in ("A", "B", "tangent_A", "tangent_B")) for f in frames)
-    warnings = []
-    if long:
-        warnings.append(
-            f"frames {long}: polylines of more than {MAX_POLYLINE_POINTS} points averaged "
-            f"down to {MAX_POLYLINE_POINTS} (equal arc-length bins)"
-        )
+    warnings = _long_warning(long)
     from_curve = data.get("tangents_from_curve", False)
     if not isinstance(from_curve, bool):
         raise CurveReconError('"tangents_from_curve" must be true or false')
@@ -174,6 +196,144 @@ def observations_from_dict(data: Any) -> Observations:
     )
     obs.ends_identified = identified
     return obs
+
+
+NO_TANGENTS_HINT = (
+    '; with only A and B traced, give the motion ("motion": "fixed-axis", '
+    '"uniform-rotation" or "force-field") or a third point ("points": {"C": [x, y]})'
+)
+"""Appended to the missing-tangent message when no frame has tangents or a polyline: the
+document may be one of the other configurations without saying so."""
+
+
+def _any_tangents_or_curve(frames: list) -> bool:
+    return any(
+        k in f for f in frames for k in ("tangent_A", "tangent_B", "curve") if isinstance(f, dict)
+    )
+
+
+def _frame_polyline(frame: dict, i: int, long: list[int]) -> np.ndarray | None:
+    """Frame ``i``'s polyline or None; a long one averaged down (its index added to ``long``)."""
+    curve = _polyline(frame, i) if "curve" in frame else None
+    if curve is not None and len(curve) > MAX_POLYLINE_POINTS:
+        curve = bin_average(curve, MAX_POLYLINE_POINTS)
+        long.append(i)
+    return curve
+
+
+def _end_point(frame: dict, key: str, curve: np.ndarray | None, i: int) -> list[float]:
+    """A or B of a frame: given, else the polyline's first or last point."""
+    if key in frame:
+        return _xy(frame, key, i)
+    if curve is None:
+        raise CurveReconError(f'frame {i}: missing key "{key}"')
+    return list(curve[0] if key == "A" else curve[-1])
+
+
+def _long_warning(long: list[int]) -> list[str]:
+    if not long:
+        return []
+    return [
+        f"frames {long}: polylines of more than {MAX_POLYLINE_POINTS} points averaged "
+        f"down to {MAX_POLYLINE_POINTS} (equal arc-length bins)"
+    ]
+
+
+def _times(frames: list) -> np.ndarray | None:
+    """Every frame's ``"t"`` (finite numbers, strictly increasing), or None if no frame has one."""
+    given = ["t" in f for f in frames]
+    if not any(given):
+        return None
+    if not all(given):
+        i = given.index(False)
+        raise CurveReconError(f'frame {i}: missing key "t" (other frames give their times)')
+    times = []
+    for i, frame in enumerate(frames):
+        t = frame["t"]
+        if not isinstance(t, int | float) or isinstance(t, bool):
+            raise CurveReconError(f'frame {i}: "t" must be a number')
+        if not math.isfinite(t):
+            raise CurveReconError(f'frame {i}: "t" is not finite (NaN or inf)')
+        if times and t <= times[-1]:
+            raise CurveReconError(
+                f"frame {i}: times are not increasing (t = {t:g} after {times[-1]:g})"
+            )
+        times.append(float(t))
+    return np.array(times)
+
+
+def _further_points(frames: list) -> list[str]:
+    """The names in the frames' ``"points"`` (sorted); each must be in every frame."""
+    seen: dict[str, int] = {}
+    for i, frame in enumerate(frames):
+        pts = frame.get("points", {})
+        if not isinstance(pts, dict):
+            raise CurveReconError(f'frame {i}: "points" must be an object {{"C": [x, y], ...}}')
+        for name in pts:
+            if name in ("A", "B"):
+                raise CurveReconError(
+                    f'frame {i}: "points" names "{name}" (A and B are given as "A", "B")'
+                )
+            if not name.strip():
+                raise CurveReconError(f'frame {i}: "points" has an empty name')
+            seen.setdefault(name, i)
+    for i, frame in enumerate(frames):
+        pts = frame.get("points", {})
+        for name, first in seen.items():
+            if name not in pts:
+                raise CurveReconError(
+                    f'frame {i}: point "{name}" missing (frame {first} gives it; a further '
+                    "point must be traced in every frame)"
+                )
+    return sorted(seen)
+
+
+def _rigid_observations(
+    data: dict, frames: list, motion: str, times: np.ndarray | None, names: list[str]
+) -> RigidObservations:
+    """A configuration beyond the paper's own: points (A and B from the polylines where not
+    given), optional tangents and polylines (each used only when every frame gives it)."""
+    if not frames:
+        raise CurveReconError('"frames" is empty')
+    if data.get("ends_identified", True) is not True:
+        raise CurveReconError(
+            '"ends_identified": false is supported in the paper\'s own setting only (free '
+            "motion, A and B with tangents): this configuration needs A and B identified"
+        )
+    pts, tangents, curves, long = [], [], [], []
+    for i, frame in enumerate(frames):
+        curve = _frame_polyline(frame, i, long)
+        curves.append(curve)
+        row = [_end_point(frame, "A", curve, i), _end_point(frame, "B", curve, i)]
+        row += [_xy(frame["points"], k, i) for k in names]
+        pts.append(row)
+        if "tangent_A" in frame and "tangent_B" in frame:
+            tangents.append([_xy(frame, "tangent_A", i), _xy(frame, "tangent_B", i)])
+    warnings = _long_warning(long)
+    if 0 < len(tangents) < len(frames):
+        warnings.append(
+            f"tangents ignored: given at both ends in {len(tangents)} of {len(frames)} frames "
+            "(they are used only when every frame gives them)"
+        )
+    if any(c is not None for c in curves) and any(c is None for c in curves):
+        warnings.append("polylines ignored: they are used only when every frame carries one")
+    has_tangents = len(tangents) == len(frames)
+    from_curve = data.get("tangents_from_curve", False)
+    if not isinstance(from_curve, bool):
+        raise CurveReconError('"tangents_from_curve" must be true or false')
+    if has_tangents and from_curve and all(c is not None for c in curves):
+        has_tangents = False  # fits to the polylines: not measurements beside them
+        warnings.append("tangents fitted to the polylines are not used beside the polylines")
+    cfg = Configuration("orthographic", motion, ("A", "B", *names), has_tangents)
+    return RigidObservations(
+        cfg,
+        np.arange(float(len(frames))) if times is None else times,
+        np.array(pts),
+        np.array(tangents) if has_tangents else None,
+        None if any(c is None for c in curves) else curves,
+        np.arange(len(frames)),
+        warnings,
+    )
 
 
 def _end_tangents(curve: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
@@ -192,13 +352,21 @@ def _end_tangents(curve: np.ndarray, i: int) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(ta, float), np.asarray(tb, float)
 
 
-def load_observations(path: str | Path) -> Observations:
-    """Read and validate a ``curverecon.observations/1`` file."""
-    return observations_from_dict(read_json(path))
+def load_observations(
+    path: str | Path, motion: str | None = None
+) -> Observations | RigidObservations:
+    """Read and validate a ``curverecon.observations/1`` file (``observations_from_dict``);
+    ``motion`` (the command's ``--motion``) replaces the document's ``"motion"``."""
+    data = read_json(path)
+    if motion is not None and isinstance(data, dict):
+        data = {**data, "motion": motion}
+    return observations_from_dict(data)
 
 
-def observations_to_dict(obs: Observations) -> dict:
+def observations_to_dict(obs: Observations | RigidObservations) -> dict:
     """The ``curverecon.observations/1`` document of observations (curves included if any)."""
+    if isinstance(obs, RigidObservations):
+        return _rigid_to_dict(obs)
     frames = []
     for i in range(obs.n_frames):
         frame = {
@@ -216,3 +384,28 @@ def observations_to_dict(obs: Observations) -> dict:
     if not obs.ends_identified:
         doc["ends_identified"] = False
     return doc
+
+
+def _rigid_to_dict(obs: RigidObservations) -> dict:
+    """The document of a configuration beyond the paper's own (it reads back the same)."""
+    cfg = obs.configuration
+    frames = []
+    for i in range(obs.n_frames):
+        frame = {"t": float(obs.times[i]), "A": obs.points[i, 0].tolist()}
+        frame["B"] = obs.points[i, 1].tolist()
+        if obs.n_points > 2:
+            frame["points"] = {
+                k: obs.points[i, j].tolist() for j, k in enumerate(cfg.points[2:], 2)
+            }
+        if obs.tangents is not None:
+            frame["tangent_A"] = obs.tangents[i, 0].tolist()
+            frame["tangent_B"] = obs.tangents[i, 1].tolist()
+        if obs.curves is not None:
+            frame["curve"] = np.round(obs.curves[i], 6).tolist()
+        frames.append(frame)
+    return {
+        "format": OBSERVATIONS_FORMAT,
+        "projection": cfg.projection,
+        "motion": cfg.motion,
+        "frames": frames,
+    }

@@ -35,6 +35,7 @@ import numpy as np
 
 from curverecon.curve.stage import better_fit_to_polylines, fit_curve
 from curverecon.errors import CurveReconError
+from curverecon.model.configuration import RigidObservations
 from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise
 from curverecon.model.reconstruction import Reconstruction
@@ -63,7 +64,7 @@ STAGES = ("hypotheses", "maximum likelihood", "alternatives", "final estimate", 
 
 
 def reconstruct(
-    obs: Observations,
+    obs: Observations | RigidObservations,
     method: str | None = None,
     point_sigma: float | None = None,
     tangent_sigma_deg: float | None = None,
@@ -74,9 +75,13 @@ def reconstruct(
     """Recover c, alpha, beta, phi, every frame's pose and, with polylines, the whole curve.
 
     This is what ``curverecon reconstruct`` writes (``Reconstruction.to_json_dict``).
+    A configuration beyond the paper's own (:class:`RigidObservations`: a motion model,
+    further points) goes to ``curverecon.rigid.reconstruct_rigid`` after its input checks
+    (``RigidObservations.require_reconstructable``).
 
     Args:
-        obs: observations (at least 4 frames, not all related by in-plane similarity).
+        obs: observations (at least 4 frames, not all related by in-plane similarity), or a
+            configuration of the Section 2 table.
         method, point_sigma, tangent_sigma_deg, estimator: shorthands that override the
             fields of the same names of ``options`` (see :class:`ReconstructOptions`).
         options: every stage's options (defaults: :mod:`curverecon.options`).
@@ -99,6 +104,8 @@ def reconstruct(
         )
     if not (opts.point_sigma > 0 and opts.tangent_sigma_deg > 0):
         raise CurveReconError("point and tangent standard deviations must be positive")
+    if isinstance(obs, RigidObservations):
+        return _reconstruct_configuration(obs, opts)
     obs.require_reconstructable()
     if not obs.ends_identified:  # each frame's labelling an unknown (robust/labels.py)
         return reconstruct_any_labels(obs, opts, lambda o, op: reconstruct(o, options=op))
@@ -124,6 +131,29 @@ def reconstruct(
     if obs.warnings:
         rec = replace(rec, warnings=list(obs.warnings) + list(rec.warnings))
     return rec
+
+
+def _reconstruct_configuration(obs: RigidObservations, opts: ReconstructOptions) -> Reconstruction:
+    """A row of the Section 2 table: its input checks, then the rigid stage (imported here, so
+    that the command's start and the paper's row do not load it)."""
+    if opts.method == "linear":
+        raise CurveReconError(
+            "--method linear is the paper's linearisation (free motion, A and B with tangents); "
+            f"motion {obs.configuration.motion} with points {', '.join(obs.configuration.points)} "
+            "uses the default method"
+        )
+    obs.require_reconstructable(opts.point_sigma, opts.tangent_sigma_deg)
+    try:
+        from curverecon.rigid import reconstruct_rigid
+    except ModuleNotFoundError as exc:
+        if exc.name != "curverecon.rigid":
+            raise
+        raise CurveReconError(
+            f"motion {obs.configuration.motion} with points "
+            f"{', '.join(obs.configuration.points)}: this build has no estimation stage for "
+            "configurations beyond the paper's own (curverecon.rigid)"
+        ) from exc
+    return reconstruct_rigid(obs, opts)
 
 
 def reconstruct_end_points(

@@ -167,3 +167,82 @@ def plot_reconstruction_file(path: str, rec, obs) -> None:
         rec.translations(),
         features_only=features_only,
     )
+
+
+def plot_configuration_file(path: str, rec, obs) -> None:
+    """Draw a reconstruction of a configuration beyond the paper's own (``RigidObservations``)
+    to a PNG file: every frame's traceable points in 3-D relative to A (each frame's camera
+    axes, A at the origin, frame 0 darkest: the body turning as the camera saw it) with the
+    recovered curve of frame 0 if any, and per frame the observed points (and polyline) beside
+    the reconstructed points' projections (x, y).
+
+    Raises ``CurveReconError`` when the reconstruction has no per-frame points or the path is
+    not writable."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    from curverecon.errors import CurveReconError
+
+    names = list(obs.configuration.points)
+    if rec.points3 is None or len(rec.points3) != obs.n_frames:
+        raise CurveReconError("the reconstruction has no per-frame points to plot")
+    p3 = np.array(
+        [[rec.points3[i].get(k, [np.nan] * 3) for k in names] for i in range(obs.n_frames)]
+    )
+    frames = _panel_frames(obs.n_frames)
+    ncols = min(4, len(frames))
+    nrows = int(np.ceil(len(frames) / ncols))
+    height = max(4.2, 2.6 * nrows + 0.6)
+    fig = Figure(figsize=(4.0 + 2.6 * ncols, height), dpi=100)
+    gs = fig.add_gridspec(nrows, ncols + 2, width_ratios=[1.6, 0.1] + [1.0] * ncols)
+    ax3 = fig.add_subplot(gs[:, 0], projection="3d")
+    shade = np.linspace(1.0, 0.25, obs.n_frames)
+    rel = p3 - p3[:, :1]
+    for i in range(obs.n_frames):
+        ax3.plot(*rel[i].T, "-o", color=(0.1, 0.3, 0.7, shade[i]), ms=3, lw=0.8)
+    shown = rel.reshape(-1, 3)
+    if rec.curve3d is not None:
+        c = np.asarray(rec.curve3d, float) - p3[0, 0]
+        ax3.plot(*c.T, color="C1", lw=1.8, label="curve (frame 0)")
+        ax3.legend(loc="upper left", fontsize=7)
+        shown = np.concatenate([shown, c])
+    shown = shown[np.all(np.isfinite(shown), axis=1)]
+    if len(shown):
+        span = float(np.ptp(shown, axis=0).max()) or 1.0
+        centre = 0.5 * (shown.min(axis=0) + shown.max(axis=0))
+        for setlim, m in zip((ax3.set_xlim, ax3.set_ylim, ax3.set_zlim), centre, strict=True):
+            setlim(m - 0.55 * span, m + 0.55 * span)
+    ax3.invert_yaxis()  # image y points down
+    ax3.set_xlabel("x")
+    ax3.set_ylabel("y")
+    ax3.set_zlabel("z (depth)")
+    motion = (rec.configuration or {}).get("motion", obs.configuration.motion)
+    ax3.set_title(f"{', '.join(names)} in every frame, A at 0\n(motion {motion})", fontsize=9)
+    ax3.tick_params(labelsize=6)
+    for slot, i in enumerate(frames):
+        ax = fig.add_subplot(gs[slot // ncols, 2 + slot % ncols])
+        if obs.curves is not None:
+            ax.plot(*obs.curves[i].T, color="0.6", lw=3.0, label="observed curve")
+        ax.plot(*obs.points[i].T, "x", color="k", ms=5, label="observed")
+        ax.plot(*p3[i, :, :2].T, "o", mfc="none", color="C3", ms=6, label="reconstructed")
+        for k, name in enumerate(names):
+            ax.annotate(
+                name, obs.points[i, k], fontsize=6, xytext=(3, 3), textcoords="offset points"
+            )
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.invert_yaxis()
+        ax.set_title(f"frame {i} (t = {obs.times[i]:g})", fontsize=8)
+        ax.tick_params(labelsize=6)
+        if slot == 0:
+            ax.legend(fontsize=6, loc="best")
+    fig.suptitle(f"Reconstruction: {obs.n_frames} frames, motion {motion}", fontsize=10)
+    fig.subplots_adjust(left=0.02, right=0.98, top=1.0 - 0.75 / height, bottom=0.3 / height)
+    try:
+        fig.savefig(path)
+    except OSError as exc:
+        raise CurveReconError(f"cannot write plot {path}: {exc.strerror or exc}") from None
+    finally:
+        plt.close("all")

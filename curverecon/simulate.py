@@ -279,6 +279,11 @@ SWEEP_DEG = (180.0, 300.0)
 """Total rotation over a sequence (uniform in this range, at most 60 degrees a frame): angles
 spread, and with equal time steps below the rate's alias (180 degrees a step)."""
 
+MIN_DISTANCE_STD = 0.05
+"""Some image distance between the points varies over the frames with a standard deviation of at
+least this fraction of c (a rotation out of the image plane that shows depth well above the
+noise; ``model.configuration.in_plane_motion`` refuses sequences that show none)."""
+
 MIN_POINT_OFFSET = 0.15
 """A further point C is at least this fraction of c from the line AB (else A, B, C are nearly
 collinear and the third point adds little)."""
@@ -316,7 +321,8 @@ def simulate_configuration(
       (rotation vector w1 (t - t0) + w2 (t - t0)^2 / 2).
 
     Every frame shows AB and every A-to-point vector at least ``MIN_FORESHORTENING`` of its
-    length (the whole motion is redrawn otherwise).
+    length, and some image distance between the points varies by ``MIN_DISTANCE_STD`` (the
+    whole motion is redrawn otherwise; free motion redraws single frames).
 
     Args:
         motion: one of ``CONFIG_MOTIONS``.
@@ -446,6 +452,19 @@ def _frame_ok(m: np.ndarray, body: dict, tangents: bool) -> bool:
     return bool(np.all(img >= MIN_FORESHORTENING * np.linalg.norm(pts[1:], axis=1)))
 
 
+def _shows_depth(rots: np.ndarray, body: dict) -> bool:
+    """Some image distance between two of the points has a standard deviation over the frames
+    of at least ``MIN_DISTANCE_STD`` c."""
+    img = np.einsum("nij,pj->npi", rots, body["points"])[..., :2]
+    p = img.shape[1]
+    spread = max(
+        float(np.std(np.linalg.norm(img[:, j] - img[:, i], axis=1)))
+        for i in range(p)
+        for j in range(i + 1, p)
+    )
+    return spread >= MIN_DISTANCE_STD * float(body["shape"][0])
+
+
 def _tilted_axis(rng: np.random.Generator) -> np.ndarray:
     """A unit axis at least MIN_AXIS_TILT_DEG from the viewing direction (camera z)."""
     while True:
@@ -455,6 +474,7 @@ def _tilted_axis(rng: np.random.Generator) -> np.ndarray:
 
 
 def _rot(rotvec: np.ndarray) -> np.ndarray:
+    """Rotation matrices (..., 3, 3) of rotation vectors (..., 3) (radians)."""
     return Rotation.from_rotvec(rotvec).as_matrix()
 
 
@@ -465,14 +485,16 @@ def _scene_motion(
     field (else None) and the true motion parameters; redrawn until every frame is observable."""
     from curverecon.errors import CurveReconError
 
-    if motion == "free":
-        rots = []
-        while len(rots) < len(t):
-            m = Rotation.random(random_state=rng).as_matrix()
-            if _frame_ok(m, body, tangents):
-                rots.append(m)
-        return np.array(rots), None, {}
     for _ in range(2000):
+        if motion == "free":
+            rots = []
+            while len(rots) < len(t):
+                m = Rotation.random(random_state=rng).as_matrix()
+                if _frame_ok(m, body, tangents):
+                    rots.append(m)
+            if _shows_depth(np.array(rots), body):
+                return np.array(rots), None, {}
+            continue
         r0 = Rotation.random(random_state=rng).as_matrix()
         if motion == "force-field":
             rel, centre, params = _force_field_motion(rng, t, r0 @ body["centre"])
@@ -482,7 +504,7 @@ def _scene_motion(
         if rel is None:
             continue
         rots = rel @ r0
-        if all(_frame_ok(m, body, tangents) for m in rots):
+        if all(_frame_ok(m, body, tangents) for m in rots) and _shows_depth(rots, body):
             return rots, centre, params
     raise CurveReconError(  # pragma: no cover - a few draws suffice in practice
         f"could not draw an observable {motion} motion over {len(t)} frames"
@@ -507,7 +529,7 @@ def _axis_motion(
         steps = rng.uniform(0.5, 1.5, size=len(t) - 1)
         angles = np.concatenate([[0.0], np.cumsum(steps / steps.sum() * sweep)])
         params = {"axis": n.tolist(), "angle_deg": angles.tolist()}
-    return np.array([_rot(n * np.radians(a)) for a in angles]), params
+    return _rot(np.outer(np.radians(angles), n)), params
 
 
 def _force_field_motion(
@@ -520,7 +542,7 @@ def _force_field_motion(
     sweep = np.radians(min(rng.uniform(*SWEEP_DEG), 60.0 * (len(t) - 1)))
     w1 = _tilted_axis(rng) * sweep / span
     w2 = _unit(rng.normal(size=3)) * rng.uniform(0.0, 0.5) * sweep / span**2
-    rel = np.array([_rot(w1 * x + w2 * x**2 / 2) for x in tau])
+    rel = _rot(np.outer(tau, w1) + np.outer(tau**2 / 2, w2))
     acc = _unit(rng.normal(size=2)) * rng.uniform(200.0, 400.0) * 2 / span**2
     vel = rng.uniform(-100.0, 100.0, size=2) / span - acc * span / 2
     pos = rng.uniform(-50.0, 50.0, size=2)

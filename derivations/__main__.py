@@ -174,16 +174,16 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         lambda: _system_kernel_module("derivations.minimal", "minimal_unsquared_kernel.py"),
     ),
     (
-        "rigid_model.py",
-        "the orthographic rigid-body measurement model of the Section 2 rows and its Jacobians "
-        "(derivations/rigid_model.py)",
-        lambda: _function_module("derivations.rigid_model", "rigid_model.py"),
-    ),
-    (
         "section2_minimal.py",
         "the seed's Section 2 orthographic rows: closed forms and residuals of their minimal "
         "problems (derivations/section2.py)",
         lambda: _function_module("derivations.section2", "section2_minimal.py"),
+    ),
+    (
+        "rigid_model.py",
+        "the orthographic rigid-body measurement model of the Section 2 rows and its Jacobians "
+        "(derivations/rigid_model.py)",
+        lambda: _function_module("derivations.rigid_model", "rigid_model.py"),
     ),
 )
 

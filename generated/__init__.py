@@ -18,10 +18,10 @@
   (derivations/minimal.py)
 - ``minimal_unsquared_kernel``: the same system as straight-line numba kernels: F, F_x, F_t by way
   of W(q) (derivations/minimal.py)
-- ``rigid_model``: the orthographic rigid-body measurement model of the Section 2 rows and its
-  Jacobians (derivations/rigid_model.py)
 - ``section2_minimal``: the seed's Section 2 orthographic rows: closed forms and residuals of their
   minimal problems (derivations/section2.py)
+- ``rigid_model``: the orthographic rigid-body measurement model of the Section 2 rows and its
+  Jacobians (derivations/rigid_model.py)
 """
 
 __all__ = (
@@ -32,6 +32,6 @@ __all__ = (
     "polynomial_12p",
     "minimal_unsquared",
     "minimal_unsquared_kernel",
-    "rigid_model",
     "section2_minimal",
+    "rigid_model",
 )

@@ -115,3 +115,17 @@ def test_noise_tangents_outliers_and_seed():
 def test_bad_arguments(kwargs, message):
     with pytest.raises(CurveReconError, match=message):
         simulate_configuration(**kwargs)
+
+
+@pytest.mark.parametrize("family", ["helix", "clothoid", "fourier", "sharp-ends", "random"])
+def test_every_curve_family_gives_a_rigid_scene_with_c_on_the_curve(family):
+    doc, truth = simulate_configuration("fixed-axis", "ABC", frames=5, seed=7, family=family)
+    p3 = _truth_points(truth)
+    body = np.array([truth["body"]["points"][k] for k in "ABC"])
+    for f, frame in enumerate(truth["frames"]):
+        np.testing.assert_allclose(
+            p3[f] - p3[f, 0], body @ np.array(frame["rotation"]).T, atol=1e-9
+        )
+    curve = np.array(truth["curve3d"]) - p3[0, 0]
+    assert np.min(np.linalg.norm(curve - body[2], axis=1)) < 0.02 * truth["c"]
+    assert truth["family"] == family and 100 <= truth["c"] <= 300
