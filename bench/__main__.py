@@ -282,6 +282,7 @@ def run_extra_sections(out: Path) -> None:
 EXTRA_SECTIONS = {
     "batch": "bench.batch",
     "bundle": "bench.bundle",
+    "configurations": "bench.configurations",
     "fuzz": "bench.fuzz",
     "honest": "bench.honest",
     "minimal": "bench.minimal",

@@ -15,10 +15,12 @@ Rows (key names): ``ortho_uniform_rotation`` (A, B), ``ortho_fixed_axis`` (A, B)
 - ``std_coverage_3sigma``: the fraction of (scene, parameter) whose error is within three of the
   answer's standard deviations;
 - ``success_rate_20pct_outliers``: a fifth of the frames with random points (``OUTLIER_SCENES``);
-  success: every outlier frame flagged, at most one good frame flagged, c within 5 standard
-  deviations;
-- ``curve_within_1pct_rate``: with 0.5 px polylines (and points), 20 frames: every curve3d
-  point within 1 % of the curve's length of the true curve;
+  success as for the paper's row, by the answer's accuracy: c within 5 % of the truth (a frame of
+  random points that happens to fit within the noise is no error); beside it
+  ``outlier_frames_flagged_rate`` (outlier frames flagged) and ``good_frames_flagged_rate``;
+- ``curve_within_1pct_rate``: with 0.5 px polylines (and points), 20 frames: curve3d's
+  symmetric mean distance from the true curve within 1 % of its length (the curve bench's
+  measure, ``bench.curve_end_to_end.curve_error``);
 - ``config_motion_auto_correct_rate``: ``--motion auto`` on scenes of each motion with A, B, C
   (20 frames, 1 px): the chosen model is the scene's.
 
@@ -54,10 +56,12 @@ UNIQUE_FRAMES = {"uniform-rotation": 8, "fixed-axis": 8, "free": 6, "force-field
 """Frames of the noise-free scenes: a few above the least count, where the answer is unique up
 to its symmetries."""
 ACCURACY_SCENES = 200
-NOISE_FREE_SCENES = 40
+NOISE_FREE_SCENES = 30
 OUTLIER_SCENES = 40
 CURVE_SCENES = 20
-AUTO_SCENES = 20
+AUTO_SCENES = 15
+MINIMAL_SCENES = 1000
+"""Noise-free scenes per row of the minimal solvers' keys (``bench.config_minimal``)."""
 CHUNK = 5
 WORKERS = 2
 DEFAULT_SEED = 2026
@@ -84,8 +88,8 @@ def _points3(rec, names) -> np.ndarray:
 
 
 def points_error(scene: RigidScene, rec) -> float:
-    """Largest point error over every frame relative to c, up to the mirror and (a planar body)
-    each frame's depth reversal."""
+    """Largest point error over every frame relative to c, up to the mirror and (a planar body
+    under free rotations: A, B, C or A, B and the mass centre) each frame's depth reversal."""
     est = _points3(rec, scene.names)
     truth = scene.points3
     c = float(np.linalg.norm(truth[0, 1] - truth[0, 0]))
@@ -94,7 +98,8 @@ def points_error(scene: RigidScene, rec) -> float:
     for mirror in (1.0, -1.0):
         t = truth * (flip if mirror < 0 else 1.0)
         err = np.abs(est - t).max(axis=(1, 2))
-        if len(scene.names) <= 3 and scene.angles is None:
+        planar = len(scene.names) <= 3 and scene.angles is None
+        if planar and scene.motion in ("free", "force-field"):
             err = np.minimum(err, np.abs(est - t * flip).max(axis=(1, 2)))
         best = min(best, float(err.max()))
     return best / c
@@ -113,11 +118,12 @@ def _truth_state(scene: RigidScene, layout, data):
     return state
 
 
-def parameter_vector(layout, state, times) -> np.ndarray:
-    """The shape and motion parameters compared with the truth (normalised state)."""
+def parameter_vector(layout, state, times, mirror: bool | None = None) -> np.ndarray:
+    """The shape and motion parameters compared with the truth (normalised state; ``mirror``
+    as ``rigid.model.normalise``)."""
     from curverecon.rigid.model import normalise
 
-    s = normalise(layout, state, times)
+    s = normalise(layout, state, times, mirror)
     parts = [s.body.ravel()]
     if s.directions is not None:
         parts.append(s.directions.ravel())
@@ -156,16 +162,25 @@ def accuracy_scenes(seed: int, row: int, indices: range) -> list[dict]:
         data = RigidData(sc.times, sc.points, None, 1.0, 1.0)
         truth = _truth_state(sc, layout, data)
         crlb = np.sqrt(np.diag(np.linalg.inv(fisher_information(layout, truth, data))))
-        tv = parameter_vector(layout, truth, sc.times)
+        # the truth in both mirror images: where B lies near A's depth the estimate's mirror
+        # choice may differ from the truth's, and the mirror is no error
+        tvs = [parameter_vector(layout, truth, sc.times, m) for m in (False, True)]
+
+        def closest(v, tvs=tvs, crlb=crlb, layout=layout):
+            ds = [_wrap_diff(layout, v - t) for t in tvs]
+            return min(ds, key=lambda e: float(np.sum((e / crlb) ** 2)))
+
         oracle = refine(layout, truth, data, covariance=False, max_iter=200)
-        z_oracle = _wrap_diff(layout, parameter_vector(layout, oracle.state, sc.times) - tv) / crlb
+        z_oracle = closest(parameter_vector(layout, oracle.state, sc.times)) / crlb
         rec = {"index": i}
         try:
             lay, fit, inl = fit_motion(observations(sc, motion), motion, _options())
             est = fit.full_state or fit.state
-            d = _wrap_diff(layout, parameter_vector(layout, est, sc.times) - tv)
+            d = closest(parameter_vector(layout, est, sc.times))
             rec["z"] = (d / crlb).tolist()
-            sd = np.sqrt(np.diag(fit.covariance)) if fit.covariance is not None else np.zeros_like(d)
+            sd = (
+                np.sqrt(np.diag(fit.covariance)) if fit.covariance is not None else np.zeros_like(d)
+            )
             rec["covered"] = (np.abs(d) <= 3 * sd).tolist()
             rec["outliers_flagged"] = int(np.count_nonzero(~inl))
         except Exception as exc:  # noqa: BLE001 (a failure is counted, not raised)
@@ -175,10 +190,10 @@ def accuracy_scenes(seed: int, row: int, indices: range) -> list[dict]:
     return out
 
 
-def _options():
+def _options(point_sigma: float = 1.0):
     from curverecon.options import ReconstructOptions
 
-    return ReconstructOptions()
+    return ReconstructOptions(point_sigma=point_sigma)
 
 
 def noise_free_scenes(seed: int, row: int, indices: range) -> list[dict]:
@@ -191,7 +206,9 @@ def noise_free_scenes(seed: int, row: int, indices: range) -> list[dict]:
             motion, names, UNIQUE_FRAMES[motion], scene_seed(seed, "noise_free", row, i), 0.0
         )
         try:
-            rec = reconstruct_rigid(observations(sc, motion))
+            # noise-free: the stated noise small, so the input check does not read a slow turn
+            # as no turn at all
+            rec = reconstruct_rigid(observations(sc, motion), _options(1e-6))
             out.append({"index": i, "error": points_error(sc, rec)})
         except Exception as exc:  # noqa: BLE001
             out.append({"index": i, "error": float("inf"), "message": str(exc)})
@@ -209,29 +226,25 @@ def outlier_scenes(seed: int, row: int, indices: range) -> list[dict]:
             motion, names, frames, scene_seed(seed, "outliers", row, i), outlier_fraction=0.2
         )
         c = float(np.linalg.norm(sc.points3[0, 1] - sc.points3[0, 0]))
+        rec_out = {"index": i, "success": False, "flagged": 0.0, "good_flagged": 0.0}
         try:
             rec = reconstruct_rigid(observations(sc, motion))
             flagged = ~np.asarray(rec.inliers)
-            ok = (
-                bool(np.all(flagged[sc.outliers]))
-                and int(np.count_nonzero(flagged & ~sc.outliers)) <= 1
-                and abs(rec.c - c) <= 5.0 * max(float(rec.std[0]), 1e-9)
-            )
+            rec_out["success"] = bool(abs(rec.c - c) <= 0.05 * c)
+            rec_out["flagged"] = float(np.mean(flagged[sc.outliers]))
+            rec_out["good_flagged"] = float(np.mean(flagged[~sc.outliers]))
         except Exception:  # noqa: BLE001
-            ok = False
-        out.append({"index": i, "success": ok})
+            pass
+        out.append(rec_out)
     return out
 
 
 def curve_error(scene: RigidScene, curve3d: np.ndarray) -> float:
-    """Largest distance of a curve3d point from the true curve, relative to its length (the
-    mirror image of the truth taken where it is closer)."""
-    best = np.inf
-    for flip in (np.array([1.0, 1.0, 1.0]), np.array([1.0, 1.0, -1.0])):
-        t = scene.curve3d * flip
-        d = np.linalg.norm(curve3d[:, None, :] - t[None, :, :], axis=2).min(axis=1)
-        best = min(best, float(d.max()))
-    return best / scene.curve_length
+    """The curve bench's error (``bench.curve_end_to_end.curve_error``): symmetric mean distance
+    between curve3d and the true curve over the true length, best over the mirror image."""
+    from bench.curve_end_to_end import curve_error as symmetric_error
+
+    return float(symmetric_error(np.asarray(curve3d, float), scene.curve3d))
 
 
 def curve_scenes(seed: int, row: int, indices: range) -> list[dict]:
@@ -297,6 +310,12 @@ def _summarise(groups: dict[str, list[dict]]) -> dict:
             out[f"config_{key}_success_rate_20pct_outliers"] = round(
                 float(np.mean([r["success"] for r in ol])), 3
             )
+            out[f"config_{key}_outlier_frames_flagged_rate"] = round(
+                float(np.mean([r["flagged"] for r in ol])), 3
+            )
+            out[f"config_{key}_good_frames_flagged_rate"] = round(
+                float(np.mean([r["good_flagged"] for r in ol])), 3
+            )
         cv = groups.get(f"curve|{row}", [])
         if cv:
             out[f"config_{key}_curve_within_1pct_rate"] = round(
@@ -343,7 +362,7 @@ def _minimal(seed: int, quick: bool) -> dict:
         from bench import config_minimal  # type: ignore[attr-defined]
     except ImportError:
         return {}
-    return config_minimal.run(seed, 20 if quick else None)
+    return config_minimal.run(seed, 20 if quick else MINIMAL_SCENES)
 
 
 def main(argv: list[str] | None = None) -> int:

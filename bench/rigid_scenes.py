@@ -34,7 +34,8 @@ class RigidScene:
     relative to frame 0; axis (3,) or None; rate (radians per unit of t) or None; angles (N,)
     or None; parabola (3, 2) of the mass centre's image or None; tangents3 (2, 3) unit
     directions at A and B (into the curve) in frame 0; curve3d (M, 3) in frame 0's camera
-    coordinates (A at z = 0); outliers (N,) True for frames whose points were replaced.
+    coordinates (A at z = 0; 4,001 points, dense enough to measure 1e-6 of the length);
+    outliers (N,) True for frames whose points were replaced.
     """
 
     motion: str
@@ -92,16 +93,18 @@ def make_rigid_scene(
     curve_noise_px: float = 0.5,
     outlier_fraction: float = 0.0,
     chord: tuple[float, float] = (80.0, 160.0),
+    curve_points: int = 201,
 ) -> RigidScene:
-    """One scene (see the module docstring); ``seed`` fixes everything."""
+    """One scene (see the module docstring); ``seed`` fixes everything; ``curve_points``
+    points per polyline."""
     rng = np.random.default_rng(seed)
     curve = draw_curve(rng, ("helix", "clothoid", "fourier", "random")[seed % 4], chord)
-    s = np.linspace(0.0, 1.0, 201)
-    samples = curve.points(s)
+    samples = curve.points(np.linspace(0.0, 1.0, 201))
+    polyline = curve.points(np.linspace(0.0, 1.0, curve_points))
     a_, b_, ta, tb = curve.ends()
     c_ = curve.points(np.array([0.45]))[0]
     body = {"A": a_, "B": b_, "C": c_}
-    g = samples.mean(axis=0)
+    g = samples.mean(axis=0)  # the mass centre of a uniform wire
     rots, axis, rate, angles = _world_rotations(motion, frames, rng)
     t = np.arange(frames, dtype=float)
     if motion == "force-field":
@@ -128,7 +131,7 @@ def make_rigid_scene(
         ang = ang + np.radians(tangent_noise_deg) * rng.normal(size=ang.shape)
     curves = None
     if with_curve:
-        img = place(samples)[:, :, :2]
+        img = place(polyline)[:, :, :2]
         curves = [c + rng.normal(0.0, curve_noise_px, c.shape) for c in img]
     outliers = np.zeros(frames, bool)
     k = int(round(outlier_fraction * frames))
@@ -138,9 +141,10 @@ def make_rigid_scene(
         lo, hi = obs.reshape(-1, 2).min(axis=0) - 50, obs.reshape(-1, 2).max(axis=0) + 50
         obs[bad] = rng.uniform(lo, hi, (k, len(names), 2))
     rel = np.einsum("fij,kj->fik", rots, rots[0])
-    c3 = np.einsum("ij,kj->ki", rots[0], samples - a_)
+    dense = curve.points(np.linspace(0.0, 1.0, 4001))
+    c3 = np.einsum("ij,kj->ki", rots[0], dense - a_)
     c3[:, :2] += pts3[0, 0, :2]
-    length = float(np.sum(np.linalg.norm(np.diff(samples, axis=0), axis=1)))
+    length = float(np.sum(np.linalg.norm(np.diff(dense, axis=0), axis=1)))
     unit = dirs[0] / np.linalg.norm(dirs[0], axis=1)[:, None]
     return RigidScene(
         motion, tuple(names), t, obs, ang, curves, pts3, rel, axis, rate, angles, parabola,

@@ -79,7 +79,9 @@ def answer(
     warnings = list(obs.warnings)
     curve3d = None
     if obs.curves is not None:
-        curve3d, tangents3, more = curve_on_poses(layout, full, data, obs.curves, tangents3)
+        curve3d, tangents3, more, full = curve_on_poses(
+            layout, full, data, obs.curves, tangents3, options.point_sigma
+        )
         warnings += more
     shape, poses = paper_answer(layout, full, data.times, tangents3)
     std = np.array([chord_std(layout, state, fit.covariance), np.nan, np.nan, np.nan])

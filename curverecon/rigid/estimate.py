@@ -23,7 +23,7 @@ from curverecon.options import OutlierOptions
 from curverecon.rigid.measurements import RigidData
 from curverecon.rigid.model import Layout, axis_vector, with_frames
 from curverecon.rigid.refinement import RigidFit, information_inverse, refine
-from curverecon.rigid.starts import starts
+from curverecon.rigid.starts import reset_rotations, starts
 
 MIN_AXIS_TILT_DEG = 2.0
 """An axis within this of the viewing direction shows no depth: refused."""
@@ -33,9 +33,16 @@ MIN_TURN_DEG = 1.0
 refused: a zero rate, all frames alike."""
 
 
+INTERMEDIATE_ITERATIONS = 60
+"""Levenberg-Marquardt iterations of each consensus step (the outlier test's fits then run to
+convergence, at most 200): the free row's steps crawl for about 100 iterations near the
+optimum, where the consensus only needs the frames' misfits."""
+
+
 def _refine(layout, state, data, **kw) -> RigidFit | None:
     try:
-        fit = refine(layout, state, data, covariance=False, **{"max_iter": 200, **kw})
+        kw = {"max_iter": INTERMEDIATE_ITERATIONS, **kw}
+        fit = refine(layout, state, data, covariance=False, **kw)
     except (np.linalg.LinAlgError, FloatingPointError, ValueError):
         return None
     return fit if np.isfinite(fit.chi2) else None
@@ -44,53 +51,62 @@ def _refine(layout, state, data, **kw) -> RigidFit | None:
 def consensus_fit(
     layout: Layout, data: RigidData, state, threshold: float, keep: float = 0.7
 ) -> tuple[RigidFit, np.ndarray, float] | None:
-    """(fit on the consensus frames with the state over every frame, consensus (N,), robust
-    cost) from one start: refined on all frames, then on the ``keep`` fraction of frames that
-    fit it best, every frame's own parameters fitted to that body and motion, the frames below
-    ``threshold`` (frame 0 always) refined together.  The robust cost is
-    sum_f min(chi2_f, threshold) over every frame."""
+    """(fit over every frame, its consensus frames (N,), robust cost) from one hypothesis:
+    every frame's own parameters fitted to its body and motion; the frames below ``threshold``
+    (at least the ``keep`` fraction that fit best; frame 0 always) refined together; again
+    every frame's own parameters to that, the consensus the frames below ``threshold``, twice.
+    The outlier frames never pull the body.  The robust cost is sum_f min(chi2_f, threshold)."""
     n = data.n_frames
-    fit = _refine(layout, state, data)
+    fit = _refine(layout, state, data, fix_globals=True)
     if fit is None:
         return None
     cons = np.ones(n, bool)
     for _ in range(2):
         order = np.argsort(fit.frame_chi2, kind="stable")
-        sub = np.zeros(n, bool)
+        sub = fit.frame_chi2 <= threshold
         sub[order[: max(int(np.ceil(keep * n)), 1)]] = True
         sub[0] = True
         idx = np.flatnonzero(sub)
         part = _refine(layout, with_frames(fit.state, idx), data.subset(idx))
         if part is None:
             break
-        all_frames = _refine(
-            layout, _expand(layout, part.state, idx, fit.state), data, fix_globals=True
-        )
-        if all_frames is None:
+        moved = reset_rotations(layout, _expand(layout, part.state, idx, fit.state), data)
+        fit_all = _refine(layout, moved, data, fix_globals=True)
+        if fit_all is None:
             break
-        cons = all_frames.frame_chi2 <= threshold
-        cons[0] = True
-        idx = np.flatnonzero(cons)
-        part = _refine(layout, with_frames(all_frames.state, idx), data.subset(idx))
-        if part is None:
+        fit = fit_all
+        new = fit.frame_chi2 <= threshold
+        new[0] = True
+        if np.array_equal(new, cons):
             break
-        fit = _refine(layout, _expand(layout, part.state, idx, all_frames.state), data, max_iter=0)
-        if fit is None:
-            return None
-        if cons.all():
-            break
+        cons = new
+    cons = fit.frame_chi2 <= threshold
+    cons[0] = True
     cost = float(np.sum(np.minimum(fit.frame_chi2, threshold)))
     return fit, cons, cost
 
 
 def best_fit(layout: Layout, data: RigidData, threshold: float) -> tuple[RigidFit, np.ndarray]:
-    """The lowest robust cost over the starts' consensus fits: (fit over every frame, the
-    consensus frames)."""
+    """The lowest robust cost over LO-RANSAC's minimal samples (``rigid.hypotheses``, where the
+    row has a solver) and the all-frame starts: (fit over every frame, its consensus frames)."""
+    from curverecon.rigid.hypotheses import RANSAC, FrameSampleEstimator, Hypothesis, solver_for
+    from curverecon.robust.ransac import lo_ransac
+
+    initial = [Hypothesis(s) for s in starts(layout, data)]
+    solver = solver_for(layout)
     best = None
-    for state in starts(layout, data):
-        got = consensus_fit(layout, data, state, threshold)
-        if got is not None and (best is None or got[2] < best[2]):
-            best = got
+    if solver is not None and data.n_frames >= solver.FRAMES:
+        est = FrameSampleEstimator(layout, data, solver, threshold, consensus_fit)
+        model, _ = lo_ransac(est, RANSAC, initial_models=initial)
+        if model is not None and model.fit is None:
+            model = est.refine_model(model)
+        if model is not None and model.fit is not None:
+            best = (model.fit, model.consensus, model.cost)
+    else:
+        for h in initial:
+            got = consensus_fit(layout, data, h.state, threshold)
+            if got is not None and (best is None or got[2] < best[2]):
+                best = got
     if best is None:
         raise CurveReconError(f"motion {layout.motion}: no start converged")
     return best[0], best[1]

@@ -232,12 +232,15 @@ def with_frames(state: RigidState, keep: np.ndarray) -> RigidState:
     )
 
 
-def normalise(layout: Layout, state: RigidState, times: np.ndarray) -> RigidState:
+def normalise(
+    layout: Layout, state: RigidState, times: np.ndarray, mirror: bool | None = None
+) -> RigidState:
     """The mirror image with B at or behind A in frame 0 (see the module docstring), the axis
-    sign with a non-negative rate / angle sum, angles wrapped to (-pi, pi]."""
+    sign with a non-negative rate / angle sum, angles wrapped to (-pi, pi].  ``mirror``: True or
+    False takes the mirror image or not, whatever B's depth (to compare with another estimate)."""
     s = state.copy()
     q = body_vectors(layout, s)
-    if q[1, 2] - q[0, 2] < 0:  # the mirror z -> -z
+    if q[1, 2] - q[0, 2] < 0 if mirror is None else mirror:  # the mirror z -> -z
         s.body = s.body * np.array([1.0, 1.0, -1.0])
         if s.directions is not None:
             s.directions[:, 0] = np.pi - s.directions[:, 0]

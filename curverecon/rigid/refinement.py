@@ -100,7 +100,7 @@ def refine(
     *,
     max_iter: int = 100,
     covariance: bool = True,
-    tol: float = 1e-12,
+    tol: float = 1e-10,
     fix_globals: bool = False,
 ) -> RigidFit:
     """The maximum-likelihood state from ``state`` (Levenberg-Marquardt, Schur complement);

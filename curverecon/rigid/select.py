@@ -69,7 +69,7 @@ def _score_paper(obs: RigidObservations, options: ReconstructOptions):
     from curverecon.pipeline import reconstruct
 
     paper = Observations(obs.points[:, 0], obs.points[:, 1], obs.tangents[:, 0], obs.tangents[:, 1])
-    rec = reconstruct(paper, options)
+    rec = reconstruct(paper, options=options)
     n = obs.n_frames
     thr = float(chi2_dist.isf(options.outliers.false_alarm, 1))
     fc = np.where(rec.inliers, rec.frame_chi2, thr)

@@ -13,7 +13,8 @@
   z_kf^2 = |V_k|^2 - |v_kf|^2.  A grid over (z_1 >= 0, z_2) scored by the trimmed residuals
   gives the body; each frame's rotation follows by aligning the body's triad (Kabsch), on the
   depth sign (Necker reversal) whose tangents fit better where tangents are given.
-* Force field: the mass centre's image from a parabola through the points' mean image, the
+* Force field: the mass centre's image from a parabola through the points' mean image (the
+  fifth of the frames farthest from it left out, three times), the
   mass centre at the body's mean point and each frame's rotation aligning the body with the
   images (depths from the lengths); the grid over B's depth gives the starts.
 """
@@ -153,25 +154,34 @@ def free_starts(layout: Layout, data: RigidData, count: int = 3) -> list[RigidSt
     for i in np.argsort(score)[: 4 * count]:
         if any(abs(z1[i] - s.body[0, 2]) + abs(z2[i] - s.body[1, 2]) < 0.1 * r for s in out):
             continue
-        out.append(_free_state(layout, data, vecs, np.array([z1[i], z2[i]])))
+        out.append(free_state(layout, data, vecs, np.array([z1[i], z2[i]])))
         if len(out) == count:
             break
     return out
 
 
-def _free_state(layout: Layout, data: RigidData, vecs: np.ndarray, z0: np.ndarray) -> RigidState:
+def align_rotations(body: np.ndarray, img: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every frame's rotation of two body vectors (2, 3) onto their images (N, 2, 2): the depths
+    from the vectors' lengths and their dot product, then the triads aligned (Kabsch).  Returns
+    (rotations (N, 3, 3), the depth-reversed ones (N, 3, 3))."""
+    lengths2 = np.sum(body**2, axis=1)
+    z = np.sqrt(np.maximum(lengths2[None] - np.sum(img**2, axis=2), 0.0))
+    sign = np.sign(body[0] @ body[1] - np.sum(img[:, 0] * img[:, 1], axis=1))
+    z[:, 1] *= np.where(sign == 0, 1.0, sign)
+    dst = np.concatenate([img, z[..., None]], axis=2)
+    rots = kabsch(_triad(body), _triad(dst))
+    other = kabsch(_triad(body), _triad(dst * np.array([1.0, 1.0, -1.0])))
+    return rots, other
+
+
+def free_state(layout: Layout, data: RigidData, vecs: np.ndarray, z0: np.ndarray) -> RigidState:
+    """The free row's state from frame 0's depths ``z0`` of B - A and C - A (further points at
+    depth 0), every frame's rotation aligned (:func:`align_rotations`)."""
     body = np.column_stack([vecs[0, :2], np.zeros(2)])
     body[:, 2] = z0
     body = np.vstack([body, np.column_stack([vecs[0, 2:], np.zeros(len(vecs[0]) - 2)])])
-    lengths2 = np.sum(body[:2] ** 2, axis=1)
-    z = np.sqrt(np.maximum(lengths2[None] - np.sum(vecs[:, :2] ** 2, axis=2), 0.0))
-    dot = body[0] @ body[1]
-    sign = np.sign(dot - np.sum(vecs[:, 0] * vecs[:, 1], axis=1))
-    z[:, 1] *= np.where(sign == 0, 1.0, sign)
-    dst = np.concatenate([vecs[:, :2], z[..., None]], axis=2)
-    rots = kabsch(_triad(body[:2]), _triad(dst))
+    rots, other = align_rotations(body[:2], vecs[:, :2])
     if layout.tangents:
-        other = kabsch(_triad(body[:2]), _triad(dst * np.array([1.0, 1.0, -1.0])))
         rots = _better_tangents(data, rots, other)
     rots = np.einsum("fij,kj->fik", rots, rots[0])  # relative to frame 0
     body = np.einsum("ij,kj->ki", rots[0], body)
@@ -179,6 +189,27 @@ def _free_state(layout: Layout, data: RigidData, vecs: np.ndarray, z0: np.ndarra
     if layout.tangents:
         state.directions = tangent_directions(data, rots)
     return state
+
+
+def reset_rotations(layout: Layout, state: RigidState, data: RigidData) -> RigidState:
+    """The state with every frame's free rotation (but frame 0's) aligned again from its images
+    (:func:`align_rotations`, on the depth branch the tangents prefer where given): a frame left
+    on a poor local minimum of its own parameters starts again from the closed form."""
+    if not layout.free_rotations:
+        return state
+    from curverecon.rigid.model import body_vectors, frame_shifts
+
+    q = body_vectors(layout, state)
+    ref = frame_shifts(layout, state, data.times)
+    img = data.points - ref[:, None, :]
+    if not layout.centred:
+        q, img = q[1:], img[:, 1:]
+    rots, other = align_rotations(q[:2], img[:, :2])
+    if layout.tangents and state.directions is not None:
+        rots = _better_tangents(data, rots, other)
+    out = state.copy()
+    out.rotations[1:] = rots[1:]
+    return out
 
 
 def _better_tangents(data: RigidData, rots: np.ndarray, other: np.ndarray) -> np.ndarray:
@@ -202,7 +233,11 @@ def force_field_starts(layout: Layout, data: RigidData, count: int = 4) -> list[
     t = data.times
     design = np.column_stack([np.ones_like(t), t, 0.5 * t * t])
     mean_img = data.points.mean(axis=1)
-    parabola = np.linalg.lstsq(design, mean_img, rcond=None)[0]
+    keep = np.ones(len(t), bool)
+    for _ in range(3):  # trimmed: the frames farthest from the parabola left out
+        parabola = np.linalg.lstsq(design[keep], mean_img[keep], rcond=None)[0]
+        dist = np.linalg.norm(design @ parabola - mean_img, axis=1)
+        keep = dist <= np.quantile(dist, 1.0 - TRIM)
     vecs = data.points[:, 1:] - data.points[:, :1]
     r = 2.0 * float(np.max(np.linalg.norm(vecs, axis=-1)))
     out = []
