@@ -12,7 +12,7 @@ from pathlib import Path
 
 import sympy as sp
 
-from derivations import errata, lean, minimal_count, section3, squaring
+from derivations import errata, lean, minimal_count, section2_perspective, section3, squaring
 from derivations import symbols as s
 from derivations.construction import build
 
@@ -115,6 +115,7 @@ def derivation_markdown() -> str:
     out.extend(_polynomial_section())
     out.extend(_minimal_section())
     out.extend(_start_system_section())
+    out.extend(section2_perspective.derivation_lines())
     return "\n".join(out) + "\n"
 
 
@@ -424,6 +425,7 @@ def errata_markdown() -> str:
     for where, printed, derived in errata.TEXT_ERRATA:
         w(f"- {where}: printed $ {printed} $; should read $ {derived} $")
     w("\n(12') itself (the identity in s1, s2, y) checks out: see equation (12') in derivation.md.")
+    out.extend(section2_perspective.errata_lines())
     return "\n".join(out) + "\n"
 
 

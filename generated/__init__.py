@@ -20,6 +20,12 @@
   of W(q) (derivations/minimal.py)
 - ``section2_minimal``: the seed's Section 2 orthographic rows: closed forms and residuals of their
   minimal problems (derivations/section2.py)
+- ``section2_perspective``: the seed's Section 2 perspective and stereo rows: linear systems of the
+  closed-form rows (derivations/section2_perspective.py)
+- ``persp_uniform_rotation_system``: perspective uniform rotation, five frames, with its start
+  system solved by monodromy (derivations/section2_perspective.py)
+- ``persp_fixed_axis_system``: perspective rotation about a fixed direction, three points, three
+  frames, with its start system solved by monodromy (derivations/section2_perspective.py)
 """
 
 __all__ = (
@@ -31,4 +37,7 @@ __all__ = (
     "minimal_unsquared",
     "minimal_unsquared_kernel",
     "section2_minimal",
+    "section2_perspective",
+    "persp_uniform_rotation_system",
+    "persp_fixed_axis_system",
 )
