@@ -12,7 +12,15 @@ from pathlib import Path
 
 import sympy as sp
 
-from derivations import errata, lean, minimal_count, section2_perspective, section3, squaring
+from derivations import (
+    errata,
+    lean,
+    minimal_count,
+    section2_perspective,
+    section2_report,
+    section3,
+    squaring,
+)
 from derivations import symbols as s
 from derivations.construction import build
 
@@ -115,6 +123,7 @@ def derivation_markdown() -> str:
     out.extend(_polynomial_section())
     out.extend(_minimal_section())
     out.extend(_start_system_section())
+    out.extend(section2_report.derivation_markdown())
     out.extend(section2_perspective.derivation_lines())
     return "\n".join(out) + "\n"
 
@@ -424,7 +433,11 @@ def errata_markdown() -> str:
     w("## Text errata (no formula to evaluate)\n")
     for where, printed, derived in errata.TEXT_ERRATA:
         w(f"- {where}: printed $ {printed} $; should read $ {derived} $")
-    w("\n(12') itself (the identity in s1, s2, y) checks out: see equation (12') in derivation.md.")
+    w(
+        "\n(12') itself (the identity in s1, s2, y) checks out: see equation (12') in "
+        "derivation.md.\n"
+    )
+    out.extend(section2_report.errata_markdown())
     out.extend(section2_perspective.errata_lines())
     return "\n".join(out) + "\n"
 

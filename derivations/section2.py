@@ -465,6 +465,68 @@ def force_field_jacobian_ranks(seed: int = CHECK_SEED) -> dict[int, tuple[int, f
     return out
 
 
+@cache
+def _closed_forms() -> tuple:
+    """The closed forms as float functions of the data: (cubic in W and the data, quadratic in M
+    and the data, uniform rotation's atan2 arguments)."""
+    v4, v3, u3 = v_symbols(4), v_symbols(3), v_symbols(3, "u")
+    cof, k = fixed_axis_cofactors(v4)
+    subs = dict(zip(sp.symbols("C1:4", real=True), cof, strict=True))
+    subs.update(zip(sp.symbols("k1:4", real=True), k, strict=True))
+    cubic = sum(
+        c.xreplace(subs) * W ** (3 - i) for i, c in enumerate(fixed_axis_cubic_in_cofactors())
+    )
+    m = sp.Symbol("M", real=True)
+    quad = sum(c * m ** (2 - i) for i, c in enumerate(free_3pt_quadratic()["quadratic"]))
+    args, out = uniform_rotation_angles()
+    return (
+        sp.lambdify((W, *[x for p in v4 for x in p]), cubic, "numpy"),
+        sp.lambdify((m, *[x for p in v3 + u3 for x in p]), quad, "numpy"),
+        sp.lambdify(args, out["atan2_args"], "numpy"),
+    )
+
+
+def _root_error(poly: object, root: float, data: np.ndarray) -> float:
+    """|p(root)| / (|p'(root)| |root|): the relative distance from ``root`` to a root of the
+    polynomial ``poly(x, *data)`` (first order; derivative by a central difference)."""
+    h = 1e-6 * abs(root)
+    val = poly(root, *data)  # type: ignore[operator]
+    slope = (poly(root + h, *data) - poly(root - h, *data)) / (2 * h)  # type: ignore[operator]
+    return float(abs(val) / (abs(slope) * abs(root)))
+
+
+@cache
+def closed_form_checks() -> dict[str, tuple[float, float]]:
+    """(median, max) over N_CHECK random 3-D constructions of: the true W = z_0^2 as a root of
+    the cubic and the true M = z_0 e_0 as a root of the quadratic (relative distance to the
+    nearest root, :func:`_root_error`), and the uniform rotation's equation
+    wrap(theta_21 - rho theta_1) at the true z_0 and signs with general times (radians)."""
+    cubic, quad, angles = _closed_forms()
+    rng = np.random.default_rng(CHECK_SEED + 1)
+    found: dict[str, list[float]] = {
+        "fixed_axis_cubic": [],
+        "free_3pt_quadratic": [],
+        "uniform_rotation_angles": [],
+    }
+    for _ in range(N_CHECK):
+        x3 = construct_np("fixed_axis", rng, 4)["X3"]
+        d = x3[:, 1] - x3[:, 0]
+        found["fixed_axis_cubic"].append(_root_error(cubic, d[0, 2] ** 2, d[:, :2].ravel()))
+        x3 = construct_np("free_3pt", rng, 3)["X3"]
+        d, e = x3[:, 1] - x3[:, 0], x3[:, 2] - x3[:, 0]
+        data = np.concatenate([d[:, :2].ravel(), e[:, :2].ravel()])
+        found["free_3pt_quadratic"].append(_root_error(quad, d[0, 2] * e[0, 2], data))
+        scene = construct_np("uniform_rotation", rng, 3)
+        d = scene["X3"][:, 1] - scene["X3"][:, 0]
+        s = np.sign(d[1:, 2])
+        y1, x1, y21, x21 = angles(d[0, 2], s[0], s[1], *d[:, :2].ravel())
+        t = scene["times"]
+        rho = (t[2] - t[1]) / (t[1] - t[0])
+        res = np.angle(np.exp(1j * (np.arctan2(y21, x21) - rho * np.arctan2(y1, x1))))
+        found["uniform_rotation_angles"].append(float(abs(res)))
+    return {k: (float(np.median(v)), float(np.max(v))) for k, v in found.items()}
+
+
 # ---------------------------------------------------------------------------------------------
 # counts (msolve over GF(p), derivations.minimal_count)
 # ---------------------------------------------------------------------------------------------
@@ -499,10 +561,13 @@ def _random_values(data: Sequence, seed: int, prime: int = mc.PRIME) -> dict:
     return {x: rnd.randrange(1, prime) for x in flat}
 
 
-def _rational_rotations(row: str, frames: int, rnd: random.Random) -> list[sp.Matrix]:
+def _rational_rotations(
+    row: str, frames: int, rnd: random.Random, axis: Sequence[int] | None = None
+) -> list[sp.Matrix]:
     """Exact rotations R_f (R_0 = I) of the row's model: Cayley rotations with rational vectors
     (about one axis for the rotation rows; equally spaced angles for the uniform rotation)."""
-    axis = [sp.Rational(rnd.randint(-9, 9), 7) for _ in range(3)]
+    nonzero = [x for x in range(-9, 10) if x]  # an axis in the image plane is degenerate
+    axis = [sp.Rational(rnd.choice(nonzero) if axis is None else axis[i], 7) for i in range(3)]
     step = sp.Rational(rnd.randint(2, 6), 9)
     scales = rnd.sample([x for x in range(-9, 10) if x], frames)  # distinct angles
     out = [sp.eye(3)]
@@ -512,15 +577,17 @@ def _rational_rotations(row: str, frames: int, rnd: random.Random) -> list[sp.Ma
         elif row == "fixed_axis":
             out.append(cayley([x * sp.Rational(scales[f], 11) for x in axis]))
         else:
-            out.append(cayley([sp.Rational(rnd.randint(-9, 9), 8) for _ in range(3)]))
+            out.append(cayley([sp.Rational(rnd.choice(nonzero), 8) for _ in range(3)]))
     return out
 
 
-def _true_values(row: str, frames: int, seed: int = TRUE_SEED) -> dict:
+def _true_values(
+    row: str, frames: int, seed: int = TRUE_SEED, axis: Sequence[int] | None = None
+) -> dict:
     """Exact image differences of a rational body moved by the row's model (a noise-free
-    instance): data symbols -> Fraction."""
+    instance; ``axis`` overrides the random axis direction): data symbols -> Fraction."""
     rnd = random.Random(seed)
-    rots = _rational_rotations(row, frames, rnd)
+    rots = _rational_rotations(row, frames, rnd, axis)
     body = [sp.Matrix([sp.Rational(rnd.randint(-20, 20), 9) for _ in range(3)]) for _ in "DE"]
     out: dict = {}
     for name, vec in (("v", body[0]), ("u", body[1])):
@@ -567,3 +634,130 @@ def facts() -> dict[str, dict[str, object]]:
             "noise_free_one_more": more.degree,
         }
     return out
+
+
+@cache
+def degenerate_axes() -> dict[str, dict[str, int]]:
+    """Dimension of the solution set (msolve, noise-free instance) with the axis along the
+    viewing direction (0, 0, 1) and in the image plane (2, 1, 0), per axis row at its least
+    number of frames (0: finitely many; 1: a curve of solutions, the depth undetermined)."""
+    out: dict[str, dict[str, int]] = {}
+    for row in ("fixed_axis", "uniform_rotation"):
+        frames = MINIMAL_FRAMES[row]
+        out[row] = {
+            name: count_row(row, frames, _true_values(row, frames, TRUE_SEED, axis)).dimension
+            for name, axis in (
+                ("along the viewing direction", (0, 0, 1)),
+                ("in the image plane", (2, 1, 0)),
+            )  # fmt: skip
+        }
+    return out
+
+
+# --- real solutions of random real instances (msolve over the rationals) ------------------
+
+REAL_SEEDS = range(100, 140)  # noise-free rational constructions whose real solutions are counted
+
+
+def _to_msolve_qq(unknowns: Sequence[sp.Symbol], eqs: Sequence[sp.Expr], values: dict) -> list[str]:
+    """The equations at exact rational data, denominators cleared, in msolve's syntax."""
+    exact = {k: sp.Rational(x.numerator, x.denominator) for k, x in values.items()}
+    out = []
+    for e in eqs:
+        _, poly = sp.Poly(sp.expand(e.xreplace(exact)), *unknowns, domain="QQ").clear_denoms()
+        terms = []
+        for mono, co in poly.terms():
+            factors = "*".join(f"{u.name}^{p}" for u, p in zip(unknowns, mono, strict=True) if p)
+            terms.append(f"({int(co)})*{factors}" if factors else f"({int(co)})")
+        out.append("+".join(terms).replace("+(-", "-(").replace("(", "").replace(")", ""))
+    return out
+
+
+def real_solution_count(row: str, frames: int, values: dict) -> int:
+    """Real solutions of the row's system at exact rational data (msolve's real root
+    isolation over the rationals; zero-dimensional systems only)."""
+    unknowns, _, eqs = SYSTEMS[row](frames)
+    text = mc._run_msolve([u.name for u in unknowns], _to_msolve_qq(unknowns, eqs, values), 0, [])
+    depth, count = 0, 0
+    for ch in text:
+        if ch == "[":
+            depth += 1
+            count += depth == 4
+        elif ch == "]":
+            depth -= 1
+    if not text.lstrip().startswith("[0"):
+        raise ValueError(f"msolve: not zero-dimensional ({text[:40]})")
+    return count
+
+
+@cache
+def real_counts() -> dict[str, dict[int, int]]:
+    """Per row: {real solutions: instances} over the REAL_SEEDS noise-free constructions at the
+    least number of frames (equally spaced times for the uniform rotation)."""
+    out: dict[str, dict[int, int]] = {}
+    for row in SYSTEMS:
+        hist: dict[int, int] = {}
+        for seed in REAL_SEEDS:
+            n = real_solution_count(
+                row, MINIMAL_FRAMES[row], _true_values(row, MINIMAL_FRAMES[row], seed)
+            )
+            hist[n] = hist.get(n, 0) + 1
+        out[row] = dict(sorted(hist.items()))
+    return out
+
+
+# --- the force field's count -----------------------------------------------------------------
+
+
+def force_field_equations(frames: Sequence[dict]) -> list[sp.Expr]:
+    """The force-field equation of every frame at its data {FF_DATA symbol: value}."""
+    e = force_field_equation()
+    exact = [{k: sp.Rational(x.numerator, x.denominator) if isinstance(x, Fraction)
+              else sp.Integer(x) for k, x in f.items()} for f in frames]  # fmt: skip
+    return [sp.expand(e.xreplace(f)) for f in exact]
+
+
+def force_field_random_frames(frames: int, seed: int) -> list[dict]:
+    """Random residues for every frame's (ax, ay, bx, by, t): a generic instance."""
+    rnd = random.Random(seed)
+    return [{x: rnd.randrange(1, mc.PRIME) for x in FF_DATA} for _ in range(frames)]
+
+
+def force_field_true_frames(frames: int, seed: int = TRUE_SEED) -> list[dict]:
+    """Exact images of a rational body (A, B, mass centre G) under rational rotations, G moving
+    with a rational constant acceleration, at rational times: a noise-free instance."""
+    rnd = random.Random(seed)
+    rots = _rational_rotations("free_3pt", frames, rnd)
+    body = [sp.Matrix([sp.Rational(rnd.randint(-20, 20), 9) for _ in range(3)]) for _ in "ABG"]
+    g = [sp.Matrix([sp.Rational(rnd.randint(-9, 9), 5) for _ in range(3)]) for _ in range(3)]
+    out = []
+    time = sp.Rational(rnd.randint(-9, 0), 4)
+    for f in range(frames):
+        time += sp.Rational(rnd.randint(1, 9), 4)
+        centre = g[0] + g[1] * time + g[2] * time**2 / 2
+        a = rots[f] * (body[0] - body[2]) + centre
+        b = rots[f] * (body[1] - body[2]) + centre
+        values = (a[0], a[1], b[0], b[1], time)
+        out.append({x: Fraction(str(y)) for x, y in zip(FF_DATA, values, strict=True)})
+    return out
+
+
+def count_force_field(frames: list[dict]) -> mc.IdealCount:
+    """msolve's count of the force-field equations of ``frames`` over GF(PRIME)."""
+    polys = _to_msolve(list(FF_UNKNOWNS), force_field_equations(frames), {}, mc.PRIME)
+    return mc.count_solutions([u.name for u in FF_UNKNOWNS], polys, mc.PRIME)
+
+
+@cache
+def force_field_facts() -> dict[str, object]:
+    """Counts of the force field at 9 frames (random and noise-free instances) and at 10
+    noise-free frames (about 5 s each).  Eight frames: msolve needs about 9 minutes for the
+    dimension, so the Jacobian rank at the truth (:func:`force_field_jacobian_ranks`) says it."""
+    ranks = force_field_jacobian_ranks()
+    return {
+        "frames": MINIMAL_FRAMES["force_field"],
+        "random": [count_force_field(force_field_random_frames(9, s)).degree for s in COUNT_SEEDS],
+        "below_dimension": len(FF_UNKNOWNS) - ranks[8][0],
+        "noise_free": count_force_field(force_field_true_frames(9)).degree,
+        "noise_free_one_more": count_force_field(force_field_true_frames(10)).degree,
+    }

@@ -106,3 +106,36 @@ def test_force_field_has_no_practical_minimal_solver() -> None:
     assert ortho_force_field.FRAMES == 9 and ortho_force_field.POINTS == ("A", "B")
     with pytest.raises(CurveReconError, match="no practical minimal solver"):
         ortho_force_field.solve(np.zeros((9, 2, 2)), np.arange(9.0))
+
+
+@pytest.mark.parametrize("row", ROWS)
+def test_frames_alike_give_no_solutions(row: str) -> None:
+    """Every frame the same image: a curve of solutions, none listed, no exception."""
+    solver = _solver(row)
+    one = np.random.default_rng(15).normal(size=(1, len(solver.POINTS), 2)) * 50
+    sol = solver.solve(np.repeat(one, solver.FRAMES, axis=0), np.arange(solver.FRAMES) * 0.5)
+    assert sol.n_solutions == 0 and sol.points3.shape[1:] == (solver.FRAMES, len(solver.POINTS), 3)
+
+
+@pytest.mark.parametrize("row", ("ortho_fixed_axis", "ortho_uniform_rotation"))
+def test_axis_along_the_viewing_direction_gives_no_solutions(row: str) -> None:
+    """A rotation in the image plane at a uniform rate leaves the depth free (docs/derivation.md:
+    dimension 1): nothing listed."""
+    solver = _solver(row)
+    times = np.arange(solver.FRAMES, dtype=float)
+    angles = 0.4 * times
+    d = np.column_stack([np.cos(angles), np.sin(angles)]) * 40.0
+    pts = np.zeros((solver.FRAMES, 2, 2))
+    pts[:, 0] = [5.0, 7.0]
+    pts[:, 1] = pts[:, 0] + d
+    assert solver.solve(pts, times).n_solutions == 0
+
+
+def test_bench_helper_returns_every_key() -> None:
+    from bench.config_minimal import ROWS as BENCH_ROWS
+    from bench.config_minimal import run
+
+    out = run(seed=3, scenes=5)
+    for row in BENCH_ROWS:
+        assert out[f"config_{row}_minimal_truth_listed_rate"] == 1.0
+        assert out[f"config_{row}_solve_seconds_median"] > 0

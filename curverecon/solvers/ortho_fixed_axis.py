@@ -37,51 +37,59 @@ POINTS: tuple[str, ...] = ("A", "B")
 ROW = "ortho_fixed_axis"
 N_COMPLEX_SOLUTIONS = 6
 """Complex solutions of four generic frames (docs/derivation.md, msolve)."""
-REAL_TOLERANCE = 1e-7
-"""Largest |Im W| / (1 + |W|) of a root taken as real (W on the data's unit scale); exact data
-give roots real to about 1e-14."""
-SIGN_TOLERANCE = 1e-3
-"""Largest relative misfit of the coplanarity equation accepted for a root's depth signs before
-polishing (the cubic's roots are accurate to about 1e-5 at worst)."""
-POLISH_STEPS = 4
+NEAR_REAL = 1e-2
+"""Largest |Im W| / (1 + |W|) of a root polished as a candidate (W on the data's unit scale).
+Simple roots of exact data are real to about 1e-14; near z_f = 0 a real double root can split
+into a complex pair of imaginary part ~1e-5 (1 of 1,000 scenes at 1e-7 in the bench)."""
+DOMAIN_TOLERANCE = 1e-2
+"""Slack on W >= 0 and W + k_f >= 0 of a candidate before polishing."""
+DUPLICATE = 1e-9
+"""Polished solutions closer than this (max |dz|, unit scale) are one solution."""
+DEGENERATE = 1e-12
+"""Largest |cofactor C_f| (or |k_f|) taken as zero (unit scale): all C_f vanish when the image
+differences lie on one line (axis in the image plane), all k_f when the image lengths are equal
+(axis along the viewing direction); either way the cubic vanishes identically."""
+POLISH_STEPS = 8
 POLISH_TOLERANCE = 1e-12
 """Largest residual of the polished system (unit scale) of an accepted solution."""
 
 
-def _depth_signs(w: float, cof: np.ndarray, k: np.ndarray) -> np.ndarray | None:
-    """Depths (z_0, z_1, z_2, z_3) for the root W with z_0 >= 0: the sign pattern that
-    satisfies sum_f C_f (z_f - z_0) = 0, or None if no pattern does."""
-    z0 = np.sqrt(max(w, 0.0))
-    r = np.sqrt(np.maximum(w + k, 0.0))
-    best, best_err = None, np.inf
-    size = np.abs(cof) @ (r + z0) + 1e-300
-    for signs in product((1.0, -1.0), repeat=3):
-        z = np.array(signs) * r
-        err = abs(cof @ (z - z0)) / size
-        if err < best_err:
-            best, best_err = z, err
-    if best is None or best_err > SIGN_TOLERANCE:
-        return None
-    return np.concatenate([[z0], best])
+def _starts(roots: np.ndarray, k: np.ndarray) -> np.ndarray:
+    """Newton starts (n, 4) = (z_0, z_1, z_2, z_3), z_0 >= 0, from the cubic's candidate roots W:
+    every sign pattern of the later depths.  Near z_f = 0 two patterns meet and the cubic's
+    roots there are near-double (even a complex pair by rounding), so every pattern is polished
+    and duplicates dropped."""
+    w = roots.real
+    keep = (np.abs(roots.imag) <= NEAR_REAL * (1 + np.abs(roots))) & (w >= -DOMAIN_TOLERANCE)
+    keep &= np.all(w[:, None] + k[None] >= -DOMAIN_TOLERANCE, axis=1)
+    w = w[keep]
+    signs = np.array(list(product((1.0, -1.0), repeat=3)))
+    r = np.sqrt(np.maximum(w[:, None] + k[None], 0.0))  # (n, 3)
+    later = (signs[None] * r[:, None]).reshape(-1, 3)
+    z0 = np.repeat(np.sqrt(np.maximum(w, 0.0)), len(signs))
+    return np.column_stack([z0, later])
 
 
-def _polish(z: np.ndarray, cof: np.ndarray, k: np.ndarray) -> np.ndarray | None:
-    """Newton's method on the unsquared system (z_f^2 - z_0^2 - k_f, sum_f C_f (z_f - z_0)) from
-    the cubic's root: the cubic's coefficients lose digits by cancellation, the system does not.
-    None when it does not converge to POLISH_TOLERANCE."""
+def _residual(z: np.ndarray, cof: np.ndarray, k: np.ndarray) -> np.ndarray:
+    """(n, 4): z_f^2 - z_0^2 - k_f (f = 1, 2, 3) and sum_f C_f (z_f - z_0)."""
+    return np.column_stack([z[:, 1:] ** 2 - z[:, :1] ** 2 - k, (z[:, 1:] - z[:, :1]) @ cof])
+
+
+def _polish(z: np.ndarray, cof: np.ndarray, k: np.ndarray) -> np.ndarray:
+    """Newton's method on the unsquared system for every start at once (the cubic's
+    coefficients lose digits by cancellation, the system does not); returns the starts that
+    converge to POLISH_TOLERANCE."""
+    jac = np.zeros((len(z), 4, 4))
+    jac[:, 3] = [-cof.sum(), *cof]
     for _ in range(POLISH_STEPS):
-        res = np.concatenate([z[1:] ** 2 - z[0] ** 2 - k, [cof @ (z[1:] - z[0])]])
-        jac = np.zeros((4, 4))
-        jac[:3, 0] = -2 * z[0]
-        jac[[0, 1, 2], [1, 2, 3]] = 2 * z[1:]
-        jac[3] = [-cof.sum(), *cof]
-        try:
-            z = z - np.linalg.solve(jac, res)
-        except np.linalg.LinAlgError:
-            break
-    res = np.concatenate([z[1:] ** 2 - z[0] ** 2 - k, [cof @ (z[1:] - z[0])]])
-    scale = 1 + np.abs(cof).sum() * (1 + np.abs(z).max())
-    return z if np.abs(res).max() < POLISH_TOLERANCE * scale else None
+        jac[:, :3, 0] = -2 * z[:, :1]
+        jac[:, [0, 1, 2], [1, 2, 3]] = 2 * z[:, 1:]
+        ok = np.abs(np.linalg.det(jac)) > 1e-300
+        if not ok.all():
+            z, jac = z[ok], jac[ok]
+        z = z - np.linalg.solve(jac, _residual(z, cof, k)[..., None])[..., 0]
+    scale = 1 + np.abs(cof).sum() * (1 + np.abs(z).max(axis=1, initial=0))
+    return z[np.abs(_residual(z, cof, k)).max(axis=1) < POLISH_TOLERANCE * scale]
 
 
 def _solution(v: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, dict]:
@@ -107,18 +115,18 @@ def solve(points: np.ndarray, times: np.ndarray) -> RigidSolutions:
     scale = scale_of(v, ROW)
     vn = v / scale
     coefficients, cof, k = gen.fixed_axis_cubic(*vn.ravel())
+    if np.abs(cof).max() <= DEGENERATE or np.abs(k).max() <= DEGENERATE or not np.any(coefficients):
+        # a curve of solutions (image differences on one line: axis in the image plane; equal
+        # image lengths: axis along the viewing direction; frames alike): no finite set
+        return assemble(pts, [], [], [], N_COMPLEX_SOLUTIONS)
     roots = np.roots(coefficients / np.max(np.abs(coefficients)))
+    found: list[np.ndarray] = []
+    for z in _polish(_starts(roots, k), cof, k):
+        z = z if z[0] >= 0 else -z
+        if all(np.abs(z - y).max() > DUPLICATE for y in found):
+            found.append(z)
     depths, rots, motion = [], [], []
-    for root in roots:
-        if abs(root.imag) > REAL_TOLERANCE * (1 + abs(root)):
-            continue
-        w = float(root.real)
-        if w < -SIGN_TOLERANCE or np.any(w + k < -SIGN_TOLERANCE):
-            continue
-        z = _depth_signs(w, cof, k)
-        z = None if z is None else _polish(z, cof, k)
-        if z is None:
-            continue
+    for z in found:
         for zz in (z, -z):  # the solution and its mirror image
             r, m = _solution(vn, zz)
             depths.append((zz * scale)[:, None])

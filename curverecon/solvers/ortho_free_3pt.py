@@ -35,8 +35,12 @@ POINTS: tuple[str, ...] = ("A", "B", "C")
 ROW = "ortho_free_3pt"
 N_COMPLEX_SOLUTIONS = 16
 """Complex solutions of three generic frames (docs/derivation.md, msolve)."""
-REAL_TOLERANCE = 1e-7
-"""Largest |Im M| / (1 + |M|) of a root taken as real (unit scale)."""
+NEAR_REAL = 1e-3
+"""Largest |Im M| / (1 + |M|) of a root polished as a candidate (unit scale): simple roots of
+exact data are real to about 1e-14, a near-double real root can split into a complex pair by
+rounding; Newton's method on the Gram equations then decides."""
+DUPLICATE = 1e-9
+"""Polished depths closer than this (max, unit scale) are one solution."""
 DOMAIN_TOLERANCE = 1e-3
 """Slack on P, Q, P + a_f, Q + b_f >= 0 before polishing (unit scale)."""
 POLISH_STEPS = 4
@@ -102,13 +106,19 @@ def solve(points: np.ndarray, times: np.ndarray) -> RigidSolutions:
     depths, rots, motion = [], [], []
     if linear[4] == 0:
         return assemble(pts, depths, rots, motion, N_COMPLEX_SOLUTIONS)
+    found: list[np.ndarray] = []
     for root in np.roots(coefficients / np.max(np.abs(coefficients))):
-        if abs(root.imag) > REAL_TOLERANCE * (1 + abs(root)):
+        if abs(root.imag) > NEAR_REAL * (1 + abs(root)):
             continue
         x = _depths(float(root.real), linear, abc)
         x = None if x is None else _polish(x, abc)
         if x is None:
             continue
+        flip = np.where(x[:3] < 0, -1.0, 1.0)  # the representative with every z_f >= 0
+        x = x * np.concatenate([flip, flip])
+        if all(np.abs(x - y).max() > DUPLICATE for y in found):
+            found.append(x)
+    for x in found:
         for flips in product((1.0, -1.0), repeat=3):
             s = np.array(flips * 2)
             z = x * s * scale
