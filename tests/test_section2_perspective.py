@@ -36,8 +36,11 @@ def test_truth_listed_on_constructed_scenes(row: str) -> None:
         s = scene(row, rng, solver.FRAMES)
         sol = solver.solve(s["points"], s["times"], s["camera"])
         assert truth_listed(sol, s)
-        # every path accounted for: real, complex or failed (never dropped silently)
-        assert sol.n_paths == sol.n_solutions + sol.n_complex + sol.n_failed_paths
+        # every path accounted for: real, complex or failed (never dropped silently); the fixed
+        # axis merges three solves, each real solution listed once
+        passes = len(getattr(solver, "PASSES", (None,)))
+        listed = sol.n_solutions + sol.n_complex + sol.n_failed_paths
+        assert listed == sol.n_paths if passes == 1 else listed <= sol.n_paths
 
 
 @pytest.mark.parametrize("row", ("persp_uniform_rotation", "persp_fixed_axis_3pt"))

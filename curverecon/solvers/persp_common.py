@@ -22,6 +22,9 @@ from curverecon.solvers.rigid_solutions import RigidSolutions
 
 CHART = np.array(gen.CHART_ROTATION, dtype=float)
 """G: rays are solved as G m (an exact rational rotation)."""
+SECOND_CHART = np.array([[0.0, 0.0, 1.0], [-0.6, -0.8, 0.0], [0.8, -0.6, 0.0]])
+"""A second chart rotation: its e3 direction (0.8, -0.6, 0) is perpendicular to CHART's, so an
+axis near the boundary n3 = 0 of one chart is well inside the other's."""
 REAL_TOLERANCE = 1e-6
 """Largest |imaginary part| / (1 + |value|) of a tracked solution taken as real (endpoints are
 polished to about 1e-12; complex pairs of real data sit far above)."""
@@ -38,10 +41,13 @@ def rays_of(
     return camera.rays(pts), t
 
 
-def homotopy_parameters(rays: np.ndarray, pairs: tuple[tuple[int, int], ...]) -> np.ndarray:
-    """The homotopy rows' parameter vector: every ray turned by G; frame 0's rays, then per
-    later frame the plane normals G m_P x G m_Q of ``pairs`` (indices into the points)."""
-    turned = rays @ CHART.T
+def homotopy_parameters(
+    rays: np.ndarray, pairs: tuple[tuple[int, int], ...], chart: np.ndarray = CHART
+) -> np.ndarray:
+    """The homotopy rows' parameter vector: every ray turned by ``chart`` G; frame 0's rays,
+    then per later frame the plane normals G m_P x G m_Q of ``pairs`` (indices into the
+    points)."""
+    turned = rays @ chart.T
     out = [turned[0].reshape(-1)]
     for f in range(1, rays.shape[0]):
         out += [np.cross(turned[f, i], turned[f, j]) for i, j in pairs]
