@@ -185,6 +185,34 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         "(derivations/rigid_model.py)",
         lambda: _function_module("derivations.rigid_model", "rigid_model.py"),
     ),
+    (
+        "section2_perspective.py",
+        "the seed's Section 2 perspective and stereo rows: linear systems of the closed-form "
+        "rows (derivations/section2_perspective.py)",
+        lambda: _function_module("derivations.section2_perspective", "section2_perspective.py"),
+    ),
+    (
+        "persp_uniform_rotation_system.py",
+        "perspective uniform rotation, five frames, with its start system solved by monodromy "
+        "(derivations/section2_perspective.py)",
+        lambda: _record_module(
+            "derivations.section2_perspective",
+            "persp_uniform_rotation_system.py",
+            "uniform_rotation_record",
+            "system",
+        ),
+    ),
+    (
+        "persp_fixed_axis_system.py",
+        "perspective rotation about a fixed direction, three points, three frames, with its "
+        "start system solved by monodromy (derivations/section2_perspective.py)",
+        lambda: _record_module(
+            "derivations.section2_perspective",
+            "persp_fixed_axis_system.py",
+            "fixed_axis_record",
+            "system",
+        ),
+    ),
 )
 
 

@@ -12,7 +12,15 @@ from pathlib import Path
 
 import sympy as sp
 
-from derivations import errata, lean, minimal_count, section2_report, section3, squaring
+from derivations import (
+    errata,
+    lean,
+    minimal_count,
+    section2_perspective,
+    section2_report,
+    section3,
+    squaring,
+)
 from derivations import symbols as s
 from derivations.construction import build
 
@@ -116,6 +124,7 @@ def derivation_markdown() -> str:
     out.extend(_minimal_section())
     out.extend(_start_system_section())
     out.extend(section2_report.derivation_markdown())
+    out.extend(section2_perspective.derivation_lines())
     return "\n".join(out) + "\n"
 
 
@@ -429,6 +438,7 @@ def errata_markdown() -> str:
         "derivation.md.\n"
     )
     out.extend(section2_report.errata_markdown())
+    out.extend(section2_perspective.errata_lines())
     return "\n".join(out) + "\n"
 
 
