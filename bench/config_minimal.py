@@ -15,7 +15,7 @@ increasing random times, orthographic projection (x, y kept).  Per row:
 
 Uniform rotation: the rotation between consecutive frames is below half a turn (drawn from
 10-150 degrees), the sampling condition the solver assumes.  ``run(seed, scenes)`` returns the
-keys; cfgfit's ``bench/configurations.py`` calls it.
+keys; the configurations section (``bench/configurations.py``) calls it.
 """
 
 from __future__ import annotations

@@ -62,6 +62,10 @@ CURVE_SCENES = 20
 AUTO_SCENES = 15
 MINIMAL_SCENES = 1000
 """Noise-free scenes per row of the minimal solvers' keys (``bench.config_minimal``)."""
+PERSP_FIXED_AXIS_SCENES = 200
+"""The perspective fixed-axis solver takes about 0.8 s a scene (84 homotopy paths, three
+charts): 1,000 scenes would take a quarter of the bench's budget (``python -m
+bench.config_minimal_persp --rows persp_fixed_axis_3pt --scenes 1000`` runs them)."""
 CHUNK = 5
 WORKERS = 2
 DEFAULT_SEED = 2026
@@ -357,12 +361,18 @@ def run(quick: bool = False, seed: int | None = None, workers: int = WORKERS) ->
 
 
 def _minimal(seed: int, quick: bool) -> dict:
-    """cfgderive's minimal-solver keys (``bench.config_minimal``) where that module exists."""
-    try:
-        from bench import config_minimal  # type: ignore[attr-defined]
-    except ImportError:
-        return {}
-    return config_minimal.run(seed, 20 if quick else MINIMAL_SCENES)
+    """The minimal solvers' keys: the orthographic rows (``bench.config_minimal``) and the
+    perspective and stereo rows (``bench.config_minimal_persp``; the perspective fixed axis on
+    ``PERSP_FIXED_AXIS_SCENES`` scenes)."""
+    from bench import config_minimal, config_minimal_persp
+
+    n = 20 if quick else MINIMAL_SCENES
+    out = config_minimal.run(seed, n)
+    fast = tuple(r for r in config_minimal_persp.ROWS if r != "persp_fixed_axis_3pt")
+    out.update(config_minimal_persp.run(seed, n, fast))
+    slow = 10 if quick else PERSP_FIXED_AXIS_SCENES
+    out.update(config_minimal_persp.run_row("persp_fixed_axis_3pt", seed, slow))
+    return out
 
 
 def main(argv: list[str] | None = None) -> int:
