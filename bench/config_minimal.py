@@ -42,14 +42,14 @@ TOLERANCE = 1e-6
 """Truth listed: max |point error| / body size below this."""
 
 
-def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
+def rotation(axis: np.ndarray, angle: float) -> np.ndarray:
     """Rot(axis, angle) by the matrix exponential of the skew matrix (Rodrigues' formula)."""
     n = axis / np.linalg.norm(axis)
     k = np.array([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])
     return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
 
 
-def _random_rotation(rng: np.random.Generator) -> np.ndarray:
+def random_rotation(rng: np.random.Generator) -> np.ndarray:
     """A uniformly random rotation (random unit quaternion)."""
     q = rng.normal(size=4)
     w, x, y, z = q / np.linalg.norm(q)
@@ -65,9 +65,9 @@ def scene(row: str, rng: np.random.Generator, frames: int) -> dict:
     depth relative to A, the motion's ``axis``, ``angles`` (radians) and ``rotations``."""
     npts = 3 if row == "ortho_free_3pt" else 2
     body = rng.normal(size=(npts, 3)) * SCALE
-    start = _random_rotation(rng)
+    start = random_rotation(rng)
     times = np.cumsum(rng.uniform(0.3, 2.0, frames)) + rng.uniform(-5, 5)
-    axis = _random_rotation(rng)[:, 0]
+    axis = random_rotation(rng)[:, 0]
     if row == "ortho_uniform_rotation":
         step = np.radians(rng.uniform(10, 150)) * rng.choice([-1.0, 1.0])
         rate = step / (times[1] - times[0])
@@ -77,9 +77,9 @@ def scene(row: str, rng: np.random.Generator, frames: int) -> dict:
     else:
         angles = np.concatenate([[0.0], rng.uniform(-np.pi, np.pi, frames - 1)])
     if row == "ortho_free_3pt":
-        rel = [np.eye(3)] + [_random_rotation(rng) for _ in range(frames - 1)]
+        rel = [np.eye(3)] + [random_rotation(rng) for _ in range(frames - 1)]
     else:
-        rel = [_rotation(axis, a) for a in angles]
+        rel = [rotation(axis, a) for a in angles]
     x3 = np.array([(r @ start @ body.T).T + rng.normal(size=3) * SCALE for r in rel])
     p3 = x3 - x3[:, :1] * np.array([0, 0, 1.0])  # depth relative to A
     return {"points": x3[:, :, :2], "times": times, "points3": p3, "axis": axis,

@@ -36,6 +36,7 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+from bench.config_minimal import random_rotation, rotation  # noqa: E402
 from curverecon.solvers.camera import Camera, StereoRig  # noqa: E402
 
 ROWS = ("persp_rotation_free", "persp_uniform_rotation", "persp_fixed_axis_3pt", "stereo_free")
@@ -48,35 +49,17 @@ TOLERANCE = 1e-6
 """Truth listed: max |point error| / body size below this."""
 
 
-def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    """Rot(axis, angle) by the matrix exponential of the skew matrix (Rodrigues' formula)."""
-    n = axis / np.linalg.norm(axis)
-    k = np.array([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])
-    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
-
-
-def _random_rotation(rng: np.random.Generator) -> np.ndarray:
-    """A uniformly random rotation (random unit quaternion)."""
-    q = rng.normal(size=4)
-    w, x, y, z = q / np.linalg.norm(q)
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ])  # fmt: skip
-
-
 def _motion(row: str, rng: np.random.Generator, frames: int) -> tuple[list, np.ndarray]:
     """(rotations relative to frame 0, times) of the row's model."""
     times = np.cumsum(rng.uniform(0.3, 2.0, frames)) + rng.uniform(-5, 5)
-    axis = _random_rotation(rng)[:, 0]
+    axis = random_rotation(rng)[:, 0]
     if row == "persp_uniform_rotation":
         times = times[0] + rng.uniform(0.1, 2.0) * np.arange(frames)
         step = np.radians(rng.uniform(10, 150)) * rng.choice([-1.0, 1.0])
-        return [_rotation(axis, step * f) for f in range(frames)], times
+        return [rotation(axis, step * f) for f in range(frames)], times
     if row == "persp_fixed_axis_3pt":
         angles = np.concatenate([[0.0], rng.uniform(-np.pi, np.pi, frames - 1)])
-        return [_rotation(axis, a) for a in angles], times
+        return [rotation(axis, a) for a in angles], times
     return [np.eye(3)] * frames, times
 
 
@@ -85,12 +68,12 @@ def scene(row: str, rng: np.random.Generator, frames: int) -> dict:
     ``points3`` (F, P, 3) camera coordinates in the solver's units, ``camera``."""
     npts = 3 if row == "persp_fixed_axis_3pt" else 2
     body = rng.normal(size=(npts, 3)) * SIZE
-    body = body @ _random_rotation(rng).T
+    body = body @ random_rotation(rng).T
     rel, times = _motion(row, rng, frames)
     centre = np.array([0.0, 0.0, DISTANCE])
     x3 = np.array([(r @ body.T).T + centre + rng.normal(size=3) * 0.2 for r in rel])
     if row == "stereo_free":
-        rig = StereoRig(CAMERA, CAMERA, _rotation(rng.normal(size=3), np.radians(5)),
+        rig = StereoRig(CAMERA, CAMERA, rotation(rng.normal(size=3), np.radians(5)),
                         np.array([-0.3, 0.01, 0.02]))  # fmt: skip
         x1 = x3 @ rig.R.T + rig.t
         points = np.stack([CAMERA.project(x3), CAMERA.project(x1)], axis=1)
