@@ -26,8 +26,7 @@ from curverecon.rigid.refinement import RigidFit, information_inverse, refine
 from curverecon.rigid.starts import reset_rotations, starts
 
 MIN_AXIS_TILT_DEG = 2.0
-"""An axis within this of the viewing direction shows no depth: refused; for a fixed axis seen
-with A and B alone, an axis within this of the image plane too (the solution set is a curve)."""
+"""An axis within this of the viewing direction shows no depth: refused."""
 
 MIN_TURN_DEG = 1.0
 """A fitted motion whose frames turn less than this in all (the largest angle from frame 0) is
@@ -177,12 +176,6 @@ def _expand(layout, sub_state, idx, full_state):
     return s
 
 
-def _two_points_free_angles(layout: Layout) -> bool:
-    """A fixed axis with A and B alone and no tangents: about an axis in the image plane every
-    depth fits (docs/derivation.md, "Degenerate axes": a curve of solutions)."""
-    return layout.motion == "fixed-axis" and len(layout.points) == 2 and not layout.tangents
-
-
 def check_degenerate(layout: Layout, fit: RigidFit, data: RigidData) -> None:
     """Refuse (CurveReconError, one line) a fitted motion that does not determine the body."""
     if fit.state.axis is not None:
@@ -192,13 +185,6 @@ def check_degenerate(layout: Layout, fit: RigidFit, data: RigidData) -> None:
             raise CurveReconError(
                 f"motion {layout.motion}: the fitted axis is {tilt:.2f} degrees from the viewing "
                 "direction (a turn about the line of sight shows no depth): not determined"
-            )
-        elevation = 90.0 - tilt
-        if _two_points_free_angles(layout) and elevation < MIN_AXIS_TILT_DEG:
-            raise CurveReconError(
-                f"motion {layout.motion}: the fitted axis is {elevation:.2f} degrees from the "
-                "image plane (a turntable seen from the side): with A and B alone the depth is "
-                "not determined"
             )
         if layout.motion == "uniform-rotation":
             turn = abs(fit.state.rate) * float(np.ptp(data.times))
