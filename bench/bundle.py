@@ -75,7 +75,7 @@ WORKERS = 2
 TIME_1000_FAMILIES = ("bezier", "helix")
 
 
-def _obs_without(obs, curves: bool, ends: bool):
+def obs_without(obs, curves: bool, ends: bool):
     from curverecon.io import observations_from_dict, observations_to_dict
 
     doc = observations_to_dict(obs)
@@ -205,7 +205,7 @@ def case(task: tuple) -> dict:
                 out["angle_without"] = float(np.degrees(np.abs(off.shape[1:] - tr[1:])).max())
         elif kind == "poly_only":
             sc = make_scene(rng(seed), 12, 0.5, 0.5, with_curve=True, curve_family=family)
-            rec = reconstruct(_obs_without(sc.observations, True, False))
+            rec = reconstruct(obs_without(sc.observations, True, False))
             out["angle_deg"] = float(np.degrees(np.abs(rec.shape[1:] - sc.truth.shape[1:])).max())
             from curverecon.curve.bundle import shape_and_poses
 
@@ -220,7 +220,7 @@ def case(task: tuple) -> dict:
             warm = make_scene(rng(seed), n_warm, 1.0, 1.0, with_curve=True, curve_family=family)
             reconstruct(warm.observations)
             sc = make_scene(rng(seed), frames, 1.0, 1.0, with_curve=True, curve_family=family)
-            plain = _obs_without(sc.observations, False, True)
+            plain = obs_without(sc.observations, False, True)
             # the garbage of one run collected before the other's clock starts: a collection
             # of the run with polylines' objects (section 4's caches, the bundle's arrays)
             # landed in the run without them now and then and took 0.05-0.07 s there (seed

@@ -369,11 +369,11 @@ def build(spec: tuple, trace_options_changed: bool) -> tuple[Any, dict[str, Any]
         sc = make_scene(np.random.default_rng(seed), frames, noise, noise)
         return sc.observations, {"shape": true_poses(sc)[0], "inliers": sc.truth.inliers}
     if kind == "curve":
-        from bench.bundle import _obs_without
+        from bench.bundle import obs_without
 
         _, seed, frames, noise, fam, ends = spec
         sc = _curve_scene(seed, frames, noise, fam)
-        obs = sc.observations if ends else _obs_without(sc.observations, True, False)
+        obs = sc.observations if ends else obs_without(sc.observations, True, False)
         return obs, {"shape": true_poses(sc)[0], "curve": sc.curve_3d}
     seed = spec[1]
     if trace_options_changed or seed not in _TRACE_CACHE:

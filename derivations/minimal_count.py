@@ -109,7 +109,7 @@ def tool_versions() -> dict[str, str]:
     return {"msolve": out.split()[-1] if out else "unknown", PACKAGE: package}
 
 
-def _run_msolve(
+def run_msolve(
     variables: Sequence[str], polynomials: Sequence[str], prime: int, options: Sequence[str]
 ) -> str:
     """msolve's output file for the system (``variables`` first line, ``prime`` second)."""
@@ -211,7 +211,7 @@ def count_solutions(
         options.append("-S")
     elif saturate_by is not None:
         raise ValueError(f"unknown saturation method {method!r}")
-    text = _run_msolve(variables, polys, prime, options)
+    text = run_msolve(variables, polys, prime, options)
     lead = leading_monomials(text, variables)
     dim = krull_dimension(lead, len(variables))
     if dim < 0:
@@ -227,7 +227,7 @@ def eliminating_polynomial(
 
     Zero-dimensional systems only.  The coefficients are those msolve prints, lowest degree first.
     """
-    text = _run_msolve(variables, polynomials, prime, [])
+    text = run_msolve(variables, polynomials, prime, [])
     data = ast.literal_eval(text.strip().rstrip(":"))
     if data[0] != 0:
         raise ValueError(f"no parametrisation (msolve status {data[0]})")

@@ -535,7 +535,7 @@ COUNT_SEEDS = (1, 2)  # random instances (data residues modulo the prime)
 TRUE_SEED = 5  # noise-free rational constructions
 
 
-def _to_msolve(
+def to_msolve(
     unknowns: Sequence[sp.Symbol], eqs: Sequence[sp.Expr], values: dict, prime: int
 ) -> list[str]:
     """The equations at the data ``values`` (integers or Fractions), modulo ``prime``."""
@@ -608,7 +608,7 @@ MINIMAL_FRAMES = {"uniform_rotation": 3, "fixed_axis": 4, "free_3pt": 3, "force_
 def count_row(row: str, frames: int, values: dict) -> mc.IdealCount:
     """msolve's count of the row's system for ``frames`` frames at the data ``values``."""
     unknowns, _, eqs = SYSTEMS[row](frames)
-    polys = _to_msolve(unknowns, eqs, values, mc.PRIME)
+    polys = to_msolve(unknowns, eqs, values, mc.PRIME)
     return mc.count_solutions([u.name for u in unknowns], polys, mc.PRIME)
 
 
@@ -677,7 +677,7 @@ def real_solution_count(row: str, frames: int, values: dict) -> int:
     """Real solutions of the row's system at exact rational data (msolve's real root
     isolation over the rationals; zero-dimensional systems only)."""
     unknowns, _, eqs = SYSTEMS[row](frames)
-    text = mc._run_msolve([u.name for u in unknowns], _to_msolve_qq(unknowns, eqs, values), 0, [])
+    text = mc.run_msolve([u.name for u in unknowns], _to_msolve_qq(unknowns, eqs, values), 0, [])
     depth, count = 0, 0
     for ch in text:
         if ch == "[":
@@ -744,7 +744,7 @@ def force_field_true_frames(frames: int, seed: int = TRUE_SEED) -> list[dict]:
 
 def count_force_field(frames: list[dict]) -> mc.IdealCount:
     """msolve's count of the force-field equations of ``frames`` over GF(PRIME)."""
-    polys = _to_msolve(list(FF_UNKNOWNS), force_field_equations(frames), {}, mc.PRIME)
+    polys = to_msolve(list(FF_UNKNOWNS), force_field_equations(frames), {}, mc.PRIME)
     return mc.count_solutions([u.name for u in FF_UNKNOWNS], polys, mc.PRIME)
 
 

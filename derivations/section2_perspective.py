@@ -52,7 +52,7 @@ import sympy as sp
 from derivations import minimal_count as mc
 from derivations.codegen.generate import system_terms
 from derivations.codegen.spec import FunctionSpec, PolynomialSystem
-from derivations.section2 import _to_msolve
+from derivations.section2 import to_msolve
 
 MODULE_DOC = (
     "The minimal problems of the seed's Section 2 perspective and stereo rows with a closed "
@@ -813,7 +813,7 @@ def count_system(row: str, frames: int, values: dict) -> mc.IdealCount:
     unknowns, eqs = build[row](frames)  # fmt: skip
     extra, sat = _saturation(row, unknowns)
     unknowns, eqs = unknowns + extra, eqs + sat
-    polys = _to_msolve(unknowns, eqs, values, mc.PRIME)
+    polys = to_msolve(unknowns, eqs, values, mc.PRIME)
     return mc.count_solutions([u.name for u in unknowns], polys, mc.PRIME)
 
 
@@ -903,7 +903,7 @@ def free_4pt_relaxed_count() -> int | None:
     unknowns, eqs = free_4pt_system(3)
     extra, sat = _saturation("free_4pt", unknowns)
     unknowns, eqs = unknowns + extra, eqs[:-1] + sat
-    polys = _to_msolve(unknowns, eqs, _random_values("free_4pt", 3, 1), mc.PRIME)
+    polys = to_msolve(unknowns, eqs, _random_values("free_4pt", 3, 1), mc.PRIME)
     return mc.count_solutions([u.name for u in unknowns], polys, mc.PRIME).degree
 
 
