@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -24,9 +25,13 @@ from curverecon.model.configuration import (
     PROJECTIONS,
     Configuration,
     RigidObservations,
+    StereoView,
+    camera_to_json,
     motion_determined,
+    rig_to_json,
 )
 from curverecon.model.observations import Observations
+from curverecon.solvers.camera import Camera, StereoRig
 
 OBSERVATIONS_FORMAT = "curverecon.observations/1"
 RECONSTRUCTION_FORMAT = "curverecon.reconstruction/1"
@@ -136,12 +141,10 @@ def observations_from_dict(data: Any) -> Observations | RigidObservations:
     if fmt != OBSERVATIONS_FORMAT:
         raise CurveReconError(f'wrong format tag "{fmt}" (expected "{OBSERVATIONS_FORMAT}")')
     projection = data.get("projection", "orthographic")
-    if projection != "orthographic":
-        if projection in PROJECTIONS:
-            raise CurveReconError(
-                f'projection "{projection}" is not supported yet (only "orthographic")'
-            )
-        raise CurveReconError(f'projection "{projection}" is not supported (only "orthographic")')
+    if not isinstance(projection, str) or projection not in PROJECTIONS:
+        raise CurveReconError(
+            f"unknown projection {json.dumps(projection)} (choose {', '.join(PROJECTIONS)})"
+        )
     frames = data.get("frames")
     if frames is None:
         raise CurveReconError('missing key "frames"')
@@ -154,8 +157,10 @@ def observations_from_dict(data: Any) -> Observations | RigidObservations:
     if not isinstance(motion, str) or motion not in MOTIONS:
         raise CurveReconError(f"unknown motion {json.dumps(motion)} (choose {', '.join(MOTIONS)})")
     times = _times(frames)
+    if projection == "stereo":
+        return _stereo_observations(data, frames, motion, times)
     names = _further_points(frames)
-    if motion == "free" and not names:
+    if projection == "orthographic" and motion == "free" and not names:
         if "motion" in data and frames and not _any_tangents_or_curve(frames):
             raise CurveReconError(motion_determined("free", 2, False) or "")
         return _paper_observations(data, frames)
@@ -293,6 +298,21 @@ def _rigid_observations(
 ) -> RigidObservations:
     """A configuration beyond the paper's own: points (A and B from the polylines where not
     given), optional tangents and polylines (each used only when every frame gives it)."""
+    _require_frames_identified(data, frames)
+    view = _view_arrays(data, frames, names)
+    cfg = _configuration(data, motion, ("A", "B", *names), view.tangents is not None)
+    return RigidObservations(
+        cfg,
+        np.arange(float(len(frames))) if times is None else times,
+        view.points,
+        view.tangents,
+        view.curves,
+        np.arange(len(frames)),
+        view.warnings,
+    )
+
+
+def _require_frames_identified(data: dict, frames: list) -> None:
     if not frames:
         raise CurveReconError('"frames" is empty')
     if data.get("ends_identified", True) is not True:
@@ -300,6 +320,127 @@ def _rigid_observations(
             '"ends_identified": false is supported in the paper\'s own setting only (free '
             "motion, A and B with tangents): this configuration needs A and B identified"
         )
+
+
+def _stereo_observations(
+    data: dict, frames: list, motion: str, times: np.ndarray | None
+) -> RigidObservations:
+    """A stereo document: every frame's ``"views"``, camera 0's then camera 1's, each with the
+    keys of a frame (A, B, points, tangents, curve); ``"t"`` on the frame."""
+    _require_frames_identified(data, frames)
+    views: list[list[dict]] = [[], []]
+    for i, frame in enumerate(frames):
+        pair = frame.get("views")
+        if (
+            not isinstance(pair, list)
+            or len(pair) != 2
+            or not all(isinstance(v, dict) for v in pair)
+        ):
+            raise CurveReconError(
+                f'frame {i}: "views" must be a list of two objects (camera 0, camera 1)'
+            )
+        views[0].append(pair[0])
+        views[1].append(pair[1])
+    names = _further_points(views[0])
+    if _further_points(views[1]) != names:
+        raise CurveReconError("camera 1's views name other points than camera 0's")
+    first = _view_arrays(data, views[0], names)
+    second = _view_arrays(data, views[1], names)
+    if (first.tangents is None) != (second.tangents is None):
+        raise CurveReconError("tangents must be given in both cameras' views or in neither")
+    if (first.curves is None) != (second.curves is None):
+        raise CurveReconError("polylines must be given in both cameras' views or in neither")
+    cfg = _configuration(data, motion, ("A", "B", *names), first.tangents is not None)
+    return RigidObservations(
+        cfg,
+        np.arange(float(len(frames))) if times is None else times,
+        first.points,
+        first.tangents,
+        first.curves,
+        np.arange(len(frames)),
+        first.warnings + [f"camera 1: {w}" for w in second.warnings],
+        StereoView(second.points, second.tangents, second.curves),
+    )
+
+
+def _configuration(data: dict, motion: str, names: tuple, tangents: bool) -> Configuration:
+    """The document's projection and camera(s) (CONTRACT.md, "Configurations")."""
+    projection = data.get("projection", "orthographic")
+    camera = rig = length = None
+    if projection == "perspective":
+        camera = _camera(data.get("camera"), "camera")
+    elif "camera" in data:
+        raise CurveReconError(f'"camera" given with projection "{projection}"')
+    if projection == "stereo":
+        rig = _rig(data.get("cameras"))
+    elif "cameras" in data:
+        raise CurveReconError(f'"cameras" given with projection "{projection}"')
+    if "length_AB" in data:
+        length = data["length_AB"]
+        if not isinstance(length, int | float) or isinstance(length, bool):
+            raise CurveReconError('"length_AB" must be a positive number')
+    return Configuration(projection, motion, names, tangents, camera, rig, length)
+
+
+def _camera(value: Any, where: str) -> Camera:
+    """A camera object ``{"focal_px": f, "principal_point": [cx, cy]}``."""
+    if value is None:
+        raise CurveReconError(
+            f'projection "perspective" needs "{where}" (focal_px, principal_point)'
+        )
+    if not isinstance(value, dict):
+        raise CurveReconError(f'"{where}" must be an object with focal_px and principal_point')
+    for key in ("focal_px", "principal_point"):
+        if key not in value:
+            raise CurveReconError(f'{where}: missing key "{key}"')
+    f = value["focal_px"]
+    if not isinstance(f, int | float) or isinstance(f, bool):
+        raise CurveReconError(f"{where}: focal_px must be a number")
+    pp = value["principal_point"]
+    if (
+        not isinstance(pp, list)
+        or len(pp) != 2
+        or not all(isinstance(v, int | float) and not isinstance(v, bool) for v in pp)
+    ):
+        raise CurveReconError(f"{where}: principal_point must be [cx, cy] (two numbers)")
+    try:
+        return Camera(float(f), (float(pp[0]), float(pp[1])))
+    except CurveReconError as exc:
+        raise CurveReconError(str(exc).replace("camera:", f"{where}:", 1)) from exc
+
+
+def _rig(value: Any) -> StereoRig:
+    """The stereo document's ``"cameras"``: camera 0, then camera 1 with R and t."""
+    if value is None:
+        raise CurveReconError('missing key "cameras" (projection "stereo": two cameras)')
+    if not isinstance(value, list) or len(value) != 2:
+        raise CurveReconError('"cameras" must be a list of two camera objects')
+    cam0 = _camera(value[0], "cameras[0]")
+    cam1 = _camera(value[1], "cameras[1]")
+    for key in ("R", "t"):
+        if key not in value[1]:
+            raise CurveReconError(f'cameras[1]: missing key "{key}" (X1 = R X0 + t)')
+    try:
+        r = np.array(value[1]["R"], dtype=float)
+        t = np.array(value[1]["t"], dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise CurveReconError("cameras[1]: R and t must be arrays of numbers") from exc
+    return StereoRig(cam0, cam1, r, t)
+
+
+@dataclass
+class _View:
+    """One camera's arrays of every frame, read as ``_view_arrays`` reads them."""
+
+    points: np.ndarray
+    tangents: np.ndarray | None
+    curves: list[np.ndarray] | None
+    warnings: list[str]
+
+
+def _view_arrays(data: dict, frames: list, names: list[str]) -> _View:
+    """Points (A and B from the polylines where not given), tangents and polylines of one
+    camera's frames (tangents and polylines kept only when every frame gives them)."""
     pts, tangents, curves, long = [], [], [], []
     for i, frame in enumerate(frames):
         curve = _frame_polyline(frame, i, long)
@@ -324,14 +465,10 @@ def _rigid_observations(
     if has_tangents and from_curve and all(c is not None for c in curves):
         has_tangents = False  # fits to the polylines: not measurements beside them
         warnings.append("tangents fitted to the polylines are not used beside the polylines")
-    cfg = Configuration("orthographic", motion, ("A", "B", *names), has_tangents)
-    return RigidObservations(
-        cfg,
-        np.arange(float(len(frames))) if times is None else times,
+    return _View(
         np.array(pts),
         np.array(tangents) if has_tangents else None,
         None if any(c is None for c in curves) else curves,
-        np.arange(len(frames)),
         warnings,
     )
 
@@ -391,21 +528,42 @@ def _rigid_to_dict(obs: RigidObservations) -> dict:
     cfg = obs.configuration
     frames = []
     for i in range(obs.n_frames):
-        frame = {"t": float(obs.times[i]), "A": obs.points[i, 0].tolist()}
-        frame["B"] = obs.points[i, 1].tolist()
-        if obs.n_points > 2:
-            frame["points"] = {
-                k: obs.points[i, j].tolist() for j, k in enumerate(cfg.points[2:], 2)
-            }
-        if obs.tangents is not None:
-            frame["tangent_A"] = obs.tangents[i, 0].tolist()
-            frame["tangent_B"] = obs.tangents[i, 1].tolist()
-        if obs.curves is not None:
-            frame["curve"] = np.round(obs.curves[i], 6).tolist()
-        frames.append(frame)
-    return {
+        view = _view_dict(cfg.points, obs.points[i], obs.tangents, obs.curves, i)
+        if obs.view1 is None:
+            frames.append({"t": float(obs.times[i]), **view})
+            continue
+        v1 = obs.view1
+        second = _view_dict(cfg.points, v1.points[i], v1.tangents, v1.curves, i)
+        frames.append({"t": float(obs.times[i]), "views": [view, second]})
+    doc = {
         "format": OBSERVATIONS_FORMAT,
         "projection": cfg.projection,
         "motion": cfg.motion,
         "frames": frames,
     }
+    if cfg.camera is not None:
+        doc["camera"] = camera_to_json(cfg.camera)
+    if cfg.rig is not None:
+        doc["cameras"] = rig_to_json(cfg.rig)
+    if cfg.length_ab is not None:
+        doc["length_AB"] = cfg.length_ab
+    return doc
+
+
+def _view_dict(
+    names: tuple[str, ...],
+    points: np.ndarray,
+    tangents: np.ndarray | None,
+    curves: list[np.ndarray] | None,
+    i: int,
+) -> dict:
+    """Frame ``i`` as one camera sees it: A, B, further points, tangents, polyline."""
+    frame = {"A": points[0].tolist(), "B": points[1].tolist()}
+    if len(names) > 2:
+        frame["points"] = {k: points[j].tolist() for j, k in enumerate(names[2:], 2)}
+    if tangents is not None:
+        frame["tangent_A"] = tangents[i, 0].tolist()
+        frame["tangent_B"] = tangents[i, 1].tolist()
+    if curves is not None:
+        frame["curve"] = np.round(curves[i], 6).tolist()
+    return frame

@@ -42,7 +42,7 @@ def test_configuration_checks_and_dict():
     assert PAPER_CONFIGURATION.is_paper_row and not cfg.is_paper_row
     with pytest.raises(CurveReconError, match='unknown motion "spin"'):
         Configuration("orthographic", "spin")
-    with pytest.raises(CurveReconError, match="not supported yet"):
+    with pytest.raises(CurveReconError, match='needs "camera"'):
         Configuration("perspective")
     with pytest.raises(CurveReconError, match="unknown projection"):
         Configuration("fisheye")

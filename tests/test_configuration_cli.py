@@ -192,9 +192,13 @@ REFUSED = {
     ),
     "all frames alike": (_alike, "all frames alike"),
     "axis along the view (two points)": (_along_view, "no rotation out of the image plane"),
-    "perspective not built": (
+    "perspective without a camera": (
         lambda: _set(_scene(), "projection", "perspective"),
-        'projection "perspective" is not supported yet',
+        'projection "perspective" needs "camera"',
+    ),
+    "unknown projection": (
+        lambda: _set(_scene(), "projection", "fisheye"),
+        'unknown projection "fisheye"',
     ),
     "ends not identified": (
         lambda: _set(_scene("free", "ABC"), "ends_identified", False),

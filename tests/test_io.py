@@ -56,7 +56,7 @@ def test_tangents_from_curve_round_trips():
         (lambda d: d["frames"][2].pop("tangent_A"), 'missing key "tangent_A"'),
         (lambda d: d["frames"][0].update(A=[1.0]), "frame 0: A must be [x, y]"),
         (lambda d: d["frames"][0].update(A=["x", 2]), "frame 0: A must be [x, y]"),
-        (lambda d: d.update(projection="perspective"), "not supported"),
+        (lambda d: d.update(projection="perspective"), 'needs "camera"'),
         (lambda d: d.update(frames={}), "must be a list"),
         (lambda d: d.update(tangents_from_curve="yes"), '"tangents_from_curve" must be'),
     ],

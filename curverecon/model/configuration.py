@@ -20,17 +20,16 @@ points, a motion that shows depth) and is called before any estimation.
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from curverecon.errors import CurveReconError
 from curverecon.model.observations import wrap_line_angle
+from curverecon.solvers.camera import Camera, StereoRig
 
 PROJECTIONS = ("orthographic", "perspective", "stereo")
-"""Projections the contract names; only "orthographic" is reconstructed so far."""
-
-SUPPORTED_PROJECTIONS = ("orthographic",)
+"""Projections the contract names."""
 
 MOTIONS = ("free", "uniform-rotation", "fixed-axis", "force-field", "rotation-free", "auto")
 """Motion models of the contract (``"motion"``; default "free")."""
@@ -106,27 +105,31 @@ class Configuration:
     """What the frames show.
 
     Attributes:
-        projection: "orthographic" (also "perspective" and "stereo" in the contract; refused
-            for now).
+        projection: one of :data:`PROJECTIONS`.
         motion: one of :data:`MOTIONS`.
         points: the traceable point names, "A" and "B" first, then the further points.
         tangents: every frame gives the tangent directions at A and B.
+        camera: the calibrated camera of every frame ("perspective" only).
+        rig: the calibrated stereo pair ("stereo" only): frame f's camera-0 view is
+            ``RigidObservations.points``, its camera-1 view ``RigidObservations.view1``.
+        length_ab: the document's ``"length_AB"`` (perspective: the unit of the answer's
+            lengths, else A's depth in frame 0 is the unit), or None.
     """
 
     projection: str = "orthographic"
     motion: str = "free"
     points: tuple[str, ...] = ("A", "B")
     tangents: bool = True
+    camera: Camera | None = None
+    rig: StereoRig | None = None
+    length_ab: float | None = None
 
     def __post_init__(self) -> None:
         if self.projection not in PROJECTIONS:
             raise CurveReconError(
                 f'unknown projection "{self.projection}" (choose {", ".join(PROJECTIONS)})'
             )
-        if self.projection not in SUPPORTED_PROJECTIONS:
-            raise CurveReconError(
-                f'projection "{self.projection}" is not supported yet (only "orthographic")'
-            )
+        self._check_cameras()
         if self.motion not in MOTIONS:
             raise CurveReconError(f'unknown motion "{self.motion}" (choose {", ".join(MOTIONS)})')
         pts = tuple(self.points)
@@ -138,6 +141,30 @@ class Configuration:
         if not isinstance(self.tangents, bool | np.bool_):
             raise CurveReconError("tangents must be true or false")
         object.__setattr__(self, "tangents", bool(self.tangents))
+        if self.length_ab is not None:
+            length = float(self.length_ab)
+            if not (np.isfinite(length) and length > 0):
+                raise CurveReconError(f"length_AB must be a positive number, got {length:g}")
+            object.__setattr__(self, "length_ab", length)
+
+    def _check_cameras(self) -> None:
+        """A camera exactly for "perspective", a rig exactly for "stereo"."""
+        want_camera = self.projection == "perspective"
+        want_rig = self.projection == "stereo"
+        if want_camera and not isinstance(self.camera, Camera):
+            raise CurveReconError(
+                'projection "perspective" needs "camera" (focal_px, principal_point)'
+            )
+        if want_rig and not isinstance(self.rig, StereoRig):
+            raise CurveReconError('projection "stereo" needs "cameras" (two calibrated cameras)')
+        if self.camera is not None and not want_camera:
+            raise CurveReconError(f'"camera" given with projection "{self.projection}"')
+        if self.rig is not None and not want_rig:
+            raise CurveReconError(f'"cameras" given with projection "{self.projection}"')
+        if self.length_ab is not None and self.projection != "perspective":
+            raise CurveReconError(
+                '"length_AB" applies to projection "perspective" only (its unknown scale)'
+            )
 
     @property
     def is_paper_row(self) -> bool:
@@ -150,13 +177,60 @@ class Configuration:
         )
 
     def to_json_dict(self) -> dict:
-        """The output's ``"configuration"`` object."""
-        return {
+        """The output's ``"configuration"`` object (with the camera(s) where there are any,
+        as the input document gives them)."""
+        out = {
             "projection": self.projection,
             "motion": self.motion,
             "points": list(self.points),
             "tangents": self.tangents,
         }
+        if self.camera is not None:
+            out["camera"] = camera_to_json(self.camera)
+        if self.rig is not None:
+            out["cameras"] = rig_to_json(self.rig)
+        if self.length_ab is not None:
+            out["length_AB"] = self.length_ab
+        return out
+
+
+def camera_to_json(camera: Camera) -> dict:
+    """``{"focal_px": f, "principal_point": [cx, cy]}`` (CONTRACT.md, "Configurations")."""
+    return {
+        "focal_px": float(camera.focal_px),
+        "principal_point": [float(v) for v in camera.principal_point],
+    }
+
+
+def rig_to_json(rig: StereoRig) -> list[dict]:
+    """The document's ``"cameras"``: camera 0, then camera 1 with ``R`` and ``t``."""
+    second = camera_to_json(rig.camera1)
+    second["R"] = np.asarray(rig.R, float).tolist()
+    second["t"] = np.asarray(rig.t, float).tolist()
+    return [camera_to_json(rig.camera0), second]
+
+
+@dataclass
+class StereoView:
+    """What camera 1 of a stereo rig sees in every frame (camera 0's view is the
+    :class:`RigidObservations` itself).
+
+    Attributes:
+        points: (N, P, 2) image positions (pixels of camera 1) in the configuration's order.
+        tangents: (N, 2, 2) image directions of the tangents at A and B, or None.
+        curves: N polylines (K_i, 2) ordered from A' to B', or None.
+    """
+
+    points: np.ndarray
+    tangents: np.ndarray | None = None
+    curves: list[np.ndarray] | None = None
+
+    def subset(self, idx: np.ndarray) -> StereoView:
+        return StereoView(
+            self.points[idx],
+            None if self.tangents is None else self.tangents[idx],
+            None if self.curves is None else [self.curves[i] for i in idx],
+        )
 
 
 PAPER_CONFIGURATION = Configuration()
@@ -175,6 +249,8 @@ class RigidObservations:
         curves: N polylines (K_i, 2) ordered from A' to B', or None.
         frame_ids: (N,) the frames' indices in the input document.
         warnings: what the loader changed or noticed; the reconstruction repeats them.
+        view1: stereo only: camera 1's view of every frame (points, tangents and curves as
+            above, in camera 1's pixels); the fields above are camera 0's.
     """
 
     configuration: Configuration
@@ -184,6 +260,7 @@ class RigidObservations:
     curves: list[np.ndarray] | None = None
     frame_ids: np.ndarray | None = None
     warnings: list[str] = field(default_factory=list)
+    view1: StereoView | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.configuration, Configuration):
@@ -217,6 +294,26 @@ class RigidObservations:
             raise CurveReconError(f"frame_ids must have {n} entries")
         if self.curves is not None:
             self.curves = _curves(self.curves, n)
+        self._check_view1()
+
+    def _check_view1(self) -> None:
+        """Camera 1's view exactly for stereo, with the same frames, points and keys."""
+        cfg, n = self.configuration, self.n_frames
+        if (self.view1 is not None) != (cfg.projection == "stereo"):
+            raise CurveReconError('a second view is given exactly for projection "stereo"')
+        if self.view1 is None:
+            return
+        v = self.view1
+        v.points = _array("camera 1: points", v.points, (n, len(cfg.points), 2))
+        _check_chords(v.points)
+        if (v.tangents is None) != (self.tangents is None):
+            raise CurveReconError("camera 1: tangents must be given exactly when camera 0 has them")
+        if v.tangents is not None:
+            v.tangents = _array("camera 1: tangents", v.tangents, (n, 2, 2))
+        if (v.curves is None) != (self.curves is None):
+            raise CurveReconError("camera 1: curves must be given exactly when camera 0 has them")
+        if v.curves is not None:
+            v.curves = _curves(v.curves, n)
 
     @property
     def n_frames(self) -> int:
@@ -236,11 +333,10 @@ class RigidObservations:
 
     def with_motion(self, motion: str) -> RigidObservations:
         """The same frames under another motion model (``--motion`` overriding the document)."""
-        cfg = self.configuration
-        new = Configuration(cfg.projection, motion, cfg.points, cfg.tangents)
+        new = replace(self.configuration, motion=motion)
         return RigidObservations(
             new, self.times, self.points, self.tangents, self.curves, self.frame_ids,
-            list(self.warnings),
+            list(self.warnings), self.view1,
         )  # fmt: skip
 
     def subset(self, index: np.ndarray) -> RigidObservations:
@@ -254,6 +350,7 @@ class RigidObservations:
             None if self.curves is None else [self.curves[i] for i in idx],
             self.frame_ids[idx],
             list(self.warnings),
+            None if self.view1 is None else self.view1.subset(idx),
         )
 
     def require_reconstructable(self, point_sigma: float = 1.0, tangent_sigma_deg: float = 1.0):

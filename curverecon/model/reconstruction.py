@@ -72,6 +72,10 @@ class Reconstruction:
             coordinates, ``"rate_deg"``: degrees per unit of t, ``"angle_deg"``: per frame,
             ``"acceleration"``: whichever the model has), or None (free motion: ``{}``).
         motion_scores: with ``--motion auto``, every candidate model's score, or None.
+        frame_poses: (N, 3, 4) per frame [R_f | T_f] with X_f = R_f X_0 + T_f: a point's
+            coordinates in frame f's camera (camera 0's for stereo) from its coordinates in
+            frame 0's (units of the answer's lengths), for the configurations whose answer
+            places the camera in depth (perspective, stereo), else None.
 
     For the rows of the Section 2 table without tangents, ``shape``'s alpha, beta and phi and
     the per-frame poses may be NaN: they are written as null.
@@ -99,6 +103,7 @@ class Reconstruction:
     configuration: dict | None = None
     motion_parameters: dict | None = None
     motion_scores: dict | None = None
+    frame_poses: np.ndarray | None = None
 
     @property
     def c(self) -> float:
