@@ -9,16 +9,22 @@ Matching: every point of camera 0's polyline has its epipolar line in camera 1; 
 where that line crosses camera 1's curve (a cubic spline through the polyline, parametrised by
 its chord length).  Which crossing, where the line cuts the curve several times or only touches
 it, the order along the curve decides: a dynamic programme chooses the matches non-decreasing
-along camera 1's curve, A' matched to A' and B' to B'.
+along camera 1's curve, A' matched to A' and B' to B', and a crossing where the epipolar plane
+turns the other way along the curve than in camera 0 is penalised (no true match does; near an
+epipolar tangency this picks the right one of two close crossings).  Where the line misses the
+curve (noise at a tangency), the curve's closest approach to it is taken.
 
 Std: a matched point is determined across the curve only (along the curve the match is free: a
-slide along the curve moves no point of it).  The std of an interior point is the root of the
-trace of its covariance in the plane normal to the curve, from ``point_sigma`` along each view's
-image normal (first order): it is what the point's distance from the true curve is to be
-compared with.  Where the epipolar plane contains the curve's tangent the two views constrain
-the same direction and the std grows without bound; it is capped at the point's depth (nothing
-known along the ray).  A and B are triangulated from both coordinates in both views and their
-std is the root of the trace of their full 3x3 covariance.
+slide along the curve moves no point of it).  Each view's curve, shifted by ``point_sigma``
+across itself, moves its crossing with the epipolar line by point_sigma / tau along the line
+(tau: |sin| of the angle between the curve and the line, lessened by one std of the curve's
+fitted direction); the two rays then fix the point within its epipolar plane.  The std of an
+interior point is the root of the trace of that in-plane covariance (first order): it is what
+the point's distance from the true curve is to be compared with, and somewhat more where the
+curve runs obliquely to the plane (part of the in-plane error is then a slide).  Where the curve
+runs along the epipolar line (tau -> 0) the std grows without bound; it is capped at the
+point's depth (nothing known along the ray).  A and B are triangulated from both coordinates in
+both views and their std is the root of the trace of their full 3x3 covariance.
 """
 
 from __future__ import annotations
@@ -41,6 +47,10 @@ _MAX_GRID = 6000
 #: way along camera 1's curve than along camera 0's (impossible for a true match; soft, since
 #: the turn's sign is unreliable where the curve runs along the epipolar line).
 _TURN_PENALTY = 100.0
+
+#: Half-width of the local fits giving a noisy curve's direction, in multiples of its
+#: measured noise: chosen on the 0.5 px scenes of tests/test_stereo_curve.py (std coverage).
+_FIT_NOISE_WIDTHS = 12.0
 
 
 def _intrinsics(camera: Camera) -> np.ndarray:
@@ -197,39 +207,68 @@ def _end_point(rig: StereoRig, p0: np.ndarray, p1: np.ndarray, sigma: float):
     return x, std
 
 
-def _unit_normals(tangents: np.ndarray) -> np.ndarray:
-    norm = np.hypot(tangents[:, 0], tangents[:, 1])
-    return np.column_stack([-tangents[:, 1], tangents[:, 0]]) / np.maximum(norm, 1e-300)[:, None]
+def _fit_slopes(s: np.ndarray, points: np.ndarray, h: float, sigma: float):
+    """Unit tangents (K, 2) at a polyline's own points (K >= 7) from local quadratic fits of
+    x(s), y(s) (tricube weights over +-h of arc, wider where fewer than six neighbours fall
+    inside), and their angle std (radians) for noise sigma."""
+    d = s[None, :] - s[:, None]
+    # at least six neighbours inside every window (sparse polylines)
+    h = np.maximum(h, 1.05 * np.partition(np.abs(d), 6, axis=1)[:, 6])
+    w = np.clip(1.0 - np.abs(d / h[:, None]) ** 3, 0.0, None) ** 3
+    powers = d[..., None] ** np.arange(5)  # (K, K, 5)
+    mom = np.einsum("ek,ekp->ep", w, powers)
+    mom2 = np.einsum("ek,ekp->ep", w * w, powers)
+    ij = np.add.outer(np.arange(3), np.arange(3))
+    a_mat, b_mat = mom[:, ij], mom2[:, ij]
+    rhs = np.einsum("ek,ekp,kc->epc", w, powers[..., :3], points)
+    coef = np.linalg.solve(a_mat, rhs)
+    slope = coef[:, 1, :]
+    inv = np.linalg.inv(a_mat)
+    var = np.einsum("eij,ejk,eki->ei", inv, b_mat, inv)[:, 1]
+    norm = np.maximum(np.hypot(slope[:, 0], slope[:, 1]), 1e-300)
+    return slope / norm[:, None], sigma * np.sqrt(np.maximum(var, 0.0)) / norm
 
 
-def _tangent_window(points: np.ndarray) -> float:
-    """Half-width (pixels of arc) of the chord giving a curve's direction at a point: twenty
-    times the polyline's measured noise (``noise_level``), at least a hundredth of a step (the
-    spline's own direction when the polyline has no noise), at most an eighth of the curve."""
-    s = arc_length(points)
+def _directions(points: np.ndarray, spline: _Spline, s_eval: np.ndarray, sigma: float):
+    """Unit tangents (E, 2) of a view's curve at arc positions ``s_eval`` and their angle std.
+
+    A polyline with noise (``noise_level``): local quadratic fits over +-``_FIT_NOISE_WIDTHS``
+    times its measured noise (at least two steps) at its points, interpolated; without noise
+    to speak of, the spline's own direction (std 0)."""
+    s = spline.s
     step = float(np.median(np.diff(s)))
-    return min(max(0.01 * step, 80.0 * noise_level(points)), s[-1] / 8.0)
+    h = _FIT_NOISE_WIDTHS * noise_level(points)  # 0 for polylines of fewer than 11 points
+    if h < 0.5 * step:
+        w = 0.01 * step
+        chord = spline(s_eval + w) - spline(s_eval - w)
+        norm = np.maximum(np.hypot(chord[:, 0], chord[:, 1]), 1e-300)
+        return chord / norm[:, None], np.zeros(len(s_eval))
+    tangent, da = _fit_slopes(s, points, max(h, 2.0 * step), sigma)
+    t = np.column_stack([np.interp(s_eval, s, tangent[:, k]) for k in range(2)])
+    norm = np.maximum(np.hypot(t[:, 0], t[:, 1]), 1e-300)
+    return t / norm[:, None], np.interp(s_eval, s, da)
 
 
 class _View:
-    """One view's curve as the matching needs it, at arc positions ``s`` of ``spline``:
-    points, unit normals, the sign of the epipolar plane's turn along the curve (the same in
-    both views at a true match) and the transversality |sin| of the curve to the epipolar line."""
+    """One view's curve as the matching needs it, at arc positions ``s`` of ``spline`` with
+    unit tangents ``tangent``: points, the sign of the epipolar plane's turn along the curve
+    (the same in both views at a true match), the epipolar lines' unit normals and the
+    transversality |sin| of the curve to the epipolar line."""
 
-    def __init__(self, rig: StereoRig, which: int, spline: _Spline, s: np.ndarray, w: float):
-        rot = np.asarray(rig.R, float)
+    def __init__(self, rig: StereoRig, which: int, spline: _Spline, s: np.ndarray, tangent):
         camera = rig.camera0 if which == 0 else rig.camera1
+        rot = np.asarray(rig.R, float)
         baseline = -rot.T @ np.asarray(rig.t, float)  # camera 1's centre, camera-0 coordinates
         epipole = _intrinsics(camera) @ (baseline if which == 0 else np.asarray(rig.t, float))
         self.points = spline(s)
-        lo, hi = spline(s - w), spline(s + w)
-        chord = hi - lo
-        self.normals = _unit_normals(chord)
-        tangent = chord / np.maximum(np.hypot(chord[:, 0], chord[:, 1]), 1e-300)[:, None]
-        turn = _plane_angle(rig, which, camera, hi) - _plane_angle(rig, which, camera, lo)
+        eps = 1e-3 * tangent
+        turn = _plane_angle(rig, which, camera, self.points + eps) - _plane_angle(
+            rig, which, camera, self.points - eps
+        )
         self.turn = np.sign(np.angle(np.exp(1j * turn)))
         lines = np.cross(epipole, np.column_stack([self.points, np.ones(len(s))]))
         nu = lines[:, :2] / np.maximum(np.hypot(lines[:, 0], lines[:, 1]), 1e-300)[:, None]
+        self.line_normals = nu
         self.transversal = np.abs((nu * tangent).sum(1))
 
 
@@ -248,37 +287,43 @@ def _plane_angle(rig: StereoRig, which: int, camera: Camera, pixels: np.ndarray)
     return np.arctan2(n @ u2, n @ u1)
 
 
-def _normal_std(rig, x0, n0, n1, sigma):
-    """Std across the curve: rows r_k = n_k^T dpi_k/dX; root of sigma^2 trace((A A^T)^-1)
-    with A = [r0; r1] (the min-norm error lies in the plane normal to the tangent r0 x r1)."""
+def _line_directions(view: _View) -> np.ndarray:
+    """Unit directions (K, 2) of the epipolar lines through a view's points."""
+    return np.column_stack([-view.line_normals[:, 1], view.line_normals[:, 0]])
+
+
+def _plane_std(rig: StereoRig, x0: np.ndarray, views, angle_std, sigma: float) -> np.ndarray:
+    """Std of each matched point within its epipolar plane (camera-0 coordinates, units of t).
+
+    A view's curve shifted by e across itself moves its crossing with the epipolar line by
+    e / tau along the line (tau = |sin| of the curve's angle to the line, made smaller by one
+    std of the curve's direction, ``angle_std``); the two positions along the lines fix the
+    point in the plane (two rays), so its covariance is sigma^2 (M^T W M)^-1 with M the
+    positions' derivatives in the plane and W = diag(tau0^2, tau1^2).  Unlike the curve's
+    3-D tangent (the two views' tangent planes meet at the narrow angle the baseline
+    subtends), tau is well determined from the images wherever the curve crosses the lines
+    clearly.  Capped at the depth where tau vanishes (nothing known along the ray)."""
     rot, t = np.asarray(rig.R, float), np.asarray(rig.t, float)
     x1 = x0 @ rot.T + t
-    r0 = np.einsum("ki,kij->kj", n0, _jacobian(rig.camera0, x0))
-    r1 = np.einsum("ki,kij->kj", n1, _jacobian(rig.camera1, x1)) @ rot
-    cross = np.linalg.norm(np.cross(r0, r1), axis=1)
-    top = np.sqrt((r0 * r0).sum(1) + (r1 * r1).sum(1))
+    a0 = np.einsum("ki,kij->kj", _line_directions(views[0]), _jacobian(rig.camera0, x0))
+    a1 = np.einsum("ki,kij->kj", _line_directions(views[1]), _jacobian(rig.camera1, x1)) @ rot
+    e1 = x0 / np.linalg.norm(x0, axis=1)[:, None]
+    normal = np.cross(-rot.T @ t, x0)
+    e2 = np.cross(normal / np.linalg.norm(normal, axis=1)[:, None], e1)
+    m = np.stack(
+        [np.stack([(a * e1).sum(1), (a * e2).sum(1)], axis=1) for a in (a0, a1)], axis=1
+    )  # (K, 2, 2): rows the two lines' positions, columns the plane's axes
+    tau = []
+    for view, da in zip(views, angle_std, strict=True):
+        angle = np.arcsin(np.clip(view.transversal, 0.0, 1.0)) - da
+        tau.append(np.sin(np.clip(angle, 0.0, None)))
+    info = np.einsum("kri,kr,krj->kij", m, np.stack(tau, axis=1) ** 2, m)
+    det = info[:, 0, 0] * info[:, 1, 1] - info[:, 0, 1] ** 2
     depth = np.abs(x0[:, 2])
-    ok = cross > 1e-12 * top**2
-    return np.where(ok, sigma * top / np.where(ok, cross, 1.0), depth).clip(max=depth)
-
-
-def _turned(normals: np.ndarray, angle: float) -> np.ndarray:
-    c, s = np.cos(angle), np.sin(angle)
-    return normals @ np.array([[c, s], [-s, c]])
-
-
-def _robust_std(rig, x0, views, windows, sigma):
-    """:func:`_normal_std` at its largest over the image normals turned by plus or minus their
-    own std (a chord of half-width w between points of noise sigma: sigma / (sqrt(2) w)): the
-    std is most sensitive to them where the curve runs near the epipolar line."""
-    da = [sigma / (np.sqrt(2.0) * w) for w in windows]
-    out = _normal_std(rig, x0, views[0].normals, views[1].normals, sigma)
-    for s0 in (-1.0, 1.0):
-        for s1 in (-1.0, 1.0):
-            n0 = _turned(views[0].normals, s0 * da[0])
-            n1 = _turned(views[1].normals, s1 * da[1])
-            out = np.maximum(out, _normal_std(rig, x0, n0, n1, sigma))
-    return out
+    scale = np.einsum("kri,kri->k", m, m)
+    ok = det > 1e-18 * scale**2
+    var = (info[:, 0, 0] + info[:, 1, 1]) / np.where(ok, det, 1.0)
+    return np.where(ok, sigma * np.sqrt(np.maximum(var, 0.0)), depth).clip(max=depth)
 
 
 def _match(rig: StereoRig, polyline0, polyline1, point_sigma: float):
@@ -291,14 +336,16 @@ def _match(rig: StereoRig, polyline0, polyline1, point_sigma: float):
     spline0, spline1 = _Spline(p0), _Spline(p1)
     n_grid = int(np.clip(_GRID_PER_POINT * len(p1), _MIN_GRID, _MAX_GRID))
     s_grid = np.linspace(0.0, spline1.length, n_grid)
-    w0, w1 = _tangent_window(p0), _tangent_window(p1)
-    view0 = _View(rig, 0, spline0, spline0.s, w0)
+    t0, da0 = _directions(p0, spline0, spline0.s, sigma)
+    view0 = _View(rig, 0, spline0, spline0.s, t0)
     lines = np.column_stack([p0, np.ones(len(p0))]) @ fundamental_matrix(rig).T
-    order = _dp_order(lines, view0, _View(rig, 1, spline1, s_grid, w1))
+    t_grid, _ = _directions(p1, spline1, s_grid, sigma)
+    order = _dp_order(lines, view0, _View(rig, 1, spline1, s_grid, t_grid))
     s1 = _refine(spline1, lines, s_grid, order, view0.turn)
-    view1 = _View(rig, 1, spline1, s1, w1)
+    t1, da1 = _directions(p1, spline1, s1, sigma)
+    view1 = _View(rig, 1, spline1, s1, t1)
     x = _on_ray0(rig, p0, view1.points)
-    std = _robust_std(rig, x, (view0, view1), (w0, w1), sigma)
+    std = _plane_std(rig, x, (view0, view1), (da0, da1), sigma)
     for k in (0, len(p0) - 1):
         x[k], std[k] = _end_point(rig, p0[k], p1[k], sigma)
     if np.any(x[:, 2] <= 0):
