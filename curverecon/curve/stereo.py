@@ -52,6 +52,9 @@ _TURN_PENALTY = 100.0
 #: measured noise: chosen on the 0.5 px scenes of tests/test_stereo_curve.py (std coverage).
 _FIT_NOISE_WIDTHS = 12.0
 
+#: Points of a long fused curve whose feet are searched at a time (memory).
+_CHUNK = 256
+
 
 def _intrinsics(camera: Camera) -> np.ndarray:
     cx, cy = (float(v) for v in camera.principal_point)
@@ -106,7 +109,7 @@ def _dp_order(lines: np.ndarray, view0: _View, view1: _View) -> np.ndarray:
     other way along camera 1's curve than along camera 0's (no true match does)."""
     n, m = len(lines), len(view1.points)
     idx = np.arange(m)
-    back = np.zeros((n, m), dtype=np.int64)
+    back = np.zeros((n, m), dtype=np.int32)
     cost = np.full(m, np.inf)
     cost[0] = 0.0
     for i in range(1, n):
@@ -210,17 +213,27 @@ def _end_point(rig: StereoRig, p0: np.ndarray, p1: np.ndarray, sigma: float):
 def _fit_slopes(s: np.ndarray, points: np.ndarray, h: float, sigma: float):
     """Unit tangents (K, 2) at a polyline's own points (K >= 7) from local quadratic fits of
     x(s), y(s) (tricube weights over +-h of arc, wider where fewer than six neighbours fall
-    inside), and their angle std (radians) for noise sigma."""
-    d = s[None, :] - s[:, None]
+    inside), and their angle std (radians) for noise sigma.  Banded: each point sees only the
+    points within its window."""
+    k = len(s)
+    idx = np.arange(k)
+    ahead = np.searchsorted(s, s + h, side="right") - 1 - idx
+    behind = idx - np.searchsorted(s, s - h, side="left")
+    band = int(max(7, ahead.max(), behind.max())) + 1
+    cols = idx[:, None] + np.arange(-band, band + 1)[None, :]
+    valid = (cols >= 0) & (cols < k)
+    cols = np.clip(cols, 0, k - 1)
+    d = np.where(valid, s[cols] - s[:, None], np.inf)
     # at least six neighbours inside every window (sparse polylines)
-    h = np.maximum(h, 1.05 * np.partition(np.abs(d), 6, axis=1)[:, 6])
-    w = np.clip(1.0 - np.abs(d / h[:, None]) ** 3, 0.0, None) ** 3
-    powers = d[..., None] ** np.arange(5)  # (K, K, 5)
+    hh = np.maximum(h, 1.05 * np.partition(np.abs(d), 6, axis=1)[:, 6])
+    w = np.where(valid, np.clip(1.0 - np.abs(d / hh[:, None]) ** 3, 0.0, None) ** 3, 0.0)
+    d = np.where(valid, d, 0.0)
+    powers = d[..., None] ** np.arange(5)  # (K, band, 5)
     mom = np.einsum("ek,ekp->ep", w, powers)
     mom2 = np.einsum("ek,ekp->ep", w * w, powers)
     ij = np.add.outer(np.arange(3), np.arange(3))
     a_mat, b_mat = mom[:, ij], mom2[:, ij]
-    rhs = np.einsum("ek,ekp,kc->epc", w, powers[..., :3], points)
+    rhs = np.einsum("ek,ekp,ekc->epc", w, powers[..., :3], points[cols])
     coef = np.linalg.solve(a_mat, rhs)
     slope = coef[:, 1, :]
     inv = np.linalg.inv(a_mat)
@@ -229,24 +242,32 @@ def _fit_slopes(s: np.ndarray, points: np.ndarray, h: float, sigma: float):
     return slope / norm[:, None], sigma * np.sqrt(np.maximum(var, 0.0)) / norm
 
 
-def _directions(points: np.ndarray, spline: _Spline, s_eval: np.ndarray, sigma: float):
-    """Unit tangents (E, 2) of a view's curve at arc positions ``s_eval`` and their angle std.
+class _Directions:
+    """Unit tangents of a view's curve at any arc positions, and their angle std (radians).
 
     A polyline with noise (``noise_level``): local quadratic fits over +-``_FIT_NOISE_WIDTHS``
     times its measured noise (at least two steps) at its points, interpolated; without noise
     to speak of, the spline's own direction (std 0)."""
-    s = spline.s
-    step = float(np.median(np.diff(s)))
-    h = _FIT_NOISE_WIDTHS * noise_level(points)  # 0 for polylines of fewer than 11 points
-    if h < 0.5 * step:
-        w = 0.01 * step
-        chord = spline(s_eval + w) - spline(s_eval - w)
-        norm = np.maximum(np.hypot(chord[:, 0], chord[:, 1]), 1e-300)
-        return chord / norm[:, None], np.zeros(len(s_eval))
-    tangent, da = _fit_slopes(s, points, max(h, 2.0 * step), sigma)
-    t = np.column_stack([np.interp(s_eval, s, tangent[:, k]) for k in range(2)])
-    norm = np.maximum(np.hypot(t[:, 0], t[:, 1]), 1e-300)
-    return t / norm[:, None], np.interp(s_eval, s, da)
+
+    def __init__(self, points: np.ndarray, spline: _Spline, sigma: float) -> None:
+        self.spline = spline
+        s = spline.s
+        self.step = float(np.median(np.diff(s)))
+        h = _FIT_NOISE_WIDTHS * noise_level(points)  # 0 for polylines of fewer than 11 points
+        self.fits = None
+        if h >= 0.5 * self.step:
+            self.fits = _fit_slopes(s, points, max(h, 2.0 * self.step), sigma)
+
+    def __call__(self, s_eval: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        if self.fits is None:
+            w = 0.01 * self.step
+            chord = self.spline(s_eval + w) - self.spline(s_eval - w)
+            norm = np.maximum(np.hypot(chord[:, 0], chord[:, 1]), 1e-300)
+            return chord / norm[:, None], np.zeros(len(s_eval))
+        s, (tangent, da) = self.spline.s, self.fits
+        t = np.column_stack([np.interp(s_eval, s, tangent[:, k]) for k in range(2)])
+        norm = np.maximum(np.hypot(t[:, 0], t[:, 1]), 1e-300)
+        return t / norm[:, None], np.interp(s_eval, s, da)
 
 
 class _View:
@@ -336,13 +357,14 @@ def _match(rig: StereoRig, polyline0, polyline1, point_sigma: float):
     spline0, spline1 = _Spline(p0), _Spline(p1)
     n_grid = int(np.clip(_GRID_PER_POINT * len(p1), _MIN_GRID, _MAX_GRID))
     s_grid = np.linspace(0.0, spline1.length, n_grid)
-    t0, da0 = _directions(p0, spline0, spline0.s, sigma)
+    directions1 = _Directions(p1, spline1, sigma)
+    t0, da0 = _Directions(p0, spline0, sigma)(spline0.s)
     view0 = _View(rig, 0, spline0, spline0.s, t0)
     lines = np.column_stack([p0, np.ones(len(p0))]) @ fundamental_matrix(rig).T
-    t_grid, _ = _directions(p1, spline1, s_grid, sigma)
+    t_grid, _ = directions1(s_grid)
     order = _dp_order(lines, view0, _View(rig, 1, spline1, s_grid, t_grid))
     s1 = _refine(spline1, lines, s_grid, order, view0.turn)
-    t1, da1 = _directions(p1, spline1, s1, sigma)
+    t1, da1 = directions1(s1)
     view1 = _View(rig, 1, spline1, s1, t1)
     x = _on_ray0(rig, p0, view1.points)
     std = _plane_std(rig, x, (view0, view1), (da0, da1), sigma)
@@ -377,6 +399,10 @@ def match_stereo_curve(
 
 def _project_on(points: np.ndarray, curve: np.ndarray) -> np.ndarray:
     """Normalised arc position (0 at A, 1 at B) of each point's foot on a 3-D polyline."""
+    if len(points) > _CHUNK:
+        return np.concatenate(
+            [_project_on(points[k : k + _CHUNK], curve) for k in range(0, len(points), _CHUNK)]
+        )
     seg = np.diff(curve, axis=0)
     len2 = np.maximum((seg * seg).sum(1), 1e-300)
     rel = points[:, None, :] - curve[None, :-1, :]
