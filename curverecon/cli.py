@@ -219,9 +219,15 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
         _warn(w)
     write_json(args.output, rec.to_json_dict())
     if args.plot:
-        from curverecon.plot import plot_configuration_file, plot_reconstruction_file
+        from curverecon.plot import (
+            plot_camera_file,
+            plot_configuration_file,
+            plot_reconstruction_file,
+        )
 
-        if isinstance(obs, RigidObservations):
+        if isinstance(obs, RigidObservations) and obs.configuration.projection != "orthographic":
+            plot_camera_file(args.plot, rec, obs)
+        elif isinstance(obs, RigidObservations):
             plot_configuration_file(args.plot, rec, obs)
         else:
             plot_reconstruction_file(args.plot, rec, obs)

@@ -246,3 +246,220 @@ def plot_configuration_file(path: str, rec, obs) -> None:
         raise CurveReconError(f"cannot write plot {path}: {exc.strerror or exc}") from None
     finally:
         plt.close("all")
+
+
+def camera_views(obs) -> list[tuple[str, object, np.ndarray, np.ndarray]]:
+    """The cameras of a perspective or stereo ``RigidObservations``: (label, Camera, R, t) with
+    the camera's coordinates ``R X + t`` of a point X in the frame's camera(-0) coordinates."""
+    from curverecon.errors import CurveReconError
+
+    cfg = obs.configuration
+    if cfg.projection == "perspective":
+        return [("camera", cfg.camera, np.eye(3), np.zeros(3))]
+    if cfg.projection == "stereo":
+        rig = cfg.rig
+        return [
+            ("camera 0", rig.camera0, np.eye(3), np.zeros(3)),
+            ("camera 1", rig.camera1, np.asarray(rig.R, float), np.asarray(rig.t, float)),
+        ]
+    raise CurveReconError(f'no camera to draw for projection "{cfg.projection}"')
+
+
+def camera_reprojection(rec, obs) -> list[dict]:
+    """Per frame, what the figure draws over each view: ``{"curve": [(K, 2) or None per view],
+    "points": [(P, 2) or None per view]}`` in pixels.
+
+    The curve: ``rec.curve3d`` (frame 0's camera(-0) coordinates) moved to frame f by
+    ``rec.frame_poses`` (X_f = R_f X_0 + T_f), then into each camera and projected; without
+    frame poses only frame 0 has it.  The points: ``rec.points3[f]`` (frame f's camera(-0)
+    coordinates, the configuration's point order) projected.
+    """
+    views = camera_views(obs)
+    names = list(obs.configuration.points)
+    curve = None if rec.curve3d is None else np.asarray(rec.curve3d, float)
+    poses = None if rec.frame_poses is None else np.asarray(rec.frame_poses, float)
+    out = []
+    for f in range(obs.n_frames):
+        xf = None
+        if curve is not None and (poses is not None or f == 0):
+            xf = curve if poses is None else curve @ poses[f, :, :3].T + poses[f, :, 3]
+        pf = None
+        if rec.points3 is not None and f < len(rec.points3):
+            pf = np.array([rec.points3[f].get(k, [np.nan] * 3) for k in names], dtype=float)
+        out.append(
+            {
+                "curve": [
+                    None if xf is None else cam.project(xf @ r.T + t) for _, cam, r, t in views
+                ],
+                "points": [
+                    None if pf is None else cam.project(pf @ r.T + t) for _, cam, r, t in views
+                ],
+            }
+        )
+    return out
+
+
+def camera_frustums(rec, obs, depth: float) -> list[dict]:
+    """Every frame's camera(s) in frame 0's camera(-0) coordinates: ``{"frame", "label",
+    "centre" (3,), "axes" (3, 3) rows x, y, z, "corners" (4, 3)}``.  Camera k of frame f has
+    its centre at R_f^T (C_k - T_f) with C_k = -R_k^T t_k (C_f = -R_f^T T_f for camera 0);
+    the corners are the image's corners (the image taken as twice the principal point) at
+    ``depth`` along the optical axis.  Without frame poses only frame 0 is drawn."""
+    views = camera_views(obs)
+    poses = None if rec.frame_poses is None else np.asarray(rec.frame_poses, float)
+    frames = range(obs.n_frames) if poses is not None else range(1)
+    out = []
+    for f in frames:
+        rf = np.eye(3) if poses is None else poses[f, :, :3]
+        tf = np.zeros(3) if poses is None else poses[f, :, 3]
+        for label, cam, r, t in views:
+            cx, cy = (float(v) for v in cam.principal_point)
+            px = np.array([[0.0, 0.0], [2 * cx, 0.0], [2 * cx, 2 * cy], [0.0, 2 * cy]])
+            local = np.vstack([np.zeros(3), depth * cam.rays(px)])
+            in_f = (local - t) @ r  # camera k's coordinates -> frame f's camera(-0)
+            in_0 = (in_f - tf) @ rf
+            axes = (r.T @ np.eye(3)).T @ rf  # rows: camera k's axes in frame 0's coordinates
+            out.append(
+                {"frame": f, "label": label, "centre": in_0[0], "axes": axes, "corners": in_0[1:]}
+            )
+    return out
+
+
+#: Most frames drawn as image panels of a stereo figure (two panels each).
+MAX_STEREO_FRAMES = 6
+
+
+def _scene_depth(rec, obs) -> float:
+    """A frustum's drawn depth: a quarter of the scene's median depth in frame 0."""
+    pts = [] if rec.curve3d is None else [np.asarray(rec.curve3d, float)]
+    if rec.points3:
+        pts.append(np.array(list(rec.points3[0].values()), dtype=float).reshape(-1, 3))
+    z = np.concatenate([p[:, 2] for p in pts]) if pts else np.array([1.0])
+    z = z[np.isfinite(z) & (z > 0)]
+    return 0.25 * float(np.median(z)) if len(z) else 0.25
+
+
+def _draw_frustums(ax3, rec, obs) -> np.ndarray:
+    """Every camera as a frustum in the 3-D panel; returns the drawn points (for the limits)."""
+    frustums = camera_frustums(rec, obs, _scene_depth(rec, obs))
+    shown = []
+    n = max(1, obs.n_frames - 1)
+    for fr in frustums:
+        c, k = fr["centre"], fr["corners"]
+        colour = (0.2, 0.2, 0.2) if fr["label"] != "camera 1" else (0.6, 0.1, 0.5)
+        alpha = 1.0 - 0.7 * fr["frame"] / n
+        for corner in k:
+            ax3.plot(*np.column_stack([c, corner]), color=colour, lw=0.6, alpha=alpha)
+        ring = np.vstack([k, k[:1]])
+        ax3.plot(*ring.T, color=colour, lw=0.8, alpha=alpha)
+        ax3.plot(*np.column_stack([c, c + 0.6 * (k.mean(axis=0) - c)]), color="C0", lw=0.6)
+        shown.append(np.vstack([c, k]))
+    return np.concatenate(shown)
+
+
+def _camera_3d_panel(ax3, rec, obs) -> None:
+    """The curve (frame 0), frame 0's points and every frame's camera(s); equal axes."""
+    shown = [_draw_frustums(ax3, rec, obs)]
+    if rec.curve3d is not None:
+        c = np.asarray(rec.curve3d, float)
+        ax3.plot(*c.T, color="C1", lw=1.8, label="curve (frame 0)")
+        shown.append(c)
+    if rec.points3:
+        p = np.array(list(rec.points3[0].values()), dtype=float).reshape(-1, 3)
+        ax3.scatter(*p.T, color="C3", s=12, label="points (frame 0)")
+        shown.append(p)
+    allp = np.concatenate(shown)
+    allp = allp[np.all(np.isfinite(allp), axis=1)]
+    span = float(np.ptp(allp, axis=0).max()) or 1.0
+    centre = 0.5 * (allp.min(axis=0) + allp.max(axis=0))
+    for setlim, m in zip((ax3.set_xlim, ax3.set_ylim, ax3.set_zlim), centre, strict=True):
+        setlim(m - 0.55 * span, m + 0.55 * span)
+    ax3.set_box_aspect((1, 1, 1))
+    ax3.invert_yaxis()  # image y points down
+    ax3.set_xlabel("x")
+    ax3.set_ylabel("y")
+    ax3.set_zlabel("z (depth)")
+    ax3.set_title("curve and cameras\n(frame 0 camera coordinates)", fontsize=9)
+    ax3.legend(loc="upper left", fontsize=7)
+    ax3.tick_params(labelsize=6)
+
+
+def _observed(obs, f: int, view: int):
+    """(polyline or None, points (P, 2)) camera ``view`` saw in frame f."""
+    src = obs if view == 0 else obs.view1
+    curve = None if src.curves is None else np.asarray(src.curves[f], float)
+    return curve, np.asarray(src.points[f], float)
+
+
+def _image_panel(ax, obs, f, view, label, drawn) -> None:
+    from curverecon.curve.polyline import distance_to_polyline
+
+    poly, pts = _observed(obs, f, view)
+    title = f"frame {f}, {label}"
+    if poly is not None:
+        ax.plot(*poly.T, color="0.6", lw=3.0, label="observed")
+    ax.plot(*pts.T, "x", color="k", ms=5, label="observed points")
+    curve, points = drawn["curve"][view], drawn["points"][view]
+    if curve is not None:
+        ax.plot(*curve.T, color="C1", lw=1.0, label="reprojected")
+        if poly is not None and len(poly) >= 2:
+            off = np.median(distance_to_polyline(curve, poly)[0])
+            title += f"\n(median off {off:.2f} px)"
+    if points is not None:
+        ax.plot(*points.T, "o", mfc="none", color="C3", ms=6, label="reprojected points")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.invert_yaxis()
+    ax.set_title(title, fontsize=8)
+    ax.tick_params(labelsize=6)
+
+
+def plot_camera_file(path: str, rec, obs) -> None:
+    """Draw a perspective or stereo reconstruction to a PNG file: per frame (a few, evenly
+    chosen) and per camera the observed polyline and points with the answer's reprojection
+    (:func:`camera_reprojection`), and a 3-D panel with the curve and every frame's camera(s)
+    as frustums (:func:`camera_frustums`), equal axes.
+
+    ``rec``: a Reconstruction with ``frame_poses``, ``curve3d`` and ``points3`` where it has
+    them; ``obs``: the ``RigidObservations`` it answers.  Raises ``CurveReconError`` for a
+    projection without cameras or an unwritable path."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    from matplotlib.figure import Figure
+
+    from curverecon.errors import CurveReconError
+
+    views = camera_views(obs)
+    drawn = camera_reprojection(rec, obs)
+    frames = _panel_frames(obs.n_frames)
+    if len(views) > 1 and len(frames) > MAX_STEREO_FRAMES:
+        frames = sorted({int(round(v)) for v in np.linspace(0, obs.n_frames - 1, 6)})
+    panels = [(f, v) for f in frames for v in range(len(views))]
+    ncols = min(4, len(panels)) if len(views) == 1 else 2 * min(2, len(frames))
+    nrows = int(np.ceil(len(panels) / ncols))
+    height = max(4.2, 2.8 * nrows + 0.6)
+    fig = Figure(figsize=(4.5 + 2.6 * ncols, height), dpi=100)
+    gs = fig.add_gridspec(nrows, ncols + 2, width_ratios=[1.8, 0.1] + [1.0] * ncols)
+    _camera_3d_panel(fig.add_subplot(gs[:, 0], projection="3d"), rec, obs)
+    for slot, (f, v) in enumerate(panels):
+        ax = fig.add_subplot(gs[slot // ncols, 2 + slot % ncols])
+        _image_panel(ax, obs, f, v, views[v][0], drawn[f])
+        if slot == 0:
+            ax.legend(fontsize=6, loc="best")
+    cfg = obs.configuration
+    fig.suptitle(
+        f"Reconstruction ({cfg.projection}, motion {cfg.motion}): {obs.n_frames} frame"
+        + ("s" if obs.n_frames != 1 else "")
+        + (f" (showing {len(frames)})" if len(frames) < obs.n_frames else ""),
+        fontsize=10,
+    )
+    fig.subplots_adjust(
+        left=0.02, right=0.98, top=1.0 - 0.8 / height, bottom=0.3 / height, wspace=0.35, hspace=0.5
+    )
+    try:
+        fig.savefig(path)
+    except OSError as exc:
+        raise CurveReconError(f"cannot write plot {path}: {exc.strerror or exc}") from None
+    finally:
+        plt.close("all")
