@@ -52,7 +52,9 @@ def _pixels(x: np.ndarray) -> np.ndarray:
 
 def _observations(cam_pts: np.ndarray, length_ab=None) -> RigidObservations:
     pix = _pixels(cam_pts)
-    cfg = Configuration("perspective", "free", ("A", "B"), False, Camera(FOCAL, PP), None, length_ab)
+    cfg = Configuration(
+        "perspective", "free", ("A", "B"), False, Camera(FOCAL, PP), None, length_ab
+    )
     points = np.stack([pix[:, 0], pix[:, -1]], axis=1)
     return RigidObservations(cfg, np.arange(len(pix), dtype=float), points, None, list(pix))
 
