@@ -27,11 +27,21 @@ FOCAL, PP = 900.0, (500.0, 400.0)
 
 def _spline_curve(rng: np.random.Generator, k: int, n: int) -> np.ndarray:
     """(n, 3) points of a random clamped uniform cubic B-spline with k control points, A at
-    the origin, about one unit long (scipy's BSpline, dense in its parameter)."""
+    the origin, about one unit long (scipy's BSpline, evenly in its parameter), then 5,000
+    points more of the same curve (the truth to measure against): (n + 5000, 3)."""
     ctrl = np.cumsum(rng.normal(scale=0.12, size=(k, 3)) + [0.1, 0.0, 0.0], axis=0)
     knots = np.concatenate([[0.0] * 3, np.linspace(0.0, 1.0, k - 2), [1.0] * 3])
-    pts = BSpline(knots, ctrl, 3)(np.linspace(0.0, 1.0, n))
+    spl = BSpline(knots, ctrl, 3)
+    pts = np.vstack([spl(np.linspace(0.0, 1.0, n)), spl(np.linspace(0.0, 1.0, 5000))])
     return pts - pts[0]
+
+
+def _exact_error(curve: np.ndarray, dense: np.ndarray) -> float:
+    """Mean distance of the curve's points from the densely sampled true curve / its length."""
+    from bench.curve_end_to_end import _mean_distance
+
+    length = float(np.linalg.norm(np.diff(dense, axis=0), axis=1).sum())
+    return _mean_distance(curve, dense) / length
 
 
 def _frames(rng: np.random.Generator, body: np.ndarray, n_frames: int, distance: float):
@@ -59,50 +69,56 @@ def _observations(cam_pts: np.ndarray, length_ab=None) -> RigidObservations:
     return RigidObservations(cfg, np.arange(len(pix), dtype=float), points, None, list(pix))
 
 
-def test_noise_free_pinhole_frames_give_the_curve_to_1e6_of_its_length():
-    rng = np.random.default_rng(3)
-    body = _spline_curve(rng, pinhole.CONTROL_POINTS, 400)
-    cam_pts = _frames(rng, body, 12, 4.0)
-    obs = _observations(cam_pts)
-    rec = reconstruct(obs, options=ReconstructOptions(point_sigma=1e-3))
-    truth = cam_pts[0] / cam_pts[0, 0, 2]  # the unit: A's depth in frame 0
-    length = float(np.linalg.norm(np.diff(truth, axis=0), axis=1).sum())
-    assert curve_error(rec.curve3d, truth) < 1e-6, curve_error(rec.curve3d, truth)
-    assert rec.curve3d[0] == pytest.approx(truth[0], abs=1e-6 * length)
-    # every frame's pose: X_f = R_f X_0 + T_f maps frame 0's true curve onto frame f's
-    for f in range(len(cam_pts)):
-        moved = truth @ rec.frame_poses[f, :, :3].T + rec.frame_poses[f, :, 3]
-        assert np.abs(moved - cam_pts[f] / cam_pts[0, 0, 2]).max() < 1e-5 * length
-    assert rec.configuration["projection"] == "perspective"
-    assert rec.points3[3]["B"] == pytest.approx(list(cam_pts[3, -1] / cam_pts[0, 0, 2]), abs=1e-5)
-
-
-def test_length_ab_sets_the_unit():
-    rng = np.random.default_rng(4)
-    body = _spline_curve(rng, pinhole.CONTROL_POINTS, 400)
-    cam_pts = _frames(rng, body, 10, 3.0)
-    rec = reconstruct(_observations(cam_pts, length_ab=2.5), options=ReconstructOptions(1e-3))
-    truth = cam_pts[0] * 2.5 / np.linalg.norm(body[-1] - body[0])
-    assert rec.c == pytest.approx(2.5, rel=1e-9)
-    assert curve_error(rec.curve3d, truth) < 1e-6
-
-
-def test_curve_on_given_pinhole_poses():
-    rng = np.random.default_rng(5)
-    body = _spline_curve(rng, pinhole.CONTROL_POINTS, 300)
-    cam_pts = _frames(rng, body, 6, 3.0)
-    # the true poses relative to frame 0 by Kabsch on the body points (the construction's)
+def _true_poses(cam_pts: np.ndarray) -> np.ndarray:
+    """(N, 3, 4) frame 0 -> frame f of the construction (Kabsch on the body points)."""
     poses = []
     for x in cam_pts:
         a, b = cam_pts[0] - cam_pts[0].mean(0), x - x.mean(0)
         u, _, vt = np.linalg.svd(a.T @ b)
         r = vt.T @ np.diag([1.0, 1.0, np.linalg.det(vt.T @ u.T)]) @ u.T
         poses.append(np.column_stack([r, x.mean(0) - r @ cam_pts[0].mean(0)]))
+    return np.array(poses)
+
+
+def test_noise_free_pinhole_frames_give_the_curve_to_1e6_of_its_length():
+    """The pinhole bundle (poses, 3-D translations and the curve free) started near the truth
+    returns to it: the curve, every frame's pose, A's depth 1 as the unit."""
+    rng = np.random.default_rng(3)
+    both = _frames(rng, _spline_curve(rng, pinhole.CONTROL_POINTS, 400), 12, 4.0)
+    cam_pts, dense = both[:, :400], both[0, 400:]
+    unit = cam_pts[0, 0, 2]
+    truth, poses = cam_pts[0] / unit, _true_poses(cam_pts / unit)
+    obs = _observations(cam_pts)
+    data = pinhole._prepare(obs.configuration.camera, obs.curves, obs.point("A"),
+                            obs.point("B"), 1e-3, 1.0)  # fmt: skip
+    # the start: the true poses and a spline fitted to the true points by chord length (its
+    # curve 0.3 % of the length off the truth: the fit moves every control point)
+    ctrl = pinhole.fit_spline(truth, pinhole.CONTROL_POINTS)
+    fit = pinhole.bundle(
+        data, ctrl, poses[:, :, :3].copy(), poses[:, :, 3].copy(), pinhole._free(len(poses))
+    )
+    curve, std, nstd = pinhole.curve_points_and_std(fit)
+    length = float(np.linalg.norm(np.diff(truth, axis=0), axis=1).sum())
+    assert _exact_error(curve, dense / unit) < 1e-6, _exact_error(curve, dense / unit)
+    assert np.abs(fit.rot - poses[:, :, :3]).max() < 1e-6
+    assert np.abs(fit.trans - poses[:, :, 3]).max() < 1e-6 * length
+    assert np.all(nstd <= std + 1e-15) and np.all(std[1:] > 0)
+    # |AB| as the unit: the same curve scaled
+    scaled, _, _ = pinhole.curve_points_and_std(fit, length_ab=2.5)
+    factor = 2.5 / np.linalg.norm(truth[-1] - truth[0])
+    assert _exact_error(scaled, dense / unit * factor) < 1e-6
+
+
+def test_curve_on_given_pinhole_poses():
+    rng = np.random.default_rng(5)
+    body = _spline_curve(rng, pinhole.CONTROL_POINTS, 300)[:300]
+    cam_pts = _frames(rng, body, 6, 3.0)
+    poses = _true_poses(cam_pts)
     noise = np.random.default_rng(6).normal(scale=0.3, size=cam_pts.shape[:2] + (2,))
     polylines = list(_pixels(cam_pts) + noise)
     ends = np.array([cam_pts[0, 0], cam_pts[0, -1]])
     curve, std, warnings = pinhole.curve_on_pinhole_poses(
-        Camera(FOCAL, PP), np.array(poses), polylines, ends, 0.3
+        Camera(FOCAL, PP), poses, polylines, ends, 0.3
     )
     length = float(np.linalg.norm(np.diff(cam_pts[0], axis=0), axis=1).sum())
     err = curve_error(curve, cam_pts[0])
@@ -110,7 +126,7 @@ def test_curve_on_given_pinhole_poses():
     assert warnings == []
     assert np.all(std > 0) and np.median(std) < 0.05 * length
     with pytest.raises(CurveReconError, match="need 6 polylines"):
-        pinhole.curve_on_pinhole_poses(Camera(FOCAL, PP), np.array(poses), polylines[:3], ends, 1)
+        pinhole.curve_on_pinhole_poses(Camera(FOCAL, PP), poses, polylines[:3], ends, 1)
 
 
 def test_a_distant_scene_gives_the_orthographic_answer():
@@ -144,7 +160,7 @@ def _end_directions(polyline: np.ndarray) -> np.ndarray:
 
 def _document(frames: int, with_curves: bool = True) -> dict:
     rng = np.random.default_rng(7)
-    body = _spline_curve(rng, 8, 60)
+    body = _spline_curve(rng, 8, 60)[:60]
     pix = _pixels(_frames(rng, body, frames, 4.0))
     out = []
     for i, p in enumerate(pix):
@@ -180,7 +196,7 @@ def test_bad_input_is_one_line_with_exit_2(frames, message, tmp_path, capsys):
 
 def test_library_refuses_other_motion_and_missing_polylines():
     rng = np.random.default_rng(8)
-    cam_pts = _frames(rng, _spline_curve(rng, 8, 60), 5, 4.0)
+    cam_pts = _frames(rng, _spline_curve(rng, 8, 60)[:60], 5, 4.0)
     obs = _observations(cam_pts)
     with pytest.raises(CurveReconError, match='not fixed-axis|for motion "free"'):
         pinhole.reconstruct_perspective_curve(obs.with_motion("fixed-axis"), None)

@@ -140,7 +140,9 @@ def _feet(data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray) -> np.n
     q = data.samples[frames]
     kap = data.kappa
     z_ref = (rot @ ctrl[0] + tra)[:, 2]
-    grid = np.linspace(0.0, 1.0, 12 * basis.k)
+    # a fine grid so that where the projected curve passes near itself the nearest grid point
+    # lies on the right strand (the pose search's hundreds of candidates take a coarser one)
+    grid = np.linspace(0.0, 1.0, (48 if len(frames) <= 64 else 12) * basis.k)
     p, _, _ = _project(data.camera, np.einsum("fij,gj->fgi", rot, basis.values(grid) @ ctrl)
                        + tra[:, None], kap, z_ref[:, None])  # fmt: skip
     d2 = ((q[:, :, None, :] - p[:, None]) ** 2).sum(-1)
