@@ -143,6 +143,12 @@ def _reconstruct_configuration(obs: RigidObservations, opts: ReconstructOptions)
             f"motion {obs.configuration.motion} with points {', '.join(obs.configuration.points)} "
             "uses the default method"
         )
+    cfg = obs.configuration
+    if (cfg.projection, cfg.motion) == ("perspective", "free") and obs.n_points < 4 and obs.curves:
+        # the ordinary camera beyond the table: A, B and polylines (curve/pinhole.py)
+        from curverecon.curve.pinhole import reconstruct_perspective_curve
+
+        return reconstruct_perspective_curve(obs, opts)
     if obs.configuration.projection != "orthographic":
         raise CurveReconError(
             f'projection "{obs.configuration.projection}": reconstruction is available for '

@@ -1,0 +1,841 @@
+"""The curve stage under a calibrated pinhole camera.
+
+Two entry points:
+
+- :func:`curve_on_pinhole_poses`: the curve on given poses (the perspective rows' curve stage):
+  every frame-0 polyline point's depth searched along its ray against the other frames'
+  polylines (section 4 under a pinhole: the non-traceable points from all frames), a spline
+  through them, then the curve bundle with the poses held.
+- :func:`reconstruct_perspective_curve`: the ordinary camera beyond the Section 2 table (free
+  motion, A and B, a polyline in every frame): the paper's orthographic pipeline on the frames
+  in normalised coordinates (weak perspective) as the start, its curve and its mirror image
+  each refined by the pinhole curve bundle (every frame's rotation R_f, its 3-D translation T_f
+  and the curve), the better kept.
+
+Conventions (curverecon.solvers.camera): camera coordinates x right, y down, z along the optical
+axis; pixels (u, v) = f (x / z, y / z) + (cx, cy).  Frame f's coordinates X_f = R_f X_0 + T_f
+(frame 0: R = I, T = 0).  The curve is a clamped cubic B-spline (curverecon.curve.spline) in frame
+0's camera coordinates, A its first control point, B its last.  Residuals in units of the pixel
+noise ``point_sigma``: every sampled polyline point's signed distance from the projected curve
+(along the projected curve's normal at the nearest point), A' and B' (two rows each), and a
+fourth-difference penalty on the control points (it fixes their slide along the curve, which
+the images leave free; as ``CurveOptions.bundle_smooth_weight``).  Tangents, when given, are used
+by the start only: the polylines carry the end directions.
+
+Units of :func:`reconstruct_perspective_curve`: A's depth in frame 0 is 1, or |AB| =
+``configuration.length_ab`` when given (CONTRACT.md, "Configurations").
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from curverecon.curve import polyline as pl
+from curverecon.curve.spline import Basis, arc_parameters, fit_spline
+from curverecon.errors import CurveReconError
+from curverecon.solvers.camera import Camera
+
+CONTROL_POINTS = 14
+"""Control points of the curve's spline.  bench/persp_curve.py's scenes (five curve families,
+20 frames, 0.5 px): the bundle started from the truth puts the curve within 1 % of its length
+in every scene (the oracle rate there)."""
+
+SAMPLES_PER_FRAME = 40
+"""Polyline points per frame the bundle fits: the polyline's own points nearest to equal steps
+in arc length (not interpolated, so that points on the curve stay on it)."""
+
+SMOOTH_WEIGHT = 0.1
+"""Weight of the fourth-difference penalty, per pixel of control-point movement (as
+``CurveOptions.bundle_smooth_weight`` at 1 px noise); not divided by the noise, so that
+noise-free polylines give the exact curve (the penalty's pull vanishes against them)."""
+
+MIRROR_DCHI2 = 9.0
+"""Below this chi2 gap between the answer and its mirror image (the curve's depth reversed
+about A, every rotation mirrored, refitted) the perspective does not tell them apart: a
+warning says the answer is the orthographic one's, either mirror image.  bench/persp_curve.py
+measures the gap against the object's distance."""
+
+MAX_ITERATIONS = 200
+
+
+def _error(message: str) -> CurveReconError:
+    return CurveReconError(message)
+
+
+def _skew(v: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+def _rotation(w: np.ndarray) -> np.ndarray:
+    """exp([w]x): the rotation by |w| radians about w."""
+    angle = float(np.linalg.norm(w))
+    if angle < 1e-12:
+        return np.eye(3) + _skew(w)
+    k = _skew(w / angle)
+    return np.eye(3) + np.sin(angle) * k + (1.0 - np.cos(angle)) * (k @ k)
+
+
+def _project(
+    camera: Camera, y: np.ndarray, kappa: float = 1.0, z_ref: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Pixels (..., 2) of camera points y (..., 3), d pixel / d y (..., 2, 3) and d pixel /
+    d z_ref (..., 2).  The divisor is d = kappa z + (1 - kappa) z_ref: the pinhole at kappa 1,
+    weak perspective at the depth z_ref (...,) at kappa 0 (the bundle's continuation)."""
+    f = float(camera.focal_px)
+    z = y[..., 2] if kappa == 1.0 else kappa * y[..., 2] + (1.0 - kappa) * z_ref
+    if np.any(z <= 0):
+        raise _error("the curve passes behind the camera")
+    p = f * y[..., :2] / z[..., None] + np.asarray(camera.principal_point, float)
+    jac = np.zeros(y.shape[:-1] + (2, 3))
+    jac[..., 0, 0] = f / z
+    jac[..., 1, 1] = f / z
+    jd = -f * y[..., :2] / (z**2)[..., None]  # d pixel / d divisor
+    jac[..., :, 2] = kappa * jd
+    return p, jac, (1.0 - kappa) * jd
+
+
+@dataclass
+class PinholeFit:
+    """A fitted pinhole curve bundle.
+
+    control: (K, 3) spline control points in frame 0's camera coordinates.
+    rot, trans: (N, 3, 3), (N, 3) with X_f = rot[f] X_0 + trans[f].
+    cost: sum of squared residuals (units of the pixel noise), penalty included.
+    rms: (N,) RMS distance (pixels) of each frame's polyline points from the projected curve.
+    cov: covariance of the free parameters (``free`` selects them from the full vector:
+        control points, then per frame a rotation increment and T), or None.
+    """
+
+    control: np.ndarray
+    rot: np.ndarray
+    trans: np.ndarray
+    cost: float
+    rms: np.ndarray
+    cov: np.ndarray | None
+    free: np.ndarray
+    converged: bool
+    iterations: int
+
+
+@dataclass
+class _Data:
+    camera: Camera
+    samples: np.ndarray  # (N, S, 2) pixels
+    a_px: np.ndarray  # (N, 2)
+    b_px: np.ndarray  # (N, 2)
+    sigma: float
+    smooth: float  # penalty weight in residual units per unit of control-point length
+    kappa: float = 1.0  # the projection's perspective strength (see _project)
+
+    @property
+    def n(self) -> int:
+        return len(self.samples)
+
+
+def _feet(data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray) -> np.ndarray:
+    """(F, S) curve parameters u of the points of the projected curves nearest to the
+    polyline samples of ``frames`` (F,) under poses ``rot`` (F, 3, 3), ``tra`` (F, 3)."""
+    q = data.samples[frames]
+    kap = data.kappa
+    z_ref = (rot @ ctrl[0] + tra)[:, 2]
+    # a fine grid so that where the projected curve passes near itself the nearest grid point
+    # lies on the right strand (the pose search's hundreds of candidates take a coarser one)
+    grid = np.linspace(0.0, 1.0, (48 if len(frames) <= 64 else 12) * basis.k)
+    p, _, _ = _project(data.camera, np.einsum("fij,gj->fgi", rot, basis.values(grid) @ ctrl)
+                       + tra[:, None], kap, z_ref[:, None])  # fmt: skip
+    d2 = ((q[:, :, None, :] - p[:, None]) ** 2).sum(-1)
+    u = grid[np.argmin(d2, axis=2)]
+    for _ in range(4):
+        shape = u.shape
+        x = (basis.values(u.ravel()) @ ctrl).reshape(shape + (3,))
+        dx = (basis.d1(u.ravel()) @ ctrl).reshape(shape + (3,))
+        y = np.einsum("fij,fsj->fsi", rot, x) + tra[:, None]
+        pt, jp, _ = _project(data.camera, y, kap, z_ref[:, None])
+        t = np.einsum("fsij,fsj->fsi", jp, np.einsum("fij,fsj->fsi", rot, dx))
+        step = np.sum(t * (pt - q), axis=2) / np.maximum(np.sum(t * t, axis=2), 1e-300)
+        u = np.clip(u - step, 0.0, 1.0)
+    return u
+
+
+def _frame_rows(data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray | None = None):
+    """Residuals and Jacobian blocks of ``frames`` (default: all) under poses ``rot``
+    (F, 3, 3), ``tra`` (F, 3): r (F, S+4), d r / d ctrl (F, S+4, K, 3), d r / d(w, T)
+    (F, S+4, 6) (w: a rotation increment, R <- exp([w]x) R)."""
+    frames = np.arange(data.n) if frames is None else np.asarray(frames)
+    q, a_px, b_px = data.samples[frames], data.a_px[frames], data.b_px[frames]
+    u = _feet(data, basis, ctrl, rot, tra, frames)
+    nf, ns = u.shape
+    nb = basis.values(u.ravel()).reshape(nf, ns, basis.k)
+    rx = np.einsum("fij,fsj->fsi", rot, nb @ ctrl)
+    ra = rot @ ctrl[0]
+    z_ref = (ra + tra)[:, 2]
+    p, jp, jr = _project(data.camera, rx + tra[:, None], data.kappa, z_ref[:, None])
+    t = np.einsum("fsij,fsj->fsi", jp, np.einsum("fij,fsj->fsi", rot, basis.d1(u.ravel())
+                  .reshape(nf, ns, basis.k) @ ctrl))  # fmt: skip
+    normal = np.stack([-t[..., 1], t[..., 0]], axis=-1)
+    normal /= np.maximum(np.linalg.norm(t, axis=-1), 1e-300)[..., None]
+    g = np.einsum("fsi,fsij->fsj", normal, jp)  # d r / d y
+    r_curve = np.sum(normal * (p - q), axis=-1)
+    h = np.sum(normal * jr, axis=-1)  # d r / d z_ref
+    r_ends = np.empty((nf, 4))
+    h_ends = np.empty((nf, 4))
+    g_ends = np.empty((nf, 4, 3))
+    rx_ends = np.empty((nf, 4, 3))
+    for j, (point, obs) in enumerate(((ctrl[0], a_px), (ctrl[-1], b_px))):
+        y = rot @ point
+        pe, je, jre = _project(data.camera, y + tra, data.kappa, z_ref)
+        r_ends[:, 2 * j : 2 * j + 2] = pe - obs
+        h_ends[:, 2 * j : 2 * j + 2] = jre
+        g_ends[:, 2 * j : 2 * j + 2] = je
+        rx_ends[:, 2 * j : 2 * j + 2] = y[:, None]
+    e_basis = np.zeros((4, basis.k))
+    e_basis[:2, 0] = 1.0
+    e_basis[2:, -1] = 1.0
+    g_all = np.concatenate([g, g_ends], axis=1)
+    b_all = np.concatenate([nb, np.broadcast_to(e_basis, (nf, 4, basis.k))], axis=1)
+    d_ctrl = b_all[..., None] * np.einsum("fsi,fij->fsj", g_all, rot)[:, :, None, :]
+    rx_all = np.concatenate([rx, rx_ends], axis=1)
+    d_pose = np.concatenate([np.cross(rx_all, g_all), g_all], axis=-1)
+    if data.kappa != 1.0:  # z_ref = (R P_0 + T)_z: through A's control point, w and T
+        h_all = np.concatenate([h, h_ends], axis=1)[..., None]
+        d_ctrl[:, :, 0, :] += h_all * rot[:, None, 2, :]
+        d_pose[..., :3] += h_all * np.cross(ra, [0.0, 0.0, 1.0])[:, None, :]
+        d_pose[..., 5] += h_all[..., 0]
+    r = np.concatenate([r_curve, r_ends], axis=1)
+    return r / data.sigma, d_ctrl / data.sigma, d_pose / data.sigma
+
+
+def _system(data: _Data, basis: Basis, ctrl, rot, tra) -> tuple[np.ndarray, np.ndarray]:
+    """Every residual and the full Jacobian (columns: 3K control, then 6 per frame)."""
+    k, n = basis.k, data.n
+    r, dc, dp = _frame_rows(data, basis, ctrl, rot, tra)
+    rows = r.shape[1]
+    jac = np.zeros((n, rows, 3 * k + 6 * n))
+    jac[:, :, : 3 * k] = dc.reshape(n, rows, 3 * k)
+    for f in range(n):
+        jac[f, :, 3 * k + 6 * f : 3 * k + 6 * f + 6] = dp[f]
+    d4 = np.diff(np.eye(k), 4, axis=0) * data.smooth
+    pen = np.zeros((3 * (k - 4), 3 * k + 6 * n))
+    pen[:, : 3 * k] = np.kron(d4, np.eye(3))
+    r_all = np.concatenate([r.ravel(), (d4 @ ctrl).ravel()])
+    return r_all, np.vstack([jac.reshape(n * rows, -1), pen])
+
+
+def _step(ctrl, rot, tra, delta: np.ndarray, k: int):
+    """The state moved by a full-length parameter step."""
+    new_ctrl = ctrl + delta[: 3 * k].reshape(k, 3)
+    d = delta[3 * k :].reshape(-1, 6)
+    new_rot = np.stack([_rotation(d[f, :3]) @ rot[f] for f in range(len(rot))])
+    return new_ctrl, new_rot, tra + d[:, 3:]
+
+
+def bundle(
+    data: _Data, ctrl: np.ndarray, rot: np.ndarray, tra: np.ndarray, free: np.ndarray
+) -> PinholeFit:
+    """Levenberg-Marquardt over the free parameters (``free``: mask of the full vector)."""
+    basis = Basis(len(ctrl))
+    k = basis.k
+    try:
+        r, jac = _system(data, basis, ctrl, rot, tra)
+    except CurveReconError as exc:
+        raise _error(f"pinhole curve bundle: the start is not valid ({exc})") from None
+    cost, lam, converged, iterations = float(r @ r), 1e-3, False, 0
+    for it in range(1, MAX_ITERATIONS + 1):
+        iterations = it
+        jf = jac[:, free]
+        h, g = jf.T @ jf, jf.T @ r
+        diag = np.maximum(np.diag(h), 1e-12)
+        improved = False
+        while lam < 1e12:
+            try:
+                dx = np.linalg.solve(h + lam * np.diag(diag), -g)
+            except np.linalg.LinAlgError:
+                lam *= 10.0
+                continue
+            delta = np.zeros(jac.shape[1])
+            delta[free] = dx
+            trial = _step(ctrl, rot, tra, delta, k)
+            try:
+                r_new, jac_new = _system(data, basis, *trial)
+            except CurveReconError:
+                lam *= 10.0
+                continue
+            cost_new = float(r_new @ r_new)
+            if cost_new < cost:
+                improved = True
+                break
+            lam *= 10.0
+        if not improved:
+            converged = True
+            break
+        ctrl, rot, tra = trial
+        drop = cost - cost_new
+        r, jac, cost = r_new, jac_new, cost_new
+        lam = max(lam / 10.0, 1e-9)
+        if drop < 1e-10 * max(cost, 1e-20) or drop < 1e-24:
+            converged = True
+            break
+    jf = jac[:, free]
+    try:
+        cov = np.linalg.inv(jf.T @ jf)
+    except np.linalg.LinAlgError:
+        cov = None
+    return PinholeFit(ctrl, rot, tra, cost, _frame_rms(data, basis, ctrl, rot, tra), cov,
+                      free, converged, iterations)  # fmt: skip
+
+
+SEARCH_ROTATIONS = 600
+"""Rotations tried per frame by :func:`pose_search` (a fixed random set, about 25 degrees
+apart), each with the translation that puts A and B on their rays; the best few refined."""
+
+
+def _rotation_grid() -> np.ndarray:
+    from scipy.spatial.transform import Rotation
+
+    return Rotation.random(SEARCH_ROTATIONS, random_state=20261128).as_matrix()
+
+
+def _refine_pose(data: _Data, basis: Basis, ctrl, rot, tra, f: int, iterations: int = 15):
+    """Frame f's pose alone fitted to its polyline and ends (the curve held): (R, T, cost)."""
+    frames = np.array([f])
+    r, _, dp = _frame_rows(data, basis, ctrl, rot[None], tra[None], frames)
+    cost, lam = float(np.sum(r**2)), 1e-3
+    for _ in range(iterations):
+        j = dp[0]
+        h, g = j.T @ j, j.T @ r[0]
+        while lam < 1e8:
+            dx = np.linalg.solve(h + lam * np.diag(np.maximum(np.diag(h), 1e-12)), -g)
+            new_rot, new_tra = _rotation(dx[:3]) @ rot, tra + dx[3:]
+            try:
+                r_new, _, dp_new = _frame_rows(data, basis, ctrl, new_rot[None], new_tra[None],
+                                               frames)  # fmt: skip
+            except CurveReconError:
+                lam *= 10.0
+                continue
+            if float(np.sum(r_new**2)) < cost:
+                break
+            lam *= 10.0
+        else:
+            break
+        drop = cost - float(np.sum(r_new**2))
+        rot, tra, r, dp, cost = new_rot, new_tra, r_new, dp_new, cost - drop
+        lam = max(lam / 10.0, 1e-9)
+        if drop < 1e-8 * cost:
+            break
+    return rot, tra, cost
+
+
+def pose_search(data: _Data, ctrl, rot, tra, frames) -> tuple[np.ndarray, np.ndarray, int]:
+    """Every frame of ``frames`` searched for its pose against the curve held: the rotations
+    of :func:`_rotation_grid` and the current one, each with the translation putting A and B
+    on their rays, the best four refined; the lowest cost kept.  Returns (rot, tra, number of
+    frames whose pose changed)."""
+    basis = Basis(len(ctrl))
+    rot, tra = rot.copy(), tra.copy()
+    grid = _rotation_grid()
+    changed = 0
+    for f in frames:
+        cands = np.concatenate([rot[f][None], grid])
+        ma, mb = data.camera.rays(data.a_px[f]), data.camera.rays(data.b_px[f])
+        lhs = np.vstack([_skew(ma), _skew(mb)])
+        rhs = -np.concatenate([cands @ ctrl[0] @ _skew(ma).T, cands @ ctrl[-1] @ _skew(mb).T], 1)
+        ts = rhs @ np.linalg.pinv(lhs).T
+        ts[0] = tra[f]
+        along = Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 50)) @ ctrl
+        ok = np.all(np.einsum("cij,mj->cmi", cands, along)[..., 2] + ts[:, None, 2] > 0, axis=1)
+        cost = np.full(len(cands), np.inf)
+        idx = np.flatnonzero(ok)
+        try:
+            r, _, _ = _frame_rows(data, basis, ctrl, cands[idx], ts[idx], np.full(len(idx), f))
+            cost[idx] = np.sum(r**2, axis=1)
+        except CurveReconError:  # some candidate puts the curve behind the camera: one by one
+            for i in idx:
+                try:
+                    r, _, _ = _frame_rows(data, basis, ctrl, cands[i : i + 1], ts[i : i + 1],
+                                          np.array([f]))  # fmt: skip
+                    cost[i] = float(np.sum(r**2))
+                except CurveReconError:
+                    continue
+        best = (rot[f], tra[f], cost[0])
+        for i in np.argsort(cost)[:4]:
+            if not np.isfinite(cost[i]):
+                continue
+            try:
+                cand = _refine_pose(data, basis, ctrl, cands[i], ts[i], f)
+            except CurveReconError:
+                continue
+            if cand[2] < best[2] * (1.0 - 1e-9):
+                best = cand
+        if best[2] < cost[0] and not np.allclose(best[0], rot[f]):
+            changed += 1
+        rot[f], tra[f] = best[0], best[1]
+    return rot, tra, changed
+
+
+def _frame_rms(data: _Data, basis: Basis, ctrl, rot, tra) -> np.ndarray:
+    """(N,) RMS distance (pixels) of every frame's polyline samples from the projected curve."""
+    r, _, _ = _frame_rows(data, basis, ctrl, rot, tra)
+    return np.sqrt(np.mean(r[:, :-4] ** 2, axis=1)) * data.sigma
+
+
+def _prepare(
+    camera: Camera, polylines, a_px: np.ndarray, b_px: np.ndarray, sigma: float, scale: float
+) -> _Data:
+    """The bundle's data: every polyline sampled (A' first), the ends, the noise.  ``scale``:
+    a typical depth, so that the penalty is in pixels as the other rows."""
+    samples = []
+    for f, poly in enumerate(polylines):
+        q = pl.as_polyline(poly, name=f"frame {f} curve")
+        if np.hypot(*(q[-1] - a_px[f])) < np.hypot(*(q[0] - a_px[f])):
+            q = q[::-1]
+        s = pl.arc_length(q)
+        steps = np.linspace(0.0, s[-1], SAMPLES_PER_FRAME + 2)[1:-1]  # A', B': the end rows
+        at = np.interp(steps, s, np.arange(len(q)))
+        samples.append(q[np.round(at).astype(int)])
+    smooth = SMOOTH_WEIGHT * float(camera.focal_px) / scale
+    return _Data(
+        camera, np.array(samples), np.asarray(a_px, float), np.asarray(b_px, float), sigma, smooth
+    )
+
+
+def curve_points_and_std(
+    fit: PinholeFit, n_out: int = 200, length_ab: float | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(curve3d (M, 3), std (M,), normal std (M,)) in frame 0's coordinates from a fit; with
+    ``length_ab`` rescaled so that |AB| = length_ab, the std then with that gauge (the
+    points' Jacobian through the scale factor length_ab / |AB|)."""
+    ctrl = fit.control
+    k = len(ctrl)
+    basis = Basis(k)
+    u = arc_parameters(ctrl, n_out)
+    nb = basis.values(u)
+    pts = nb @ ctrl
+    tang = basis.d1(u) @ ctrl
+    tang /= np.linalg.norm(tang, axis=1)[:, None]
+    jac = np.einsum("mk,ij->mikj", nb, np.eye(3)).reshape(n_out, 3, 3 * k)
+    factor = 1.0
+    if length_ab is not None:
+        ab = ctrl[-1] - ctrl[0]
+        c = float(np.linalg.norm(ab))
+        factor = length_ab / c
+        dc = np.zeros(3 * k)
+        dc[:3], dc[-3:] = -ab / c, ab / c
+        jac = factor * (jac - np.einsum("mi,j->mij", pts, dc) / c)
+    if fit.cov is None:
+        nan = np.full(n_out, np.nan)
+        return factor * pts, nan, nan
+    nfree = int(fit.free[: 3 * k].sum())
+    jf = jac[:, :, fit.free[: 3 * k]]
+    cov = np.einsum("mik,kl,mjl->mij", jf, fit.cov[:nfree, :nfree], jf)
+    std = np.sqrt(np.maximum(np.einsum("mii->m", cov), 0.0))
+    proj = np.eye(3)[None] - np.einsum("mi,mj->mij", tang, tang)
+    ncov = np.einsum("mij,mjk,mkl->mil", proj, cov, proj)
+    nstd = np.sqrt(np.maximum(np.einsum("mii->m", ncov), 0.0))
+    return factor * pts, std, nstd
+
+
+def _depth_search(
+    camera: Camera, rot, tra, samples: list[np.ndarray], polylines, depths: np.ndarray
+) -> np.ndarray:
+    """Frame 0's polyline points placed in depth: per point the depth along its ray (among
+    ``depths``) whose projections lie nearest to the other frames' polylines (median distance
+    over the frames), then a running median along the curve."""
+    rays = camera.rays(samples[0])
+    best = np.empty(len(rays))
+    for i, ray in enumerate(rays):
+        cand = depths[:, None] * ray[None]
+        dist = []
+        for f in range(1, len(rot)):
+            y = cand @ rot[f].T + tra[f]
+            ok = y[:, 2] > 0
+            d = np.full(len(cand), np.inf)
+            if ok.any():
+                d[ok] = pl.distance_to_polyline(camera.project(y[ok]), polylines[f])[0]
+            dist.append(d)
+        best[i] = depths[int(np.argmin(np.median(np.array(dist), axis=0)))]
+    half = 2
+    padded = np.concatenate([[best[0]] * half, best, [best[-1]] * half])
+    smooth = np.array([np.median(padded[i : i + 2 * half + 1]) for i in range(len(best))])
+    return smooth[:, None] * rays
+
+
+def curve_on_pinhole_poses(
+    camera: Camera,
+    frame_poses: np.ndarray,
+    polylines,
+    points3_frame0: np.ndarray,
+    point_sigma: float,
+) -> tuple[np.ndarray, np.ndarray, list[str]]:
+    """The curve on given pinhole poses (the perspective rows' curve stage).
+
+    Args:
+        camera: the calibrated camera of every frame.
+        frame_poses: (N, 3, 4) [R_f | T_f], X_f = R_f X_0 + T_f (frame 0's: [I | 0]).
+        polylines: N image polylines (pixels), each from A' to B' (either order accepted: the
+            end nearer A's projection is taken as A').
+        points3_frame0: (P, 3) the traceable points in frame 0's camera coordinates, A and B
+            first (the curve's ends; the others unused).
+        point_sigma: the polylines' pixel noise (standard deviation per coordinate).
+    Returns:
+        (curve3d (200, 3) in frame 0's camera coordinates from A to B, its std (200,) from the
+        bundle's covariance with the poses held, warnings).
+    Raises:
+        CurveReconError: shapes or numbers that do not fit, a curve behind the camera.
+    """
+    poses = np.asarray(frame_poses, float)
+    pts = np.asarray(points3_frame0, float)
+    if poses.ndim != 3 or poses.shape[1:] != (3, 4) or not np.all(np.isfinite(poses)):
+        raise _error("frame_poses must be an (N, 3, 4) array of finite numbers")
+    if polylines is None or len(polylines) != len(poses):
+        raise _error(f"{len(poses)} frame poses need {len(poses)} polylines")
+    if pts.ndim != 2 or pts.shape[0] < 2 or pts.shape[1] != 3 or not np.all(np.isfinite(pts)):
+        raise _error("points3_frame0 must be a (P, 3) array, A and B first")
+    if not (np.isfinite(point_sigma) and point_sigma > 0):
+        raise _error("point_sigma must be a positive number")
+    if len(poses) < 2:
+        raise _error("the curve under a pinhole needs at least two frames")
+    rot, tra = poses[:, :, :3], poses[:, :, 3]
+    a3, b3 = pts[0], pts[1]
+    if a3[2] <= 0 or b3[2] <= 0:
+        raise _error("A and B must lie in front of the camera in frame 0 (z > 0)")
+    a_px = camera.project(np.einsum("fij,j->fi", rot, a3) + tra)
+    b_px = camera.project(np.einsum("fij,j->fi", rot, b3) + tra)
+    scale = 0.5 * (a3[2] + b3[2])
+    data = _prepare(camera, polylines, a_px, b_px, point_sigma, scale)
+    zmin, zmax = min(a3[2], b3[2]), max(a3[2], b3[2])
+    extent = float(np.linalg.norm(b3 - a3))
+    depths = np.linspace(max(zmin - 1.5 * extent, 1e-3 * zmin), zmax + 1.5 * extent, 241)
+    line = _depth_search(camera, rot, tra, data.samples, polylines, depths)
+    line[0], line[-1] = a3, b3
+    ctrl = fit_spline(line, CONTROL_POINTS)
+    free = np.zeros(3 * CONTROL_POINTS + 6 * len(poses), bool)
+    free[: 3 * CONTROL_POINTS] = True
+    fit = bundle(data, ctrl, rot, tra, free)
+    curve, std, _ = curve_points_and_std(fit)
+    warnings = []
+    worst = float(np.max(fit.rms))
+    if worst > 5.0 * point_sigma:
+        warnings.append(
+            f"the curve on the given poses fits frame {int(np.argmax(fit.rms))}'s polyline "
+            f"only to {worst:.2g} px RMS ({worst / point_sigma:.1f} times the point noise)"
+        )
+    return curve, std, warnings
+
+
+def _check_ordinary(obs) -> None:
+    """The ordinary camera's input: perspective, free motion, A and B, a polyline per frame."""
+    cfg = obs.configuration
+    if cfg.projection != "perspective" or cfg.camera is None:
+        raise _error("the pinhole curve reconstruction needs projection perspective and a camera")
+    if cfg.motion != "free":
+        raise _error(f'the pinhole curve reconstruction is for motion "free", not {cfg.motion}')
+    if obs.curves is None:
+        raise _error(
+            "perspective, free motion with fewer than four points needs a polyline of the curve "
+            "in every frame (the Section 2 table needs A, B, C and D otherwise)"
+        )
+    if obs.n_frames < MIN_FRAMES:
+        raise _error(
+            f"{obs.n_frames} frame(s) given; free motion under perspective with A, B and "
+            f"polylines needs at least {MIN_FRAMES} (its start is the orthographic pipeline's)"
+        )
+
+
+MIN_FRAMES = 4
+"""Fewest frames of :func:`reconstruct_perspective_curve`: its start, the paper's pipeline,
+needs four (``curverecon.model.observations.MIN_FRAMES``)."""
+
+
+START_SIGMA_FLOOR_PX = 0.5
+"""The orthographic start is told at least this pixel noise: the weak-perspective model's own
+error (depth variation over distance times the image size) is not noise-free even when the
+polylines are."""
+
+
+def _orthographic_start(obs, options):
+    """The paper's pipeline on the frames in normalised coordinates (weak perspective): its
+    curve (A at depth 1) and every frame's rotation relative to frame 0."""
+    from dataclasses import replace
+
+    from curverecon.model.observations import Observations
+    from curverecon.pipeline import reconstruct
+
+    camera = obs.configuration.camera
+    a_px, b_px = obs.point("A"), obs.point("B")
+    if obs.tangents is not None:
+        ta, tb = obs.tangents[:, 0], obs.tangents[:, 1]
+    else:
+        ends = [pl.end_tangents(c) for c in obs.curves]
+        ta, tb = np.array([e[0] for e in ends]), np.array([e[1] for e in ends])
+    ortho = Observations(
+        camera.rays(a_px)[:, :2],
+        camera.rays(b_px)[:, :2],
+        ta,
+        tb,
+        [camera.rays(c)[:, :2] for c in obs.curves],
+        tangents_from_curve=obs.tangents is None,
+    )
+    sigma = max(options.point_sigma, START_SIGMA_FLOOR_PX) / camera.focal_px
+    opts = replace(options, point_sigma=sigma, progress=False)
+    try:
+        rec = reconstruct(ortho, options=opts)
+    except CurveReconError as exc:
+        raise _error(f"perspective curve: the weak-perspective start failed ({exc})") from None
+    if rec.curve3d is None:
+        raise _error("perspective curve: the weak-perspective start gave no curve")
+    rot = rec.rotations()
+    rel = np.einsum("fij,kj->fik", rot, rot[0])
+    return rec.curve3d + np.array([0.0, 0.0, 1.0]), rel
+
+
+def _translations(camera: Camera, rot, a3, b3, a_px, b_px) -> np.ndarray:
+    """Every frame's T_f placing A and B (frame 0 coordinates) on their rays (least squares
+    of m x (R X + T) = 0)."""
+    out = np.empty((len(rot), 3))
+    ma, mb = camera.rays(a_px), camera.rays(b_px)
+    for f in range(len(rot)):
+        sa, sb = _skew(ma[f]), _skew(mb[f])
+        lhs = np.vstack([sa, sb])
+        rhs = -np.concatenate([sa @ rot[f] @ a3, sb @ rot[f] @ b3])
+        out[f] = np.linalg.lstsq(lhs, rhs, rcond=None)[0]
+    return out
+
+
+REFIT_RMS_SIGMA = 3.0
+"""After the bundle, frames whose polyline stays more than this many sigma (RMS) from the
+projected curve are searched again (:func:`pose_search`) and the bundle rerun."""
+
+REFIT_ROUNDS = 3
+
+CONTINUATION = (0.0, 0.25, 0.5, 0.75, 1.0)
+"""The perspective strengths (``_project``'s kappa) of the second way from the start to the
+pinhole: the bundle under weak perspective (kappa 0, one depth per frame), then stronger steps.
+The first way jumps to the pinhole at once; the lower final cost is kept.  bench/persp_curve.py,
+8 scenes at a fifth of the distance in depth: each way alone reached the truth's minimum in 5
+and 2 of them (the jump missed scenes 4, 7, the continuation scenes 1-5, 7)."""
+
+
+def _free(n_frames: int) -> np.ndarray:
+    """The free parameters: all but A's depth (the unit) and frame 0's pose (the reference)."""
+    free = np.ones(3 * CONTROL_POINTS + 6 * n_frames, bool)
+    free[2] = False
+    free[3 * CONTROL_POINTS : 3 * CONTROL_POINTS + 6] = False
+    return free
+
+
+def _start_state(data: _Data, curve0: np.ndarray, rel: np.ndarray):
+    """(ctrl, rot, tra) of a curve in frame 0 and relative rotations, every T_f putting A and B
+    on their rays; a frame whose start puts the curve behind the camera searched."""
+    ctrl = fit_spline(curve0, CONTROL_POINTS)
+    rot = rel.copy()
+    rot[0] = np.eye(3)
+    tra = _translations(data.camera, rot, ctrl[0], ctrl[-1], data.a_px, data.b_px)
+    tra[0] = 0.0
+    along = Basis(CONTROL_POINTS).values(np.linspace(0.0, 1.0, 50)) @ ctrl
+    depth = np.einsum("fij,mj->fmi", rot, along)[..., 2] + tra[:, None, 2]
+    behind = [f for f in np.flatnonzero(depth.min(axis=1) < 0.05 * ctrl[0, 2]) if f > 0]
+    if behind:
+        rot, tra, _ = pose_search(data, ctrl, rot, tra, behind)
+    return ctrl, rot, tra
+
+
+def _continued(data: _Data, state, kappas, rounds: int) -> PinholeFit:
+    """The bundle through the perspective strengths ``kappas`` from ``state``, then up to
+    ``rounds`` times the frames that still fit badly searched against the fitted curve and the
+    bundle rerun (at the pinhole)."""
+    free = _free(len(state[1]))
+    fit = None
+    for kappa in kappas:
+        fit = bundle(replace(data, kappa=kappa), *state, free)
+        state = (fit.control, fit.rot, fit.trans)
+    for _ in range(rounds):
+        bad = [f for f in np.flatnonzero(fit.rms > REFIT_RMS_SIGMA * data.sigma) if f > 0]
+        if not bad:
+            break
+        rot, tra, changed = pose_search(data, fit.control, fit.rot, fit.trans, bad)
+        if not changed:
+            break
+        new = bundle(data, fit.control, rot, tra, free)
+        if not new.cost < fit.cost:
+            break
+        fit = new
+    return fit
+
+
+_MIRROR = np.diag([1.0, 1.0, -1.0])
+
+
+def mirrored_state(data: _Data, ctrl, rot):
+    """The depth-reversed state: the curve mirrored about A's depth plane, every relative
+    rotation conjugated by that mirror, translations from the rays again (the weak-perspective
+    answer's other image, of equal cost at kappa 0)."""
+    m = np.diag([1.0, 1.0, -1.0])
+    a = ctrl[0]
+    curve = Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 200)) @ ctrl
+    return _start_state(data, a + (curve - a) @ m, np.einsum("ij,fjk,kl->fil", m, rot, m))
+
+
+def reconstruct_perspective_curve(obs, options=None):
+    """The ordinary camera beyond the Section 2 table: free motion, one calibrated pinhole
+    camera, A and B (tangents optional) and a polyline of the curve in every frame.
+
+    The start is the paper's pipeline on the frames in normalised coordinates (weak
+    perspective: pixels to rays), its curve placed at A's depth 1; the curve bundle fits every
+    frame's rotation, its 3-D translation and the curve under weak perspective (one depth per
+    frame), then through stronger perspective to the pinhole (``CONTINUATION``), from that fit
+    and from its mirror image (the depth order weak perspective leaves open), the lower cost
+    kept.
+
+    Args:
+        obs: ``RigidObservations`` with projection "perspective", motion "free", curves.
+        options: ``ReconstructOptions`` (``point_sigma``: the pixel noise).
+    Returns:
+        A ``Reconstruction`` with ``curve3d``, ``curve3d_std``, ``curve3d_normal_std``,
+        ``frame_poses``, ``points3`` (frame coordinates), the shape (c, alpha, beta, phi) of the
+        fitted curve with its std, the paper's poses; lengths in units of A's depth in frame 0,
+        or |AB| = ``length_ab`` when the configuration gives it.
+    Raises:
+        CurveReconError: input other than the above, too few frames, a failed start.
+    """
+    from curverecon.options import ReconstructOptions
+
+    opts = options or ReconstructOptions()
+    _check_ordinary(obs)
+    camera = obs.configuration.camera
+    curve0, rel = _orthographic_start(obs, opts)
+    data = _prepare(camera, obs.curves, obs.point("A"), obs.point("B"), opts.point_sigma, 1.0)
+    fits = []  # (cost, orientation: 0 the start's depth order, 1 its mirror image, fit)
+    starts = [
+        (0, (curve0, rel)),
+        (
+            1,
+            (
+                curve0[0] + (curve0 - curve0[0]) * [1.0, 1.0, -1.0],
+                np.einsum("ij,fjk,kl->fil", _MIRROR, rel, _MIRROR),
+            ),
+        ),
+    ]
+    for side, (curve, rots) in starts:  # straight to the pinhole
+        try:
+            fit = _continued(data, _start_state(data, curve, rots), CONTINUATION[-1:], REFIT_ROUNDS)
+        except CurveReconError:
+            continue
+        fits.append((fit.cost, side, fit))
+    try:  # through weak perspective
+        weak = _continued(data, _start_state(data, curve0, rel), CONTINUATION[:1], 0)
+        for side, state in ((0, (weak.control, weak.rot, weak.trans)),
+                            (1, mirrored_state(data, weak.control, weak.rot))):  # fmt: skip
+            try:
+                fit = _continued(data, state, CONTINUATION[1:], REFIT_ROUNDS)
+            except CurveReconError:
+                continue
+            fits.append((fit.cost, side, fit))
+    except CurveReconError:
+        pass
+    if not fits:
+        raise _error("perspective curve: the pinhole bundle found no curve in front of the camera")
+    fits.sort(key=lambda item: item[0])
+    best_cost, best_side, best = fits[0]
+    others = [cost for cost, side, _ in fits if side != best_side]
+    gap = min(others) - best_cost if others else np.inf
+    return _answer(obs, best, gap, data)
+
+
+def _shape_std(fit: PinholeFit, length_ab: float | None) -> np.ndarray | None:
+    """Std of (c, alpha, beta, phi) from the control points' covariance (numerical Jacobian
+    of the shape through the end control points; the length unit as the answer's)."""
+    from curverecon.curve.spline import BundleResult, shape_and_poses
+
+    if fit.cov is None:
+        return None
+    k = len(fit.control)
+    free_ctrl = np.flatnonzero(fit.free[: 3 * k])
+
+    def shape_of(ctrl):
+        factor = 1.0 if length_ab is None else length_ab / np.linalg.norm(ctrl[-1] - ctrl[0])
+        br = BundleResult(ctrl * factor, fit.rot[:1], fit.trans[:1], 1.0, fit.rms, 0, 0, 0, True)
+        return shape_and_poses(br)[0]
+
+    base = shape_of(fit.control)
+    jac = np.zeros((4, len(free_ctrl)))
+    for j, col in enumerate(free_ctrl):
+        h = 1e-7 * max(1.0, float(np.abs(fit.control).max()))
+        moved = fit.control.copy().ravel()
+        moved[col] += h
+        diff = shape_of(moved.reshape(k, 3)) - base
+        diff[1:] = (diff[1:] + np.pi) % (2 * np.pi) - np.pi
+        jac[:, j] = diff / h
+    cov = jac @ fit.cov[: len(free_ctrl), : len(free_ctrl)] @ jac.T
+    return np.sqrt(np.maximum(np.diag(cov), 0.0))
+
+
+def _answer(obs, fit: PinholeFit, gap: float, data: _Data):
+    """The Reconstruction of a fitted pinhole bundle (see reconstruct_perspective_curve)."""
+    from curverecon.curve.spline import BundleResult, shape_and_poses
+    from curverecon.model.pose import normalise
+    from curverecon.model.reconstruction import Reconstruction
+
+    cfg = obs.configuration
+    ctrl = fit.control
+    c_depth = float(np.linalg.norm(ctrl[-1] - ctrl[0]))
+    factor = 1.0 if cfg.length_ab is None else cfg.length_ab / c_depth
+    curve3d, std, nstd = curve_points_and_std(fit, 200, cfg.length_ab)
+    tra = fit.trans * factor
+    br = BundleResult(ctrl * factor, fit.rot, tra, data.sigma, fit.rms, fit.cost, fit.cost,
+                      fit.iterations, fit.converged)  # fmt: skip
+    shape, poses, _ = shape_and_poses(br)
+    shape, poses = normalise(shape, poses)
+    a_f = np.einsum("fij,j->fi", fit.rot, ctrl[0] * factor) + tra
+    b_f = np.einsum("fij,j->fi", fit.rot, ctrl[-1] * factor) + tra
+    points3 = [{"A": a.tolist(), "B": b.tolist()} for a, b in zip(a_f, b_f, strict=True)]
+    frame_chi2 = fit.rms**2 * SAMPLES_PER_FRAME / data.sigma**2
+    warnings = list(obs.warnings) + _warnings(fit, gap, data)
+    info = {
+        "camera": "pinhole",
+        "control_points": int(len(ctrl)),
+        "sigma_px": float(data.sigma),
+        "frame_rms_px": [float(v) for v in fit.rms],
+        "iterations": int(fit.iterations),
+        "converged": bool(fit.converged),
+        "mirror_dchi2": None if not np.isfinite(gap) else float(gap),
+    }
+    return Reconstruction(
+        shape=shape,
+        poses=poses,
+        std=_shape_std(fit, cfg.length_ab),
+        inliers=np.ones(obs.n_frames, bool),
+        warnings=warnings,
+        method="auto",
+        chi2=float(fit.cost),
+        frame_chi2=frame_chi2,
+        estimator="curve-bundle",
+        curve3d=curve3d,
+        curve3d_std=std,
+        curve3d_normal_std=nstd,
+        curve_bundle=info,
+        points3=points3,
+        configuration=cfg.to_json_dict(),
+        motion_parameters={},
+        frame_poses=np.concatenate([fit.rot, tra[:, :, None]], axis=2),
+    )
+
+
+def _warnings(fit: PinholeFit, gap: float, data: _Data) -> list[str]:
+    out = []
+    if gap < MIRROR_DCHI2:
+        out.append(
+            f"the perspective is too weak to tell the curve from its mirror image (depth order "
+            f"reversed; chi2 {gap:.2g} apart, {MIRROR_DCHI2:g} needed): the answer is the "
+            "orthographic one placed at the distance the image size gives, either mirror image"
+        )
+    worst = float(np.max(fit.rms))
+    if worst > 5.0 * data.sigma:
+        out.append(
+            f"frame {int(np.argmax(fit.rms))}: the fitted curve stays {worst:.2g} px (RMS) from "
+            f"its polyline ({worst / data.sigma:.1f} times the point noise)"
+        )
+    if not fit.converged:
+        out.append("the pinhole curve bundle stopped at its iteration limit")
+    return out

@@ -1,0 +1,205 @@
+"""The curve stage under a pinhole camera (curverecon/curve/pinhole.py), checked on 3-D
+constructions made here: a curve (a clamped cubic B-spline built with scipy, or a curve of
+``curve_families`` through bench/persp_curve.py's scene builder), rigid motions, the pinhole
+projection x = f X / Z + c written out, polylines of the projected points."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from scipy.interpolate import BSpline
+from scipy.spatial.transform import Rotation
+
+from bench.persp_curve import curve_error, make_scene, mirrored
+from curverecon.cli import main
+from curverecon.curve import pinhole
+from curverecon.errors import CurveReconError
+from curverecon.model.configuration import Configuration, RigidObservations
+from curverecon.model.observations import Observations
+from curverecon.options import ReconstructOptions
+from curverecon.pipeline import reconstruct
+from curverecon.solvers.camera import Camera
+
+FOCAL, PP = 900.0, (500.0, 400.0)
+
+
+def _spline_curve(rng: np.random.Generator, k: int, n: int) -> np.ndarray:
+    """(n, 3) points of a random clamped uniform cubic B-spline with k control points, A at
+    the origin, about one unit long (scipy's BSpline, evenly in its parameter), then 5,000
+    points more of the same curve (the truth to measure against): (n + 5000, 3)."""
+    ctrl = np.cumsum(rng.normal(scale=0.12, size=(k, 3)) + [0.1, 0.0, 0.0], axis=0)
+    knots = np.concatenate([[0.0] * 3, np.linspace(0.0, 1.0, k - 2), [1.0] * 3])
+    spl = BSpline(knots, ctrl, 3)
+    pts = np.vstack([spl(np.linspace(0.0, 1.0, n)), spl(np.linspace(0.0, 1.0, 5000))])
+    return pts - pts[0]
+
+
+def _exact_error(curve: np.ndarray, dense: np.ndarray) -> float:
+    """Mean distance of the curve's points from the densely sampled true curve / its length."""
+    from bench.curve_end_to_end import _mean_distance
+
+    length = float(np.linalg.norm(np.diff(dense, axis=0), axis=1).sum())
+    return _mean_distance(curve, dense) / length
+
+
+def _frames(rng: np.random.Generator, body: np.ndarray, n_frames: int, distance: float):
+    """Every frame's camera coordinates of the body points: a random rotation about the
+    body's middle, the middle ``distance`` in front of the camera, shifted sideways."""
+    mid = 0.5 * (body.min(0) + body.max(0))
+    rots = Rotation.random(n_frames, random_state=rng).as_matrix()
+    out = []
+    for r in rots:
+        centre = np.array([*rng.uniform(-0.1, 0.1, 2) * distance, distance])
+        out.append((body - mid) @ r.T + centre)
+    return np.array(out)
+
+
+def _pixels(x: np.ndarray) -> np.ndarray:
+    return FOCAL * x[..., :2] / x[..., 2:] + np.array(PP)
+
+
+def _observations(cam_pts: np.ndarray, length_ab=None) -> RigidObservations:
+    pix = _pixels(cam_pts)
+    cfg = Configuration(
+        "perspective", "free", ("A", "B"), False, Camera(FOCAL, PP), None, length_ab
+    )
+    points = np.stack([pix[:, 0], pix[:, -1]], axis=1)
+    return RigidObservations(cfg, np.arange(len(pix), dtype=float), points, None, list(pix))
+
+
+def _true_poses(cam_pts: np.ndarray) -> np.ndarray:
+    """(N, 3, 4) frame 0 -> frame f of the construction (Kabsch on the body points)."""
+    poses = []
+    for x in cam_pts:
+        a, b = cam_pts[0] - cam_pts[0].mean(0), x - x.mean(0)
+        u, _, vt = np.linalg.svd(a.T @ b)
+        r = vt.T @ np.diag([1.0, 1.0, np.linalg.det(vt.T @ u.T)]) @ u.T
+        poses.append(np.column_stack([r, x.mean(0) - r @ cam_pts[0].mean(0)]))
+    return np.array(poses)
+
+
+def test_noise_free_pinhole_frames_give_the_curve_to_1e6_of_its_length():
+    """The pinhole bundle (poses, 3-D translations and the curve free) started near the truth
+    returns to it: the curve, every frame's pose, A's depth 1 as the unit."""
+    rng = np.random.default_rng(3)
+    both = _frames(rng, _spline_curve(rng, pinhole.CONTROL_POINTS, 400), 12, 4.0)
+    cam_pts, dense = both[:, :400], both[0, 400:]
+    unit = cam_pts[0, 0, 2]
+    truth, poses = cam_pts[0] / unit, _true_poses(cam_pts / unit)
+    obs = _observations(cam_pts)
+    data = pinhole._prepare(obs.configuration.camera, obs.curves, obs.point("A"),
+                            obs.point("B"), 1e-3, 1.0)  # fmt: skip
+    # the start: the true poses and a spline fitted to the true points by chord length (its
+    # curve 0.3 % of the length off the truth: the fit moves every control point)
+    ctrl = pinhole.fit_spline(truth, pinhole.CONTROL_POINTS)
+    fit = pinhole.bundle(
+        data, ctrl, poses[:, :, :3].copy(), poses[:, :, 3].copy(), pinhole._free(len(poses))
+    )
+    curve, std, nstd = pinhole.curve_points_and_std(fit)
+    length = float(np.linalg.norm(np.diff(truth, axis=0), axis=1).sum())
+    assert _exact_error(curve, dense / unit) < 1e-6, _exact_error(curve, dense / unit)
+    assert np.abs(fit.rot - poses[:, :, :3]).max() < 1e-6
+    assert np.abs(fit.trans - poses[:, :, 3]).max() < 1e-6 * length
+    assert np.all(nstd <= std + 1e-15) and np.all(std[1:] > 0)
+    # |AB| as the unit: the same curve scaled
+    scaled, _, _ = pinhole.curve_points_and_std(fit, length_ab=2.5)
+    factor = 2.5 / np.linalg.norm(truth[-1] - truth[0])
+    assert _exact_error(scaled, dense / unit * factor) < 1e-6
+
+
+def test_curve_on_given_pinhole_poses():
+    rng = np.random.default_rng(5)
+    body = _spline_curve(rng, pinhole.CONTROL_POINTS, 300)[:300]
+    cam_pts = _frames(rng, body, 6, 3.0)
+    poses = _true_poses(cam_pts)
+    noise = np.random.default_rng(6).normal(scale=0.3, size=cam_pts.shape[:2] + (2,))
+    polylines = list(_pixels(cam_pts) + noise)
+    ends = np.array([cam_pts[0, 0], cam_pts[0, -1]])
+    curve, std, warnings = pinhole.curve_on_pinhole_poses(
+        Camera(FOCAL, PP), poses, polylines, ends, 0.3
+    )
+    length = float(np.linalg.norm(np.diff(cam_pts[0], axis=0), axis=1).sum())
+    err = curve_error(curve, cam_pts[0])
+    assert err < 0.01, err
+    assert warnings == []
+    assert np.all(std > 0) and np.median(std) < 0.05 * length
+    with pytest.raises(CurveReconError, match="need 6 polylines"):
+        pinhole.curve_on_pinhole_poses(Camera(FOCAL, PP), poses, polylines[:3], ends, 1)
+
+
+def test_a_distant_scene_gives_the_orthographic_answer():
+    sc = make_scene(2, n_frames=20, sigma=0.5, ratio=5000.0, family="bezier")
+    rec = pinhole.reconstruct_perspective_curve(sc.obs, ReconstructOptions(point_sigma=0.5))
+    # the paper's orthographic pipeline on the same frames in normalised coordinates
+    cam = sc.obs.configuration.camera
+    o = Observations(
+        cam.rays(sc.obs.point("A"))[:, :2],
+        cam.rays(sc.obs.point("B"))[:, :2],
+        *np.array([_end_directions(c) for c in sc.obs.curves]).transpose(1, 0, 2),
+        [cam.rays(c)[:, :2] for c in sc.obs.curves],
+        tangents_from_curve=True,
+    )
+    ortho = reconstruct(o, options=ReconstructOptions(point_sigma=0.5 / cam.focal_px))
+    persp = rec.curve3d - rec.curve3d[0]
+    flat = ortho.curve3d - ortho.curve3d[0]
+    err = min(curve_error(persp, flat), curve_error(mirrored(persp), flat))
+    assert err < 0.01, err
+    # both near the truth up to the mirror image; the perspective does not choose it
+    truth = sc.curve0
+    assert min(curve_error(rec.curve3d, truth), curve_error(mirrored(rec.curve3d), truth)) < 0.01
+    assert any("mirror image" in w for w in rec.warnings)
+    assert rec.curve_bundle["mirror_dchi2"] < pinhole.MIRROR_DCHI2
+
+
+def _end_directions(polyline: np.ndarray) -> np.ndarray:
+    """Image directions at both ends from the first and last few points (a tangent is a line)."""
+    return np.array([polyline[5] - polyline[0], polyline[-6] - polyline[-1]])
+
+
+def _document(frames: int, with_curves: bool = True) -> dict:
+    rng = np.random.default_rng(7)
+    body = _spline_curve(rng, 8, 60)[:60]
+    pix = _pixels(_frames(rng, body, frames, 4.0))
+    out = []
+    for i, p in enumerate(pix):
+        frame = {"t": float(i), "A": p[0].tolist(), "B": p[-1].tolist()}
+        if with_curves:
+            frame["curve"] = p.tolist()
+        out.append(frame)
+    return {
+        "format": "curverecon.observations/1",
+        "projection": "perspective",
+        "camera": {"focal_px": FOCAL, "principal_point": list(PP)},
+        "motion": "free",
+        "tangents": False,
+        "frames": out,
+    }
+
+
+@pytest.mark.parametrize(
+    ("frames", "message"),
+    [(3, "needs at least 4"), (5, None)],
+)
+def test_bad_input_is_one_line_with_exit_2(frames, message, tmp_path, capsys):
+    doc = _document(frames)
+    if message is None:  # a frame's polyline with a NaN
+        doc["frames"][2]["curve"][4] = [float("nan"), 1.0]
+        message = "NaN"
+    inp = tmp_path / "in.json"
+    inp.write_text(json.dumps(doc).replace("NaN", "NaN"))
+    code = main(["reconstruct", str(inp), "-o", str(tmp_path / "o.json"), "--quiet"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and message in err[0], err
+
+
+def test_library_refuses_other_motion_and_missing_polylines():
+    rng = np.random.default_rng(8)
+    cam_pts = _frames(rng, _spline_curve(rng, 8, 60)[:60], 5, 4.0)
+    obs = _observations(cam_pts)
+    with pytest.raises(CurveReconError, match='not fixed-axis|for motion "free"'):
+        pinhole.reconstruct_perspective_curve(obs.with_motion("fixed-axis"), None)
+    bare = RigidObservations(obs.configuration, obs.times, obs.points, None, None)
+    with pytest.raises(CurveReconError, match="needs a polyline of the curve"):
+        pinhole.reconstruct_perspective_curve(bare, None)
