@@ -82,7 +82,7 @@ def tangent_model() -> tuple[sp.Expr, ...]:
     return (psi, *[tuple(derivative(v) for v in g) for g in groups])
 
 
-MODULE_DOC = """The pinhole rigid-body measurement model of the perspective and stereo rows (generated).
+MODULE_DOC = """The pinhole rigid-body measurement model of the perspective and stereo rows.
 
 A body point with body vector q (relative to the reference point, frame 0's camera coordinates)
 is at X = T + R q in a frame with rotation R (relative to frame 0) and reference position T

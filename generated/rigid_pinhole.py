@@ -5,7 +5,7 @@
 # Template:   derivations/codegen/templates/module.py.jinja
 # SymPy:      1.14.0
 # -------------------------------------------------------------------------------------------------
-"""The pinhole rigid-body measurement model of the perspective and stereo rows (generated).
+"""The pinhole rigid-body measurement model of the perspective and stereo rows.
 
 A body point with body vector q (relative to the reference point, frame 0's camera coordinates)
 is at X = T + R q in a frame with rotation R (relative to frame 0) and reference position T
