@@ -70,7 +70,9 @@ def consensus_fit(
         part = _refine(layout, with_frames(fit.state, idx), data.subset(idx))
         if part is None:
             break
-        moved = reset_rotations(layout, _expand(layout, part.state, idx, fit.state), data)
+        moved = _expand(layout, part.state, idx, fit.state)
+        if not layout.pinhole:
+            moved = reset_rotations(layout, moved, data)
         fit_all = _refine(layout, moved, data, fix_globals=True)
         if fit_all is None:
             break
@@ -92,8 +94,14 @@ def best_fit(layout: Layout, data: RigidData, threshold: float) -> tuple[RigidFi
     from curverecon.rigid.hypotheses import RANSAC, FrameSampleEstimator, Hypothesis, solver_for
     from curverecon.robust.ransac import lo_ransac
 
-    initial = [Hypothesis(s) for s in starts(layout, data)]
-    solver = solver_for(layout)
+    if layout.pinhole:
+        from curverecon.rigid.pinhole_starts import pinhole_starts
+
+        initial = [Hypothesis(s) for s in pinhole_starts(layout, data)]
+        solver = None
+    else:
+        initial = [Hypothesis(s) for s in starts(layout, data)]
+        solver = solver_for(layout)
     best = None
     if solver is not None and data.n_frames >= solver.FRAMES:
         est = FrameSampleEstimator(layout, data, solver, threshold, consensus_fit)
@@ -167,7 +175,7 @@ def _expand(layout, sub_state, idx, full_state):
     s = full_state.copy()
     s.body, s.directions, s.axis = sub_state.body, sub_state.directions, sub_state.axis
     s.rate, s.parabola = sub_state.rate, sub_state.parabola
-    for name in ("angles", "rotations", "shifts"):
+    for name in ("angles", "rotations", "shifts", "translations"):
         v = getattr(sub_state, name)
         if v is not None:
             arr = np.array(getattr(s, name))
@@ -181,7 +189,7 @@ def check_degenerate(layout: Layout, fit: RigidFit, data: RigidData) -> None:
     if fit.state.axis is not None:
         n = axis_vector(fit.state.axis)
         tilt = np.degrees(np.arccos(min(abs(float(n[2])), 1.0)))
-        if tilt < MIN_AXIS_TILT_DEG:
+        if tilt < MIN_AXIS_TILT_DEG and not layout.pinhole:
             raise CurveReconError(
                 f"motion {layout.motion}: the fitted axis is {tilt:.2f} degrees from the viewing "
                 "direction (a turn about the line of sight shows no depth): not determined"
