@@ -187,7 +187,12 @@ def information_inverse(
 def is_regular(s: np.ndarray, rcond: float = 1e-10) -> bool:
     """True when the information matrix is invertible at a sensible condition (scaled by its
     diagonal, the smallest eigenvalue above ``rcond`` times the largest)."""
+    if not np.all(np.isfinite(s)):
+        return False
     d = np.sqrt(np.maximum(np.diag(s), 1e-300))
     scaled = s / np.outer(d, d)
-    ev = np.linalg.eigvalsh(scaled)
+    try:
+        ev = np.linalg.eigvalsh(scaled)
+    except np.linalg.LinAlgError:
+        return False
     return bool(np.all(np.isfinite(ev)) and ev[0] > rcond * max(ev[-1], 1e-300))
