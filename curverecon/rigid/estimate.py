@@ -64,6 +64,12 @@ def consensus_fit(
     every frame's own parameters to that, the consensus the frames below ``threshold``, twice.
     The outlier frames never pull the body.  The robust cost is sum_f min(chi2_f, threshold)."""
     n = data.n_frames
+    if layout.pinhole:
+        from curverecon.rigid.pinhole_starts import flip_frames
+
+        state = flip_frames(
+            layout, state, data, lambda s: _refine(layout, s, data, fix_globals=True)
+        )
     fit = _refine(layout, state, data, fix_globals=True)
     if fit is None:
         return None
@@ -78,7 +84,12 @@ def consensus_fit(
         if part is None:
             break
         moved = _expand(layout, part.state, idx, fit.state)
-        if not layout.pinhole:
+        if layout.pinhole:
+            from curverecon.rigid.pinhole_starts import flip_frames
+
+            refine_locals = lambda s: _refine(layout, s, data, fix_globals=True)  # noqa: E731
+            moved = flip_frames(layout, moved, data, refine_locals)
+        else:
             moved = reset_rotations(layout, moved, data)
         fit_all = _refine(layout, moved, data, fix_globals=True)
         if fit_all is None:

@@ -248,3 +248,32 @@ def _solver_states(layout: Layout, data: RigidData, frames: np.ndarray) -> list[
 
 
 __all__ = ["pinhole_starts", "state_from_points3"]
+
+
+def flip_frames(layout: Layout, state: RigidState, data: RigidData, refine_locals) -> RigidState:
+    """Every frame (but frame 0) on the better of its rotation R_f and the depth-reversed
+    S R_f M (S = diag(1, 1, -1) about A, M the reflection through the body's best plane): for
+    a nearly flat body the two give nearly the same image, the orthographic per-frame ambiguity
+    a weak-perspective start inherits.  ``refine_locals(state) -> fit or None`` fits every
+    frame's own parameters with the body and motion held."""
+    if not layout.free_rotations or len(layout.points) < 3:
+        return state
+    from curverecon.rigid.model import body_vectors
+
+    q = body_vectors(layout, state)
+    normal = np.linalg.svd(q - q[0])[2][-1]
+    mirror = np.eye(3) - 2.0 * np.outer(normal, normal)
+    flip = np.diag([1.0, 1.0, -1.0])
+    other = state.copy()
+    other.rotations[1:] = flip @ state.rotations[1:] @ mirror
+    a, b = refine_locals(state), refine_locals(other)
+    if a is None or b is None:
+        return state if b is None else b.state
+    better = b.frame_chi2 < a.frame_chi2
+    better[0] = False
+    out = a.state.copy()
+    for name in ("rotations", "translations"):
+        arr = getattr(out, name)
+        if arr is not None:
+            arr[better] = getattr(b.state, name)[better]
+    return out
