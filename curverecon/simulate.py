@@ -709,12 +709,14 @@ def simulate_camera_configuration(
     distance: float = DEFAULT_DISTANCE,
     camera=None,
     rig=None,
+    move: tuple[float, float] = (LATERAL_MOVE, DEPTH_MOVE),
 ) -> tuple[dict, dict]:
     """A perspective or stereo scene of a Section 2 row: its observations and its truth.
 
     The same 3-D construction as :func:`simulate_configuration` (the body, its rotations) with
     depth: the body's centre (the wire's centroid) at (0, 0, ``distance``) in frame 0 and moved
-    per frame by ``LATERAL_MOVE`` / ``DEPTH_MOVE`` of the distance (``force-field``: the mass
+    per frame by ``move`` = (lateral, depth) fractions of the distance (default
+    ``LATERAL_MOVE``, ``DEPTH_MOVE``; ``force-field``: the mass
     centre on a 3-D parabola G(t) = g0 + g1 t + g2 t^2 / 2 of that reach; ``rotation-free``:
     R_f = R_0), projected through ``camera`` (default :func:`default_camera`) or both cameras of
     ``rig`` (default :func:`default_rig`; X1 = R X0 + t).  Units of the truth (CONTRACT.md,
@@ -752,7 +754,7 @@ def simulate_camera_configuration(
         rots, params = np.array([r0] * len(t)), {}
     else:
         rots, _, params = _scene_motion(rng, motion, t, body, tangents)
-    centre, path_params = _centre_path(rng, motion, t, distance)
+    centre, path_params = _centre_path(rng, motion, t, distance, move)
     if motion == "force-field":
         params = {k: v for k, v in params.items() if k == "mass_centre"}
     a3 = centre - np.einsum("nij,j->ni", rots, body["centre"])  # A in every frame
@@ -775,23 +777,23 @@ def simulate_camera_configuration(
     return doc, truth
 
 
-def _centre_path(rng: np.random.Generator, motion: str, t: np.ndarray, distance: float):
+def _centre_path(rng: np.random.Generator, motion: str, t: np.ndarray, distance: float, move):
     """(N, 3) the body's centre in every frame's camera coordinates and, for the force field,
     its parabola's g0, g1, g2 (``position``, ``velocity``, ``acceleration``, absolute t)."""
     n = len(t)
     home = np.array([0.0, 0.0, distance])
     if motion != "force-field":
-        move = np.column_stack(
+        step = np.column_stack(
             [
-                rng.uniform(-LATERAL_MOVE, LATERAL_MOVE, size=(n, 2)),
-                rng.uniform(-DEPTH_MOVE, DEPTH_MOVE, size=n),
+                rng.uniform(-1.0, 1.0, size=(n, 2)) * move[0],
+                rng.uniform(-1.0, 1.0, size=n) * move[1],
             ]
         )
-        move[0] = 0.0
-        return home + distance * move, {}
+        step[0] = 0.0
+        return home + distance * step, {}
     span = t[-1] - t[0]
     tau = (t - t[0]) / span  # 0 .. 1
-    reach = distance * np.array([LATERAL_MOVE, LATERAL_MOVE, DEPTH_MOVE])
+    reach = distance * np.array([move[0], move[0], move[1]])
     acc = rng.uniform(2.0, 4.0, size=3) * rng.choice([-1.0, 1.0], size=3) * reach
     vel = rng.uniform(-1.0, 1.0, size=3) * reach - acc / 2
     path = home + np.outer(tau, vel) + np.outer(tau**2, acc) / 2
@@ -822,13 +824,14 @@ def _image_angles(camera, x: np.ndarray, d: np.ndarray) -> np.ndarray:
 
 def _camera_document(rng, cfg, geometry, noise, with_curve, outlier_fraction):
     """The observations document of a camera scene (pixels; stereo frames with two views) and
-    the inlier mask; outlier frames get random points within c' of A' in every view."""
+    the inlier mask; outlier frames (never frame 0, the reference of the units) get random
+    points within c' of A' in every view."""
     t, pts3, rots, body = geometry
     point_sigma, tangent_sigma, curve_sigma = noise
     n, p = pts3.shape[:2]
     inliers = np.ones(n, dtype=bool)
     n_out = int(round(outlier_fraction * n))
-    out_idx = rng.choice(n, size=n_out, replace=False) if n_out else []
+    out_idx = rng.choice(np.arange(1, n), size=n_out, replace=False) if n_out else []
     inliers[list(out_idx)] = False
     views = []
     for camera, x, r, tr in _camera_views(cfg, pts3):
