@@ -58,9 +58,7 @@ def point_model() -> tuple[sp.Matrix, ...]:
     x = camera_point()
     focal, cx, cy = INTRINSICS
     pred = sp.Matrix([focal * x[0] / x[2] + cx, focal * x[1] / x[2] + cy])
-    jacs = [
-        pred.jacobian(sp.Matrix(v)).applyfunc(_at_zero) for v in (INCREMENT, BODY, TRANSLATION)
-    ]
+    jacs = [pred.jacobian(sp.Matrix(v)).applyfunc(_at_zero) for v in (INCREMENT, BODY, TRANSLATION)]
     return (pred.applyfunc(_at_zero), *jacs)
 
 
