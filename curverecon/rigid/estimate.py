@@ -117,6 +117,16 @@ def best_fit(layout: Layout, data: RigidData, threshold: float) -> tuple[RigidFi
 
         initial = [Hypothesis(s) for s in pinhole_starts(layout, data)]
         solver = None
+        if layout.projection == "perspective" and layout.motion == "rotation-free":
+            from curverecon.rigid.pinhole_ransac import RANSAC as PINHOLE_RANSAC
+            from curverecon.rigid.pinhole_ransac import RotationFreeEstimator
+
+            est = RotationFreeEstimator(layout, data, threshold, consensus_fit)
+            model, _ = lo_ransac(est, PINHOLE_RANSAC, initial_models=initial)
+            if model is not None and model.fit is None:
+                model = est.refine_model(model)
+            if model is not None and model.fit is not None:
+                return model.fit, model.consensus
     else:
         initial = [Hypothesis(s) for s in starts(layout, data)]
         solver = solver_for(layout)
