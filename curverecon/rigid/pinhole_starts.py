@@ -229,22 +229,96 @@ def pinhole_starts(layout: Layout, data: RigidData) -> list[RigidState]:
     out = []
     if layout.motion == "fixed-axis" and data.n_frames == 3:
         out += _solver_states(layout, data, np.arange(3))
+    elif layout.motion == "fixed-axis" and len(layout.points) == 3:
+        n = data.n_frames
+        out += _best(layout, data, _solver_states(layout, data, np.array([0, n // 3, 2 * n // 3])))
     return out + weak_perspective(layout, data)
 
 
+SOLVER_STARTS = 2
+"""Of the fixed-axis solver's solutions on three spread frames, extended to every frame, the
+best this many by the robust cost start the consensus fit (beside weak perspective)."""
+
+
+def _best(layout: Layout, data: RigidData, states: list[RigidState]) -> list[RigidState]:
+    """The ``SOLVER_STARTS`` states of least trimmed chi2 (the frames' chi2 summed over the
+    best ``1 - starts.TRIM`` of them: outlier frames do not decide, and a start on a grid of
+    angles is not yet within any noise threshold)."""
+    from curverecon.rigid.measurements import residuals
+    from curverecon.rigid.starts import _trimmed
+
+    costs = []
+    for st in states:
+        with np.errstate(all="ignore"):
+            r = residuals(layout, st, data)
+        chi2 = np.where(np.isfinite(np.sum(r * r, 1)), np.sum(r * r, 1), np.inf)
+        costs.append(float(_trimmed(chi2)))
+    order = np.argsort(costs, kind="stable")[:SOLVER_STARTS]
+    return [states[i] for i in order]
+
+
+ANGLE_GRID = 72
+"""Angles about the axis tried per frame when a solution is extended to every frame (5
+degrees apart; the consensus fit refines them)."""
+
+
+def extend_axis(
+    layout: Layout, data: RigidData, body: np.ndarray, axis: np.ndarray, ref: int
+) -> RigidState | None:
+    """A fixed-axis state over every frame from a solution's body (P - 1, 3; relative to A, in
+    frame ``ref``'s orientation) and axis n: per frame the angle phi about n (a grid) whose
+    rotated body, with A on its ray at the depth fitting B - A, reprojects best; A's depth in
+    frame 0 rescaled to 1.  None when frame 0's A is not in front of the camera."""
+    cam = data.camera
+    m = cam.rays(data.points)  # (N, P, 3)
+    grid = np.linspace(-np.pi, np.pi, ANGLE_GRID, endpoint=False)
+    rot = rodrigues(np.outer(grid, axis))  # (G, 3, 3)
+    d = np.einsum("gij,pj->gpi", rot, body)  # (G, P-1, 3)
+    a = np.stack([-m[:, 0], m[:, 1]], axis=-1)  # (N, 3, 2)
+    ata = np.einsum("fki,fkj->fij", a, a)
+    atb = np.einsum("fki,gk->fgi", a, d[:, 0])
+    lam = np.linalg.solve(ata[:, None], atb[..., None])[..., 0, 0]  # (N, G)
+    pa = lam[..., None] * m[:, None, 0]  # (N, G, 3)
+    pts = np.concatenate([pa[:, :, None], pa[:, :, None] + d[None]], axis=2)
+    with np.errstate(all="ignore"):
+        err = np.sum((cam.project(pts) - data.points[:, None]) ** 2, axis=(2, 3))
+    err = np.where((lam > 0) & np.isfinite(err), err, np.inf)
+    best = np.argmin(err, axis=1)
+    f = np.arange(len(best))
+    if not lam[0, best[0]] > 0:
+        return None
+    phi = grid[best]
+    state = RigidState(
+        body=body @ rodrigues(phi[0] * axis).T,
+        axis=axis_angles(axis),
+        angles=np.angle(np.exp(1j * (phi - phi[0]))),
+        translations=pa[f, best],
+    )
+    return rescale(state, 1.0 / state.translations[0, 2])
+
+
 def _solver_states(layout: Layout, data: RigidData, frames: np.ndarray) -> list[RigidState]:
-    """Every real solution of the fixed-axis three-point solver on three frames as a state."""
+    """Every real solution of the fixed-axis three-point solver on three frames as a state over
+    every frame (:func:`extend_axis` where the frames are not all of them)."""
     from curverecon.solvers import persp_fixed_axis_3pt as solver
 
     try:
         sol = solver.solve(data.points[frames], data.times[frames], data.camera)
     except (CurveReconError, np.linalg.LinAlgError, ValueError):
         return []
-    sub = data.subset(frames)
-    return [
-        state_from_points3(layout, sub, sol.points3[s], sol.rotations[s])
-        for s in range(sol.n_solutions)
-    ]
+    if len(frames) == data.n_frames:
+        return [
+            state_from_points3(layout, data, sol.points3[s], sol.rotations[s])
+            for s in range(sol.n_solutions)
+        ]
+    out = []
+    for s in range(sol.n_solutions):
+        p3 = sol.points3[s]
+        axis = np.asarray(sol.motion[s]["axis"], float)
+        got = extend_axis(layout, data, p3[0, 1:] - p3[0, :1], axis, int(frames[0]))
+        if got is not None:
+            out.append(got)
+    return out
 
 
 __all__ = ["pinhole_starts", "state_from_points3"]
