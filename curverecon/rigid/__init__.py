@@ -1,4 +1,5 @@
-"""The orthographic Section 2 rows: a rigid body under a motion model, estimated from its frames.
+"""The Section 2 rows beyond the paper's own: a rigid body under a motion model, estimated from
+its frames (orthographic, perspective, stereo).
 
 ``reconstruct_rigid(obs, options)`` is the stage's entry (``pipeline.reconstruct`` dispatches
 ``RigidObservations`` to it).  Files (PoseLib / COLMAP layout):
@@ -13,6 +14,18 @@
 - ``select.py``: ``--motion auto`` (BIC with a robust chi2);
 - ``answer.py``: the answer in the toolkit's conventions; ``curve.py``: section 4 on the row's
   poses.
+
+The perspective and stereo rows (``Layout.projection``) share the parametrisation with depth
+(``model.py``) and the same estimation, with:
+
+- ``pinhole.py``: residuals and Jacobians from ``generated/rigid_pinhole.py`` (one camera or
+  both of a stereo pair);
+- ``pinhole_starts.py``: starts from triangulation (stereo), the all-frame closed form
+  (rotation-free), the fixed axis's minimal solver, and weak perspective (the orthographic row
+  on normalised coordinates); every frame's depth reversal tried in the consensus fit;
+- ``pinhole_ransac.py``: LO-RANSAC over the rotation-free row's two-frame samples;
+- ``pinhole_answer.py``: frame poses, points with depth, the contract's units, the curve stage
+  on the poses where this build has it.
 """
 
 from __future__ import annotations

@@ -64,7 +64,7 @@ class RigidData:
         )
 
 
-def _rot_args(rot: np.ndarray) -> tuple[np.ndarray, ...]:
+def rotation_args(rot: np.ndarray) -> tuple[np.ndarray, ...]:
     return tuple(rot[:, i, j] for i in range(3) for j in range(3))
 
 
@@ -76,11 +76,11 @@ def predict(layout: Layout, state: RigidState, times: np.ndarray) -> np.ndarray:
     q = body_vectors(layout, state)
     cols = []
     for k in range(len(layout.points)):
-        pred, _, _ = gm.point_prediction(*_rot_args(rot), *q[k], shift[:, 0], shift[:, 1])
+        pred, _, _ = gm.point_prediction(*rotation_args(rot), *q[k], shift[:, 0], shift[:, 1])
         cols.append(np.asarray(pred, float))
     if layout.tangents:
         for j in range(2):
-            psi = gm.tangent_prediction(*_rot_args(rot), *state.directions[j])[0]
+            psi = gm.tangent_prediction(*rotation_args(rot), *state.directions[j])[0]
             cols.append(np.asarray(psi, float)[:, None])
     return np.concatenate(cols, axis=1)
 
@@ -100,7 +100,7 @@ def residuals(layout: Layout, state: RigidState, data: RigidData) -> np.ndarray:
     return r
 
 
-def _rotation_chain(layout: Layout, jw: np.ndarray, inc: np.ndarray | None, times, jg, jl, row):
+def rotation_chain(layout: Layout, jw: np.ndarray, inc: np.ndarray | None, times, jg, jl, row):
     """Add d(row)/dw (N, 3) through the rotation's parameters into the global / local columns."""
     g0 = 3 * layout.n_body + (4 if layout.tangents else 0)
     if layout.motion == "uniform-rotation":
@@ -135,7 +135,7 @@ def residuals_and_jacobians(
     pred = np.zeros((n, m))
     t = np.asarray(times, float)
     for k in range(len(layout.points)):
-        p, jw, jq = gm.point_prediction(*_rot_args(rot), *q[k], shift[:, 0], shift[:, 1])
+        p, jw, jq = gm.point_prediction(*rotation_args(rot), *q[k], shift[:, 0], shift[:, 1])
         rows = slice(2 * k, 2 * k + 2)
         pred[:, rows] = p
         b = k if layout.centred else k - 1
@@ -151,15 +151,15 @@ def residuals_and_jacobians(
             jl[:, 2 * k, 0] = 1.0
             jl[:, 2 * k + 1, 1] = 1.0
         for d in range(2):
-            _rotation_chain(layout, np.asarray(jw)[:, d], inc, times, jg, jl, 2 * k + d)
+            rotation_chain(layout, np.asarray(jw)[:, d], inc, times, jg, jl, 2 * k + d)
     p2 = 2 * len(layout.points)
     if layout.tangents:
         for j in range(2):
-            psi, jw, ju, _ = gm.tangent_prediction(*_rot_args(rot), *state.directions[j])
+            psi, jw, ju, _ = gm.tangent_prediction(*rotation_args(rot), *state.directions[j])
             pred[:, p2 + j] = psi
             c0 = 3 * layout.n_body + 2 * j
             jg[:, p2 + j, c0 : c0 + 2] = ju
-            _rotation_chain(layout, np.asarray(jw), inc, times, jg, jl, p2 + j)
+            rotation_chain(layout, np.asarray(jw), inc, times, jg, jl, p2 + j)
     r = np.empty((n, m))
     r[:, :p2] = (pred[:, :p2] - data.points.reshape(n, -1)) / data.point_sigma
     jg[:, :p2] /= data.point_sigma

@@ -9,7 +9,7 @@ the tangent noise (radians; wrapped to (-pi/2, pi/2]).  Camera 1 sees X1 = Rs X 
 same model with R1 = Rs R and T1 = Rs T + ts, so its Jacobians in w and T are camera 1's times
 Rs.  Global and local columns follow ``Layout`` (``rigid.model``): the reference position T_f
 (three locals) or the force field's parabola (nine globals), then the rotation's parameters
-through ``measurements._rotation_chain``.  Gauge-fixed parameters (``fixed_locals``,
+through ``measurements.rotation_chain``.  Gauge-fixed parameters (``fixed_locals``,
 ``fixed_globals``) get zero columns.
 """
 
@@ -21,10 +21,10 @@ from curverecon.generated import rigid_pinhole as gp
 from curverecon.model.observations import wrap_line_angle
 from curverecon.rigid.measurements import (
     RigidData,
-    _rot_args,
-    _rotation_chain,
     fixed_globals,
     fixed_locals,
+    rotation_args,
+    rotation_chain,
 )
 from curverecon.rigid.model import (
     Layout,
@@ -127,7 +127,7 @@ def _evaluate(layout, state, data, times, jacobians: bool):
         rot_v, pos_v = rs @ rot, pos @ rs.T + ts
         intr = (float(cam.focal_px), *map(float, cam.principal_point))
         for k in range(len(layout.points)):
-            p, jw, jq, jt = gp.pinhole_point(*_rot_args(rot_v), *q[k], *pos_v.T, *intr)
+            p, jw, jq, jt = gp.pinhole_point(*rotation_args(rot_v), *q[k], *pos_v.T, *intr)
             rows = slice(o + 2 * k, o + 2 * k + 2)
             pred[:, rows] = p
             if jacobians:
@@ -135,7 +135,7 @@ def _evaluate(layout, state, data, times, jacobians: bool):
         if layout.tangents:
             for j in range(2):
                 psi, tw, tq, tt, tu = gp.pinhole_tangent(
-                    *_rot_args(rot_v), *q[j], *pos_v.T, *state.directions[j]
+                    *rotation_args(rot_v), *q[j], *pos_v.T, *state.directions[j]
                 )
                 row = o + p2 + j
                 pred[:, row] = psi
@@ -155,4 +155,4 @@ def _chain(layout, jac, k, inc, t, jg, jl, rows) -> None:
         jg[:, rows, 3 * b : 3 * b + 3] += jq
     _position_chain(layout, jt, t, jg, jl, rows)
     for d, row in enumerate(range(rows.start, rows.stop)):
-        _rotation_chain(layout, jw[:, d], inc, t, jg, jl, row)
+        rotation_chain(layout, jw[:, d], inc, t, jg, jl, row)

@@ -245,14 +245,14 @@ def _best(layout: Layout, data: RigidData, states: list[RigidState]) -> list[Rig
     best ``1 - starts.TRIM`` of them: outlier frames do not decide, and a start on a grid of
     angles is not yet within any noise threshold)."""
     from curverecon.rigid.measurements import residuals
-    from curverecon.rigid.starts import _trimmed
+    from curverecon.rigid.starts import trimmed_sum
 
     costs = []
     for st in states:
         with np.errstate(all="ignore"):
             r = residuals(layout, st, data)
         chi2 = np.where(np.isfinite(np.sum(r * r, 1)), np.sum(r * r, 1), np.inf)
-        costs.append(float(_trimmed(chi2)))
+        costs.append(float(trimmed_sum(chi2)))
     order = np.argsort(costs, kind="stable")[:SOLVER_STARTS]
     return [states[i] for i in order]
 
