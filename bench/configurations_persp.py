@@ -62,6 +62,9 @@ UNIQUE_FRAMES = {
 """Frames of the noise-free scenes (stereo: 3): a few above the least count."""
 SCENES = {"noise_free": 10, "accuracy": 40, "outliers": 20}
 """Scenes per row and kind at ``scale`` 1 (module docstring)."""
+SLOW_ROWS = ("persp_fixed_axis_3pt", "persp_free_4pt", "persp_force_field")
+"""Rows run on half the scenes: the fixed axis's minimal solver (a homotopy, about 0.4 s) and
+the weak-perspective starts of the free four points and the force field (1-3 s a scene)."""
 KINDS = tuple(SCENES)
 CHUNK = 5
 WORKERS = 2
@@ -297,7 +300,7 @@ FUNCTIONS = {
 
 def run(seed: int | None = None, scale: float = 1.0, workers: int = WORKERS, rows=None) -> dict:
     """The section's keys for ``seed``, ``SCENES`` times ``scale`` scenes per row and kind
-    (the slow rows, the free four points and the force field, half of them)."""
+    (``SLOW_ROWS`` half of them)."""
     seed = DEFAULT_SEED if seed is None else seed
     t0 = time.time()
     warnings.filterwarnings("ignore", category=RuntimeWarning)
@@ -307,7 +310,7 @@ def run(seed: int | None = None, scale: float = 1.0, workers: int = WORKERS, row
         for row, key in enumerate(ROWS):
             if key not in rows:
                 continue
-            slow = key in ("persp_free_4pt", "persp_force_field")
+            slow = key in SLOW_ROWS
             n = max(1, int(round(n0 * scale * (0.5 if slow else 1.0))))
             for r in chunks(n, CHUNK):
                 tasks.append(Task(FUNCTIONS[kind], (seed, row, r), len(r), f"{kind}|{row}"))
