@@ -39,8 +39,9 @@ MOTIONS = ("free", "uniform-rotation", "fixed-axis", "force-field", "auto")
 """``reconstruct --motion``: the models the rigid stage fits, and "auto" (named here so that the
 parser does not import NumPy; ``curverecon.model.configuration.FITTED_MOTIONS``)."""
 
-SIMULATED_MOTIONS = MOTIONS[:-1]
-"""``simulate --motion``: ``curverecon.simulate.CONFIG_MOTIONS``."""
+SIMULATED_MOTIONS = (*MOTIONS[:-1], "rotation-free")
+"""``simulate --motion``: ``curverecon.simulate.CAMERA_MOTIONS`` ("rotation-free" with
+``--projection perspective|stereo`` only)."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -117,6 +118,21 @@ def _add_simulate(sim: argparse.ArgumentParser) -> None:
         help="a scene of another row of the seed's Section 2 table: the body (the curve, A and B "
         "its ends, further points marked on it) moved by this model, with per-frame times "
         "(default: the paper's own setting, free motion with tangents)",
+    )
+    sim.add_argument(
+        "--projection",
+        choices=["orthographic", "perspective", "stereo"],
+        default="orthographic",
+        help="with --motion: perspective (one pinhole camera, 800 px focal length, 640 x 480) or "
+        "stereo (two such cameras a quarter of the distance apart); lengths of the truth in "
+        "units of A's depth in frame 0 (perspective) or of the scene (stereo)",
+    )
+    sim.add_argument(
+        "--distance",
+        type=float,
+        default=1000.0,
+        help="with --projection perspective|stereo: the body's depth in frame 0 (the focal "
+        "length scales with it, so the image keeps its size)",
     )
     sim.add_argument(
         "--points",
@@ -249,6 +265,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         ("--points", args.points != "AB"),
         ("--tangents", args.tangents),
         ("--curve-noise", args.curve_noise is not None),
+        ("--projection", args.projection != "orthographic"),
     ):
         if given:
             raise CurveReconError(f"{flag} needs --motion")
@@ -306,6 +323,13 @@ def _simulate_configuration(args: argparse.Namespace) -> int:
     lo, hi = args.chord
     if not (math.isfinite(lo) and math.isfinite(hi) and 0 < lo <= hi):
         raise CurveReconError("--chord needs 0 < MIN <= MAX")
+    if args.projection != "orthographic":
+        return _simulate_camera(args, (lo, hi))
+    if args.motion == "rotation-free":
+        raise CurveReconError(
+            "--motion rotation-free shows no depth under orthographic projection: use it with "
+            "--projection perspective or stereo"
+        )
     doc, truth = simulate_configuration(
         args.motion,
         args.points,
@@ -318,6 +342,36 @@ def _simulate_configuration(args: argparse.Namespace) -> int:
         family=args.family,
         chord=(lo, hi),
         outlier_fraction=args.outlier_fraction,
+    )
+    write_json(args.output, doc)
+    if args.truth:
+        write_json(args.truth, truth)
+    return 0
+
+
+def _simulate_camera(args: argparse.Namespace, chord: tuple[float, float]) -> int:
+    """``simulate --motion M --projection perspective|stereo``: a camera scene and its truth."""
+    from curverecon.io import write_json
+    from curverecon.simulate import default_camera, default_rig, simulate_camera_configuration
+
+    if not (math.isfinite(args.distance) and args.distance > 0):
+        raise CurveReconError("--distance must be a positive number")
+    doc, truth = simulate_camera_configuration(
+        args.projection,
+        args.motion,
+        args.points,
+        frames=args.frames,
+        seed=args.seed,
+        noise_px=args.point_noise,
+        tangent_noise_deg=args.tangent_noise if args.tangents else None,
+        with_curve=args.with_curve,
+        curve_noise_px=args.curve_noise,
+        family=args.family,
+        chord=chord,
+        outlier_fraction=args.outlier_fraction,
+        distance=args.distance,
+        camera=default_camera(args.distance) if args.projection == "perspective" else None,
+        rig=default_rig(args.distance) if args.projection == "stereo" else None,
     )
     write_json(args.output, doc)
     if args.truth:

@@ -149,11 +149,6 @@ def _reconstruct_configuration(obs: RigidObservations, opts: ReconstructOptions)
         from curverecon.curve.pinhole import reconstruct_perspective_curve
 
         return reconstruct_perspective_curve(obs, opts)
-    if obs.configuration.projection != "orthographic":
-        raise CurveReconError(
-            f'projection "{obs.configuration.projection}": reconstruction is available for '
-            "orthographic frames only so far (the minimal solvers are in curverecon.solvers)"
-        )
     obs.require_reconstructable(opts.point_sigma, opts.tangent_sigma_deg)
     try:
         from curverecon.rigid import reconstruct_rigid

@@ -645,3 +645,284 @@ def _scene_truth(cfg, t, pts3, rots, body, params, inliers, noise, seed, family)
         "curve_noise": float(noise[2]),
         "outlier_frames": [int(i) for i in np.flatnonzero(~inliers)],
     }
+
+
+# ---------------------------------------------------------- the perspective and stereo rows
+CAMERA_MOTIONS = (*CONFIG_MOTIONS, "rotation-free")
+"""Motion models of the perspective and stereo scenes (a pinhole sees depth without rotation)."""
+
+DEFAULT_DISTANCE = 1000.0
+"""Depth of the body's centre in frame 0 (input units; with the default chord 100-300 the body
+spans a tenth to a third of its distance, so perspective is strong)."""
+
+DEFAULT_FOCAL_PX = 800.0
+DEFAULT_PRINCIPAL_POINT = (320.0, 240.0)
+"""The default camera of ``simulate --projection perspective|stereo``: 640 x 480 pixels."""
+
+STEREO_BASELINE = 0.25
+"""Camera 1 of the default stereo rig: this fraction of the distance to the right of camera 0,
+turned to look at the body's centre (X1 = R X0 + t, units of the scene)."""
+
+LATERAL_MOVE = 0.12
+DEPTH_MOVE = 0.08
+"""Per-frame translation of the body's centre: lateral uniform within this fraction of the
+distance, depth within this fraction (both ways)."""
+
+
+def default_camera(distance: float = DEFAULT_DISTANCE):
+    """The default pinhole camera with its focal length scaled by ``distance`` /
+    DEFAULT_DISTANCE (the image keeps its size when the scene moves away)."""
+    from curverecon.solvers.camera import Camera
+
+    return Camera(DEFAULT_FOCAL_PX * distance / DEFAULT_DISTANCE, DEFAULT_PRINCIPAL_POINT)
+
+
+def default_rig(distance: float = DEFAULT_DISTANCE):
+    """Two default cameras; camera 1 at (b, 0, 0), b = STEREO_BASELINE distance, looking at
+    (0, 0, distance): its rows x1, y1, z1 in camera 0's coordinates, t = -R (b, 0, 0)."""
+    from curverecon.solvers.camera import StereoRig
+
+    b = STEREO_BASELINE * distance
+    z1 = _unit(np.array([-b, 0.0, distance]))
+    x1 = _unit(np.array([distance, 0.0, b]))
+    rot = np.array([x1, np.cross(z1, x1), z1])
+    cam = default_camera(distance)
+    return StereoRig(cam, cam, rot, -rot @ np.array([b, 0.0, 0.0]))
+
+
+def simulate_camera_configuration(
+    projection: str,
+    motion: str,
+    points: str = "AB",
+    frames: int = 20,
+    seed: int = 0,
+    noise_px: float = 0.0,
+    tangent_noise_deg: float | None = None,
+    with_curve: bool = False,
+    curve_noise_px: float | None = None,
+    times: np.ndarray | None = None,
+    *,
+    family: str = "bezier",
+    chord: tuple[float, float] = (100.0, 300.0),
+    outlier_fraction: float = 0.0,
+    n_curve_points: int = 150,
+    distance: float = DEFAULT_DISTANCE,
+    camera=None,
+    rig=None,
+    move: tuple[float, float] = (LATERAL_MOVE, DEPTH_MOVE),
+) -> tuple[dict, dict]:
+    """A perspective or stereo scene of a Section 2 row: its observations and its truth.
+
+    The same 3-D construction as :func:`simulate_configuration` (the body, its rotations) with
+    depth: the body's centre (the wire's centroid) at (0, 0, ``distance``) in frame 0 and moved
+    per frame by ``move`` = (lateral, depth) fractions of the distance (default
+    ``LATERAL_MOVE``, ``DEPTH_MOVE``; ``force-field``: the mass
+    centre on a 3-D parabola G(t) = g0 + g1 t + g2 t^2 / 2 of that reach; ``rotation-free``:
+    R_f = R_0), projected through ``camera`` (default :func:`default_camera`) or both cameras of
+    ``rig`` (default :func:`default_rig`; X1 = R X0 + t).  Units of the truth (CONTRACT.md,
+    "Configurations"): perspective lengths in units of A's depth in frame 0 (A3 z = 1 there),
+    stereo lengths in the scene's units (those of the rig's t).  The truth has per frame
+    ``points3`` (camera coordinates with depth; camera 0's for stereo), A3, B3, the unit
+    tangents, ``rotation`` (R_f = rot_f rot_0^T) and ``frame_pose`` {"R", "T"} with
+    X_f = R X_0 + T; ``curve3d`` in frame 0's camera coordinates; ``motion_parameters`` as the
+    orthographic rows' (the force field's ``acceleration``, ``velocity``, ``position`` as 3-D
+    vectors of the mass centre in camera coordinates, ``mass_centre`` relative to A in frame 0).
+
+    Raises CurveReconError for an unknown projection or motion, bad names, too few frames.
+    """
+    from curverecon.errors import CurveReconError
+    from curverecon.model.configuration import Configuration
+
+    if projection not in ("perspective", "stereo"):
+        raise CurveReconError(f'projection "{projection}": choose perspective or stereo')
+    if motion not in CAMERA_MOTIONS:
+        raise CurveReconError(f'unknown motion "{motion}" (choose {", ".join(CAMERA_MOTIONS)})')
+    if not (np.isfinite(distance) and distance > 0):
+        raise CurveReconError("the distance must be a positive number")
+    names = _point_names(points)
+    t = _scene_times(times, frames)
+    rng = np.random.default_rng(seed)
+    curve = bezier_curve(random_curve(rng, chord)) if family == "bezier" else None
+    if curve is None:
+        curve = draw_curve(rng, family, chord)
+    body = _scene_body(rng, curve, names, n_curve_points)
+    tangents = tangent_noise_deg is not None
+    if motion == "rotation-free":
+        r0 = Rotation.random(random_state=rng).as_matrix()
+        while not _frame_ok(r0, body, tangents):
+            r0 = Rotation.random(random_state=rng).as_matrix()
+        rots, params = np.array([r0] * len(t)), {}
+    else:
+        rots, _, params = _scene_motion(rng, motion, t, body, tangents)
+    centre, path_params = _centre_path(rng, motion, t, distance, move)
+    if motion == "force-field":
+        params = {k: v for k, v in params.items() if k == "mass_centre"}
+    a3 = centre - np.einsum("nij,j->ni", rots, body["centre"])  # A in every frame
+    pts3 = np.einsum("nij,pj->npi", rots, body["points"]) + a3[:, None, :]
+    if projection == "perspective":
+        camera = camera if camera is not None else default_camera(distance)
+        cfg = Configuration("perspective", motion, names, tangents, camera=camera)
+        scale = 1.0 / float(pts3[0, 0, 2])
+    else:
+        rig = rig if rig is not None else default_rig(distance)
+        cfg = Configuration("stereo", motion, names, tangents, rig=rig)
+        scale = 1.0
+    if motion == "force-field":
+        params.update({k: (np.asarray(v) * scale).tolist() for k, v in path_params.items()})
+        params["mass_centre"] = (rots[0] @ body["centre"] * scale).tolist()
+    noise = (noise_px, tangent_noise_deg, noise_px if curve_noise_px is None else curve_noise_px)
+    geometry = (t, pts3, rots, body)
+    doc, inliers = _camera_document(rng, cfg, geometry, noise, with_curve, outlier_fraction)
+    truth = _camera_truth(cfg, geometry, scale, params, inliers, noise, (seed, family))
+    return doc, truth
+
+
+def _centre_path(rng: np.random.Generator, motion: str, t: np.ndarray, distance: float, move):
+    """(N, 3) the body's centre in every frame's camera coordinates and, for the force field,
+    its parabola's g0, g1, g2 (``position``, ``velocity``, ``acceleration``, absolute t)."""
+    n = len(t)
+    home = np.array([0.0, 0.0, distance])
+    if motion != "force-field":
+        step = np.column_stack(
+            [
+                rng.uniform(-1.0, 1.0, size=(n, 2)) * move[0],
+                rng.uniform(-1.0, 1.0, size=n) * move[1],
+            ]
+        )
+        step[0] = 0.0
+        return home + distance * step, {}
+    span = t[-1] - t[0]
+    tau = (t - t[0]) / span  # 0 .. 1
+    reach = distance * np.array([move[0], move[0], move[1]])
+    acc = rng.uniform(2.0, 4.0, size=3) * rng.choice([-1.0, 1.0], size=3) * reach
+    vel = rng.uniform(-1.0, 1.0, size=3) * reach - acc / 2
+    path = home + np.outer(tau, vel) + np.outer(tau**2, acc) / 2
+    g2 = acc / span**2
+    g1 = vel / span - g2 * t[0]
+    g0 = home - g1 * t[0] - g2 * t[0] ** 2 / 2
+    return path, {"position": g0, "velocity": g1, "acceleration": g2}
+
+
+def _camera_views(cfg, pts3: np.ndarray) -> list[tuple]:
+    """[(camera, points in that camera's coordinates (N, P, 3), R of that camera)] per view."""
+    if cfg.rig is None:
+        return [(cfg.camera, pts3, np.eye(3), np.zeros(3))]
+    r, tr = np.asarray(cfg.rig.R, float), np.asarray(cfg.rig.t, float)
+    return [
+        (cfg.rig.camera0, pts3, np.eye(3), np.zeros(3)),
+        (cfg.rig.camera1, pts3 @ r.T + tr, r, tr),
+    ]
+
+
+def _image_angles(camera, x: np.ndarray, d: np.ndarray) -> np.ndarray:
+    """Image angle (radians) of the direction d (..., 3) at the point x (..., 3): the derivative
+    of the pinhole projection, (d_x z - x_x d_z, d_y z - x_y d_z)."""
+    u = d[..., 0] * x[..., 2] - x[..., 0] * d[..., 2]
+    v = d[..., 1] * x[..., 2] - x[..., 1] * d[..., 2]
+    return np.arctan2(v, u)
+
+
+def _camera_document(rng, cfg, geometry, noise, with_curve, outlier_fraction):
+    """The observations document of a camera scene (pixels; stereo frames with two views) and
+    the inlier mask; outlier frames (never frame 0, the reference of the units) get random
+    points within c' of A' in every view."""
+    t, pts3, rots, body = geometry
+    point_sigma, tangent_sigma, curve_sigma = noise
+    n, p = pts3.shape[:2]
+    inliers = np.ones(n, dtype=bool)
+    n_out = int(round(outlier_fraction * n))
+    out_idx = rng.choice(np.arange(1, n), size=n_out, replace=False) if n_out else []
+    inliers[list(out_idx)] = False
+    views = []
+    for camera, x, r, tr in _camera_views(cfg, pts3):
+        img = camera.project(x) + rng.normal(scale=point_sigma, size=(n, p, 2))
+        ang = None
+        if tangent_sigma is not None:
+            dirs = np.stack([rots @ body["ta"], rots @ body["tb"]], axis=1) @ r.T
+            ang = _image_angles(camera, x[:, :2], dirs)
+            ang = ang + rng.normal(scale=np.radians(tangent_sigma), size=(n, 2))
+        c_img = float(np.median(np.linalg.norm(img[:, 1] - img[:, 0], axis=1)))
+        for i in out_idx:
+            img[i] = img[i, 0] + rng.uniform(-c_img, c_img, size=(p, 2))
+            if ang is not None:
+                ang[i] = rng.uniform(-np.pi, np.pi, size=2)
+        view_frames = []
+        for i in range(n):
+            frame = {"A": img[i, 0].tolist(), "B": img[i, 1].tolist()}
+            if p > 2:
+                frame["points"] = {k: img[i, j].tolist() for j, k in enumerate(cfg.points) if j > 1}
+            if ang is not None:
+                frame["tangent_A"] = [float(np.cos(ang[i, 0])), float(np.sin(ang[i, 0]))]
+                frame["tangent_B"] = [float(np.cos(ang[i, 1])), float(np.sin(ang[i, 1]))]
+            if with_curve:
+                cam3 = (body["curve"] @ rots[i].T + pts3[i, 0]) @ r.T + tr
+                noisy = camera.project(cam3) + rng.normal(scale=curve_sigma, size=(len(cam3), 2))
+                frame["curve"] = np.round(noisy, 6).tolist()
+            view_frames.append(frame)
+        views.append(view_frames)
+    if len(views) == 1:
+        frames = [{"t": float(t[i]), **views[0][i]} for i in range(n)]
+    else:
+        frames = [{"t": float(t[i]), "views": [views[0][i], views[1][i]]} for i in range(n)]
+    doc = {"format": "curverecon.observations/1", **_camera_keys(cfg), "frames": frames}
+    return doc, inliers
+
+
+def _camera_keys(cfg) -> dict:
+    """projection, camera(s) and motion of a camera document."""
+    out = cfg.to_json_dict()
+    keep = {k: out[k] for k in ("projection", "camera", "cameras") if k in out}
+    return {**keep, "motion": cfg.motion}
+
+
+def _camera_truth(cfg, geometry, scale, params, inliers, noise, tag) -> dict:
+    """The ``curverecon.truth/1`` document of a camera scene (see
+    ``simulate_camera_configuration``)."""
+    t, pts3, rots, body = geometry
+    c, alpha, beta, phi = body["shape"]
+    rel = rots @ rots[0].T
+    p3 = pts3 * scale
+    frames = []
+    for i in range(len(t)):
+        trans = p3[i, 0] - rel[i] @ p3[0, 0]
+        frames.append(
+            {
+                "t": float(t[i]),
+                "points3": {k: p3[i, j].tolist() for j, k in enumerate(cfg.points)},
+                "A3": p3[i, 0].tolist(),
+                "B3": p3[i, 1].tolist(),
+                "tangent_A3": (rots[i] @ body["ta"]).tolist(),
+                "tangent_B3": (rots[i] @ body["tb"]).tolist(),
+                "rotation": rel[i].tolist(),
+                "frame_pose": {"R": rel[i].tolist(), "T": trans.tolist()},
+                "inlier": bool(inliers[i]),
+            }
+        )
+    r0 = rots[0]
+    return {
+        "format": "curverecon.truth/1",
+        "configuration": cfg.to_json_dict(),
+        "seed": int(tag[0]),
+        "family": tag[1],
+        "scale": float(scale),
+        "c": float(c * scale),
+        "alpha_deg": float(np.degrees(alpha)),
+        "beta_deg": float(np.degrees(beta)),
+        "phi_deg": float(np.degrees(phi)),
+        "times": [float(v) for v in t],
+        "frames": frames,
+        "motion_parameters": params,
+        "body": {
+            "points": {
+                k: (r0 @ x * scale).tolist()
+                for k, x in zip(cfg.points, body["points"], strict=True)
+            },
+            "curve_s": dict(zip(cfg.points, body["s"], strict=True)),
+            "mass_centre": (r0 @ body["centre"] * scale).tolist(),
+        },
+        "curve3d": ((body["curve"] @ r0.T) * scale + p3[0, 0]).tolist(),
+        "point_noise": float(noise[0]),
+        "tangent_noise_deg": None if noise[1] is None else float(noise[1]),
+        "curve_noise": float(noise[2]),
+        "outlier_frames": [int(i) for i in np.flatnonzero(~inliers)],
+    }

@@ -186,6 +186,12 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
         lambda: _function_module("derivations.rigid_model", "rigid_model.py"),
     ),
     (
+        "rigid_pinhole.py",
+        "the pinhole rigid-body measurement model of the perspective and stereo rows and its "
+        "Jacobians (derivations/rigid_pinhole.py)",
+        lambda: _function_module("derivations.rigid_pinhole", "rigid_pinhole.py"),
+    ),
+    (
         "section2_perspective.py",
         "the seed's Section 2 perspective and stereo rows: linear systems of the closed-form "
         "rows (derivations/section2_perspective.py)",

@@ -22,6 +22,8 @@
   minimal problems (derivations/section2.py)
 - ``rigid_model``: the orthographic rigid-body measurement model of the Section 2 rows and its
   Jacobians (derivations/rigid_model.py)
+- ``rigid_pinhole``: the pinhole rigid-body measurement model of the perspective and stereo rows and
+  its Jacobians (derivations/rigid_pinhole.py)
 - ``section2_perspective``: the seed's Section 2 perspective and stereo rows: linear systems of the
   closed-form rows (derivations/section2_perspective.py)
 - ``persp_uniform_rotation_system``: perspective uniform rotation, five frames, with its start
@@ -40,6 +42,7 @@ __all__ = (
     "minimal_unsquared_kernel",
     "section2_minimal",
     "rigid_model",
+    "rigid_pinhole",
     "section2_perspective",
     "persp_uniform_rotation_system",
     "persp_fixed_axis_system",

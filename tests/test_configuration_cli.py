@@ -19,7 +19,7 @@ from curverecon.model.configuration import (
     in_plane_motion,
 )
 from curverecon.model.observations import Observations
-from curverecon.simulate import CONFIG_MOTIONS, make_scene, simulate_configuration
+from curverecon.simulate import CAMERA_MOTIONS, CONFIG_MOTIONS, make_scene, simulate_configuration
 
 
 def _scene(motion="fixed-axis", points="AB", frames=8, **kw) -> dict:
@@ -101,7 +101,7 @@ def test_motion_option_overrides_the_document(tmp_path):
     obs = load_observations(path, motion="uniform-rotation")
     assert obs.configuration.motion == "uniform-rotation" and obs.configuration.tangents
     assert set(MOTIONS) == {*FITTED_MOTIONS, "auto"}
-    assert set(SIMULATED_MOTIONS) == set(CONFIG_MOTIONS)
+    assert set(SIMULATED_MOTIONS) == set(CAMERA_MOTIONS)  # rotation-free: camera scenes only
 
 
 def _along_view(n: int = 8) -> dict:

@@ -66,9 +66,77 @@ scenes of every row (4 and 20 frames) refused in none
 (tests/test_configuration_cli.py repeats it on 200 and 50 scenes)."""
 
 
-def min_frames(motion: str, n_points: int) -> int:
+PINHOLE_SOLVER_MODULES = {
+    ("perspective", "rotation-free", 2): "curverecon.solvers.persp_rotation_free",
+    ("perspective", "uniform-rotation", 2): "curverecon.solvers.persp_uniform_rotation",
+    ("perspective", "fixed-axis", 3): "curverecon.solvers.persp_fixed_axis_3pt",
+    ("perspective", "free", 4): "curverecon.solvers.persp_free_4pt",
+    ("perspective", "force-field", 2): "curverecon.solvers.persp_force_field",
+    ("stereo", "free", 2): "curverecon.solvers.stereo_free",
+}
+"""(projection, motion, points) -> the perspective / stereo row whose solver module's ``FRAMES``
+is the least frame count (docs/derivation.md)."""
+
+STEREO_TWO_POINT_AXIS_FRAMES = 3
+"""Stereo, A and B alone, a rotation about one axis: the chord's direction in three frames lies on
+one cone about the axis (axis and half-angle, three unknowns): three frames, not the two a
+parameter count gives (the turn about the chord itself is never seen)."""
+
+
+def pinhole_count(
+    projection: str, motion: str, n_points: int, tangents: bool
+) -> tuple[int, int, int, int]:
+    """(measurements per frame, own parameters per frame, globals, parameters of frame 0 fixed
+    by the gauge) of a pinhole row (the parametrisation of ``curverecon.rigid.model``; a
+    two-point body's turn about its chord, unseen under free rotations, not counted)."""
+    views = 2 if projection == "stereo" else 1
+    meas = views * (2 * n_points + (2 if tangents else 0))
+    centred = motion == "force-field"
+    free_rot = motion in ("free", "force-field")
+    local = (0 if centred else 3) + (3 if free_rot else 0) + (1 if motion == "fixed-axis" else 0)
+    if free_rot and n_points == 2 and not tangents:
+        local -= 1
+    body = 3 * (n_points if centred else n_points - 1) + (4 if tangents else 0)
+    motion_g = {"uniform-rotation": 3, "fixed-axis": 2, "force-field": 9}.get(motion, 0)
+    fixed0 = (3 if free_rot else 0) + (1 if motion == "fixed-axis" else 0)
+    if free_rot and n_points == 2 and not tangents:
+        fixed0 -= 1
+    scale = 1 if projection == "perspective" else 0
+    return meas, local, body + motion_g - scale, fixed0
+
+
+def pinhole_min_frames(projection: str, motion: str, n_points: int, tangents: bool) -> int | None:
+    """The least frame count of a pinhole row (its solver module's ``FRAMES`` where there is
+    one for these points, else the parameter count), None when no count of frames determines
+    it (each frame adds as many unknowns as measurements)."""
+    meas, local, glob, fixed0 = pinhole_count(projection, motion, n_points, tangents)
+    if meas <= local:
+        return None
+    module = PINHOLE_SOLVER_MODULES.get((projection, motion, n_points))
+    if module is not None and not tangents:
+        frames = getattr(importlib.import_module(module), "FRAMES", None)
+        if isinstance(frames, int):
+            return frames
+    if projection == "stereo" and n_points == 2 and motion in ("uniform-rotation", "fixed-axis"):
+        return STEREO_TWO_POINT_AXIS_FRAMES
+    # n meas >= glob + n local - fixed0
+    return max(1, -(-(glob - fixed0) // (meas - local)))
+
+
+def min_frames(
+    motion: str, n_points: int, projection: str = "orthographic", tangents: bool = False
+) -> int:
     """The least number of frames for which ``motion`` with ``n_points`` points is determined:
-    the minimal solver's ``FRAMES`` where the module exists, else :data:`MIN_FRAMES`."""
+    the minimal solver's ``FRAMES`` where the module exists, else :data:`MIN_FRAMES`
+    (orthographic), or :func:`pinhole_min_frames`."""
+    if projection != "orthographic":
+        if motion == "auto":
+            got = [
+                pinhole_min_frames(projection, m, n_points, tangents)
+                for m in (*FITTED_MOTIONS, "rotation-free")
+            ]
+            return min(g for g in got if g is not None) if any(got) else 1
+        return pinhole_min_frames(projection, motion, n_points, tangents) or 10**9
     if motion == "auto":
         allowed = [m for m in FITTED_MOTIONS if motion_determined(m, n_points, False) is None]
         return min(min_frames(m, n_points) for m in allowed)
@@ -83,9 +151,22 @@ def min_frames(motion: str, n_points: int) -> int:
     return MIN_FRAMES[motion]
 
 
-def motion_determined(motion: str, n_points: int, tangents: bool) -> str | None:
-    """None when ``motion`` with these points can be determined under orthographic projection,
-    else the reason it cannot (one line, for the error message)."""
+def motion_determined(
+    motion: str, n_points: int, tangents: bool, projection: str = "orthographic"
+) -> str | None:
+    """None when ``motion`` with these points can be determined under ``projection``, else the
+    reason it cannot (one line, for the error message)."""
+    if projection != "orthographic":
+        if motion == "auto" or pinhole_min_frames(projection, motion, n_points, tangents):
+            return None
+        need = {"free": "four points (A, B, C, D)", "fixed-axis": "a third point (C)"}.get(
+            motion, "more points"
+        )
+        return (
+            f"motion {motion} under {projection} projection with {n_points} points"
+            f"{' and tangents' if tangents else ''} is not determined (every frame adds as many "
+            f"unknowns as it measures): it needs {need}"
+        )
     if motion == "rotation-free":
         return (
             'motion "rotation-free" under orthographic projection shows no depth (every frame '
@@ -359,15 +440,18 @@ class RigidObservations:
         frame alike, or no rotation out of the image plane within the noise ``point_sigma``,
         input units, and ``tangent_sigma_deg``, degrees; :data:`DEGENERACY_QUANTILE`)."""
         cfg = self.configuration
-        reason = motion_determined(cfg.motion, self.n_points, cfg.tangents)
+        reason = motion_determined(cfg.motion, self.n_points, cfg.tangents, cfg.projection)
         if reason is not None:
             raise CurveReconError(reason)
-        need = min_frames(cfg.motion, self.n_points)
+        need = min_frames(cfg.motion, self.n_points, cfg.projection, cfg.tangents)
         if self.n_frames < need:
+            where = "" if cfg.projection == "orthographic" else f" under {cfg.projection}"
             raise CurveReconError(
                 f"{self.n_frames} frame(s) given; motion {cfg.motion} with points "
-                f"{', '.join(cfg.points)} needs at least {need}"
+                f"{', '.join(cfg.points)}{where} needs at least {need}"
             )
+        if cfg.projection != "orthographic":
+            return  # depth is seen through the pinhole: the fit's information decides
         degenerate = in_plane_motion(
             self.points, self.tangents, point_sigma, np.radians(tangent_sigma_deg)
         )

@@ -168,6 +168,9 @@ class Reconstruction:
             }
             if self.frame_chi2 is not None:
                 frame["chi2"] = float(self.frame_chi2[i])
+            if self.frame_poses is not None:
+                frame["R"] = np.asarray(self.frame_poses[i, :, :3], float).tolist()
+                frame["T"] = np.asarray(self.frame_poses[i, :, 3], float).tolist()
             if self.ends_exchanged is not None:
                 frame["ends_exchanged"] = bool(self.ends_exchanged[i])
             if self.branch_alternatives is not None:

@@ -1,4 +1,5 @@
-"""The orthographic Section 2 rows: a rigid body under a motion model, estimated from its frames.
+"""The Section 2 rows beyond the paper's own: a rigid body under a motion model, estimated from
+its frames (orthographic, perspective, stereo).
 
 ``reconstruct_rigid(obs, options)`` is the stage's entry (``pipeline.reconstruct`` dispatches
 ``RigidObservations`` to it).  Files (PoseLib / COLMAP layout):
@@ -13,6 +14,18 @@
 - ``select.py``: ``--motion auto`` (BIC with a robust chi2);
 - ``answer.py``: the answer in the toolkit's conventions; ``curve.py``: section 4 on the row's
   poses.
+
+The perspective and stereo rows (``Layout.projection``) share the parametrisation with depth
+(``model.py``) and the same estimation, with:
+
+- ``pinhole.py``: residuals and Jacobians from ``generated/rigid_pinhole.py`` (one camera or
+  both of a stereo pair);
+- ``pinhole_starts.py``: starts from triangulation (stereo), the all-frame closed form
+  (rotation-free), the fixed axis's minimal solver, and weak perspective (the orthographic row
+  on normalised coordinates); every frame's depth reversal tried in the consensus fit;
+- ``pinhole_ransac.py``: LO-RANSAC over the rotation-free row's two-frame samples;
+- ``pinhole_answer.py``: frame poses, points with depth, the contract's units, the curve stage
+  on the poses where this build has it.
 """
 
 from __future__ import annotations
@@ -37,25 +50,33 @@ from curverecon.rigid.model import Layout, frame_angles, normalise, tangent_vect
 
 
 def rigid_data(obs: RigidObservations, options: ReconstructOptions) -> RigidData:
-    """The measurements of ``obs`` with the options' noise levels (input units, radians)."""
-    angles = None
-    if obs.tangents is not None:
-        angles = np.arctan2(obs.tangents[..., 1], obs.tangents[..., 0])
+    """The measurements of ``obs`` with the options' noise levels (input units, radians); the
+    camera or the stereo pair with camera 1's view for the pinhole rows."""
+    cfg = obs.configuration
+
+    def angles(tangents):
+        return None if tangents is None else np.arctan2(tangents[..., 1], tangents[..., 0])
+
+    v1 = obs.view1
     return RigidData(
         np.asarray(obs.times, float),
         np.asarray(obs.points, float),
-        angles,
+        angles(obs.tangents),
         float(options.point_sigma),
         float(np.radians(options.tangent_sigma_deg)),
+        cfg.camera,
+        cfg.rig,
+        None if v1 is None else np.asarray(v1.points, float),
+        None if v1 is None else angles(v1.tangents),
     )
 
 
 def fit_motion(obs: RigidObservations, motion: str, options: ReconstructOptions):
     """(layout, fit, inliers) of one motion model on ``obs``."""
     cfg = obs.configuration
-    layout = Layout(motion, tuple(cfg.points), bool(cfg.tangents))
+    layout = Layout(motion, tuple(cfg.points), bool(cfg.tangents), cfg.projection)
     data = rigid_data(obs, options)
-    need = min_frames(motion, obs.n_points)
+    need = min_frames(motion, obs.n_points, cfg.projection, bool(cfg.tangents))
     fit, inliers = fit_row(layout, data, need, options.outliers)
     return layout, fit, inliers
 
@@ -69,6 +90,11 @@ def answer(
 ) -> Reconstruction:
     """The Reconstruction of a fitted row (every frame; outlier frames with their last pose)."""
     from curverecon.rigid.curve import curve_on_poses
+
+    if layout.pinhole:
+        from curverecon.rigid.pinhole_answer import pinhole_answer
+
+        return pinhole_answer(obs, layout, fit, inliers, rigid_data(obs, options), options)
 
     data = rigid_data(obs, options)
     idx = np.flatnonzero(inliers)
@@ -112,7 +138,8 @@ def answer(
 def reconstruct_rigid(
     obs: RigidObservations, options: ReconstructOptions | None = None
 ) -> Reconstruction:
-    """The reconstruction of a configuration of the Section 2 table (orthographic rows).
+    """The reconstruction of a configuration of the Section 2 table (orthographic, perspective
+    and stereo rows).
 
     ``obs.configuration.motion`` "auto" fits every model the points allow and chooses by BIC
     (``rigid.select``), filling ``motion_scores``.  Raises CurveReconError (one line) for input
@@ -120,14 +147,13 @@ def reconstruct_rigid(
     """
     options = options or ReconstructOptions()
     cfg = obs.configuration
-    if cfg.projection != "orthographic":
-        raise CurveReconError(f'projection "{cfg.projection}" is not supported by the rigid stage')
     if cfg.motion == "auto":
         from curverecon.rigid.select import reconstruct_auto
 
         return reconstruct_auto(obs, options)
     obs.require_reconstructable(options.point_sigma, options.tangent_sigma_deg)
-    if cfg.motion == "free" and obs.n_points < 3 and not cfg.tangents:
+    ortho = cfg.projection == "orthographic"
+    if ortho and cfg.motion == "free" and obs.n_points < 3 and not cfg.tangents:
         raise CurveReconError("free motion with A and B alone needs tangents or a third point")
     layout, fit, inliers = fit_motion(obs, cfg.motion, options)
     return answer(obs, layout, fit, inliers, options)

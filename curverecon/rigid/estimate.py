@@ -39,9 +39,16 @@ convergence, at most 200): the free row's steps crawl for about 100 iterations n
 optimum, where the consensus only needs the frames' misfits."""
 
 
+PINHOLE_ITERATIONS = 400
+"""The same for the perspective rows: from a weak-perspective start the depth and the size
+trade along a long valley (the free four-point row took 290 iterations from its start at
+1000 units, seed 0)."""
+
+
 def _refine(layout, state, data, **kw) -> RigidFit | None:
     try:
-        kw = {"max_iter": INTERMEDIATE_ITERATIONS, **kw}
+        iters = PINHOLE_ITERATIONS if layout.pinhole else INTERMEDIATE_ITERATIONS
+        kw = {"max_iter": iters, **kw}
         fit = refine(layout, state, data, covariance=False, **kw)
     except (np.linalg.LinAlgError, FloatingPointError, ValueError):
         return None
@@ -57,6 +64,12 @@ def consensus_fit(
     every frame's own parameters to that, the consensus the frames below ``threshold``, twice.
     The outlier frames never pull the body.  The robust cost is sum_f min(chi2_f, threshold)."""
     n = data.n_frames
+    if layout.pinhole:
+        from curverecon.rigid.pinhole_starts import flip_frames
+
+        state = flip_frames(
+            layout, state, data, lambda s: _refine(layout, s, data, fix_globals=True)
+        )
     fit = _refine(layout, state, data, fix_globals=True)
     if fit is None:
         return None
@@ -70,7 +83,14 @@ def consensus_fit(
         part = _refine(layout, with_frames(fit.state, idx), data.subset(idx))
         if part is None:
             break
-        moved = reset_rotations(layout, _expand(layout, part.state, idx, fit.state), data)
+        moved = _expand(layout, part.state, idx, fit.state)
+        if layout.pinhole:
+            from curverecon.rigid.pinhole_starts import flip_frames
+
+            refine_locals = lambda s: _refine(layout, s, data, fix_globals=True)  # noqa: E731
+            moved = flip_frames(layout, moved, data, refine_locals)
+        else:
+            moved = reset_rotations(layout, moved, data)
         fit_all = _refine(layout, moved, data, fix_globals=True)
         if fit_all is None:
             break
@@ -92,8 +112,24 @@ def best_fit(layout: Layout, data: RigidData, threshold: float) -> tuple[RigidFi
     from curverecon.rigid.hypotheses import RANSAC, FrameSampleEstimator, Hypothesis, solver_for
     from curverecon.robust.ransac import lo_ransac
 
-    initial = [Hypothesis(s) for s in starts(layout, data)]
-    solver = solver_for(layout)
+    if layout.pinhole:
+        from curverecon.rigid.pinhole_starts import pinhole_starts
+
+        initial = [Hypothesis(s) for s in pinhole_starts(layout, data)]
+        solver = None
+        if layout.projection == "perspective" and layout.motion == "rotation-free":
+            from curverecon.rigid.pinhole_ransac import RANSAC as PINHOLE_RANSAC
+            from curverecon.rigid.pinhole_ransac import RotationFreeEstimator
+
+            est = RotationFreeEstimator(layout, data, threshold, consensus_fit)
+            model, _ = lo_ransac(est, PINHOLE_RANSAC, initial_models=initial)
+            if model is not None and model.fit is None:
+                model = est.refine_model(model)
+            if model is not None and model.fit is not None:
+                return model.fit, model.consensus
+    else:
+        initial = [Hypothesis(s) for s in starts(layout, data)]
+        solver = solver_for(layout)
     best = None
     if solver is not None and data.n_frames >= solver.FRAMES:
         est = FrameSampleEstimator(layout, data, solver, threshold, consensus_fit)
@@ -167,7 +203,7 @@ def _expand(layout, sub_state, idx, full_state):
     s = full_state.copy()
     s.body, s.directions, s.axis = sub_state.body, sub_state.directions, sub_state.axis
     s.rate, s.parabola = sub_state.rate, sub_state.parabola
-    for name in ("angles", "rotations", "shifts"):
+    for name in ("angles", "rotations", "shifts", "translations"):
         v = getattr(sub_state, name)
         if v is not None:
             arr = np.array(getattr(s, name))
@@ -181,7 +217,7 @@ def check_degenerate(layout: Layout, fit: RigidFit, data: RigidData) -> None:
     if fit.state.axis is not None:
         n = axis_vector(fit.state.axis)
         tilt = np.degrees(np.arccos(min(abs(float(n[2])), 1.0)))
-        if tilt < MIN_AXIS_TILT_DEG:
+        if tilt < MIN_AXIS_TILT_DEG and not layout.pinhole:
             raise CurveReconError(
                 f"motion {layout.motion}: the fitted axis is {tilt:.2f} degrees from the viewing "
                 "direction (a turn about the line of sight shows no depth): not determined"

@@ -23,6 +23,15 @@ rotation) or a non-negative sum of angles (fixed axis).
 Measurements per frame: every traceable point's image (input units), then with tangents the image
 angles of the tangents at A and B (radians, lines: residuals wrapped to (-pi/2, pi/2]).
 Lengths in input units, angles in radians, t in the input's units.
+
+Under a pinhole camera or a stereo pair (``Layout.projection`` "perspective" or "stereo"; the
+measurement model of ``generated/rigid_pinhole.py``) the same parameters gain depth: the
+reference point's image s_f becomes its 3-D position T_f in frame f's camera coordinates (three
+locals; the force field's mass centre moves on a 3-D parabola, g0, g1, g2 three-vectors), a body
+point is at X_f = T_f + R_f q, and ``rotation-free`` has R_f = I.  Perspective's one free scale
+is fixed by A's depth in frame 0 (T_0z = 1, a fixed local) or, for the force field, by the
+parabola's g0_z = 1 (a fixed global; the answer is rescaled to A's depth); stereo is metric.
+No mirror: a pinhole tells near from far.  Lengths in the answer's units, images in pixels.
 """
 
 from __future__ import annotations
@@ -33,7 +42,7 @@ import numpy as np
 
 from curverecon.generated import rigid_model as gm
 
-MOTIONS = ("uniform-rotation", "fixed-axis", "free", "force-field")
+MOTIONS = ("uniform-rotation", "fixed-axis", "free", "force-field", "rotation-free")
 AXIS_MOTIONS = ("uniform-rotation", "fixed-axis")
 
 
@@ -44,6 +53,32 @@ class Layout:
     motion: str
     points: tuple[str, ...]
     tangents: bool
+    projection: str = "orthographic"
+
+    @property
+    def pinhole(self) -> bool:
+        """A perspective or stereo row (depth in the parameters)."""
+        return self.projection != "orthographic"
+
+    @property
+    def views(self) -> int:
+        """Cameras seeing every frame (2 for stereo)."""
+        return 2 if self.projection == "stereo" else 1
+
+    @property
+    def position_size(self) -> int:
+        """Coordinates of the reference point's per-frame position (3 with depth, else 2)."""
+        return 3 if self.pinhole else 2
+
+    @property
+    def rotation_local(self) -> int:
+        """Index of the first rotation local (free rotations) in a frame's locals."""
+        return 0 if self.centred else self.position_size
+
+    @property
+    def angle_local(self) -> int:
+        """Index of the fixed axis's angle in a frame's locals."""
+        return self.n_local - 1
 
     @property
     def centred(self) -> bool:
@@ -57,7 +92,10 @@ class Layout:
 
     @property
     def n_motion(self) -> int:
-        return {"uniform-rotation": 3, "fixed-axis": 2, "free": 0, "force-field": 6}[self.motion]
+        ff = 3 * self.position_size
+        return {"uniform-rotation": 3, "fixed-axis": 2, "free": 0, "force-field": ff}.get(
+            self.motion, 0
+        )
 
     @property
     def n_global(self) -> int:
@@ -70,15 +108,15 @@ class Layout:
     @property
     def n_local(self) -> int:
         return (
-            (0 if self.centred else 2)
+            (0 if self.centred else self.position_size)
             + (3 if self.free_rotations else 0)
             + (1 if self.motion == "fixed-axis" else 0)
         )
 
     @property
     def n_measurements(self) -> int:
-        """Measurements per frame: two per point, one per tangent."""
-        return 2 * len(self.points) + (2 if self.tangents else 0)
+        """Measurements per frame: two per point, one per tangent, in every view."""
+        return self.views * (2 * len(self.points) + (2 if self.tangents else 0))
 
     def global_names(self) -> list[str]:
         names = [f"{p}_{k}" for p in self.body_points() for k in "xyz"]
@@ -88,7 +126,8 @@ class Layout:
             "uniform-rotation": ["axis_kappa", "axis_lam", "rate"],
             "fixed-axis": ["axis_kappa", "axis_lam"],
             "free": [],
-            "force-field": ["g0_x", "g0_y", "g1_x", "g1_y", "g2_x", "g2_y"],
+            "force-field": [f"g{i}_{k}" for i in range(3) for k in "xyz"[: self.position_size]],
+            "rotation-free": [],
         }[self.motion]
         return names
 
@@ -109,7 +148,10 @@ class RigidState:
         angles: (N,) fixed-axis angles theta_f (radians, theta_0 = 0), or None.
         rotations: (N, 3, 3) free rotations (R_0 = I), or None.
         shifts: (N, 2) image of the reference point A (input units), or None (force field).
-        parabola: (3, 2) g0, g1, g2 of the mass centre's image, or None.
+        parabola: (3, 2) g0, g1, g2 of the mass centre's image ((3, 3): its 3-D position under
+            a pinhole), or None.
+        translations: (N, 3) the reference point A in every frame's camera coordinates (pinhole
+            rows but the force field), or None.
     """
 
     body: np.ndarray
@@ -120,6 +162,7 @@ class RigidState:
     rotations: np.ndarray | None = None
     shifts: np.ndarray | None = None
     parabola: np.ndarray | None = None
+    translations: np.ndarray | None = None
 
     def copy(self) -> RigidState:
         def c(v):
@@ -134,6 +177,7 @@ class RigidState:
             c(self.rotations),
             c(self.shifts),
             c(self.parabola),
+            c(self.translations),
         )
 
 
@@ -175,6 +219,8 @@ def frame_rotations(
     layout: Layout, state: RigidState, times: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray | None]:
     """((N, 3, 3) rotations R_f, (N, 3, 3) increments of (kappa, lam, angle) or None)."""
+    if layout.motion == "rotation-free":
+        return np.broadcast_to(np.eye(3), (len(times), 3, 3)).copy(), None
     angles = frame_angles(layout, state, times)
     if angles is None:
         return np.asarray(state.rotations, float), None
@@ -191,6 +237,16 @@ def frame_shifts(layout: Layout, state: RigidState, times: np.ndarray) -> np.nda
     return g[0] + t[:, None] * g[1] + 0.5 * (t * t)[:, None] * g[2]
 
 
+def frame_positions(layout: Layout, state: RigidState, times: np.ndarray) -> np.ndarray:
+    """(N, 3) the reference point in every frame's camera coordinates (pinhole rows): the free
+    translations, or the force field's 3-D parabola."""
+    if not layout.centred:
+        return np.asarray(state.translations, float)
+    t = np.asarray(times, float)
+    g = np.asarray(state.parabola, float)
+    return g[0] + t[:, None] * g[1] + 0.5 * (t * t)[:, None] * g[2]
+
+
 def body_vectors(layout: Layout, state: RigidState) -> np.ndarray:
     """(P, 3) every traceable point's body vector (A's is 0 unless the reference is G)."""
     body = np.asarray(state.body, float).reshape(layout.n_body, 3)
@@ -200,8 +256,12 @@ def body_vectors(layout: Layout, state: RigidState) -> np.ndarray:
 
 
 def points3(layout: Layout, state: RigidState, times: np.ndarray) -> np.ndarray:
-    """(N, P, 3) every traceable point in every frame's camera coordinates, A at z = 0."""
+    """(N, P, 3) every traceable point in every frame's camera coordinates, A at z = 0
+    (pinhole rows: true depth, X = T + R q)."""
     rot, _ = frame_rotations(layout, state, times)
+    if layout.pinhole:
+        pos = frame_positions(layout, state, times)
+        return np.einsum("fij,pj->fpi", rot, body_vectors(layout, state)) + pos[:, None, :]
     shift = frame_shifts(layout, state, times)
     q = body_vectors(layout, state)
     x = np.einsum("fij,pj->fpi", rot, q)
@@ -229,6 +289,7 @@ def with_frames(state: RigidState, keep: np.ndarray) -> RigidState:
         angles=pick(state.angles),
         rotations=pick(state.rotations),
         shifts=pick(state.shifts),
+        translations=pick(state.translations),
     )
 
 
@@ -240,6 +301,8 @@ def normalise(
     False takes the mirror image or not, whatever B's depth (to compare with another estimate)."""
     s = state.copy()
     q = body_vectors(layout, s)
+    if layout.pinhole:
+        mirror = False  # a pinhole tells near from far
     if q[1, 2] - q[0, 2] < 0 if mirror is None else mirror:  # the mirror z -> -z
         s.body = s.body * np.array([1.0, 1.0, -1.0])
         if s.directions is not None:

@@ -20,6 +20,7 @@ import numpy as np
 from curverecon.rigid.measurements import (
     RigidData,
     apply_step,
+    fixed_globals,
     fixed_locals,
     residuals,
     residuals_and_jacobians,
@@ -45,8 +46,11 @@ class RigidFit:
 
 
 def _blocks(layout: Layout, jg: np.ndarray, jl: np.ndarray, r: np.ndarray):
-    """U (G, G), W (N, G, L), V (N, L, L), b_g (G,), b_l (N, L)."""
+    """U (G, G), W (N, G, L), V (N, L, L), b_g (G,), b_l (N, L); a gauge-fixed global (zero
+    Jacobian column) gets a unit diagonal in U so that it never moves."""
     u = np.einsum("fmi,fmj->ij", jg, jg)
+    gf = np.flatnonzero(fixed_globals(layout))
+    u[gf, gf] = 1.0
     w = np.einsum("fmi,fmj->fij", jg, jl)
     v = np.einsum("fmi,fmj->fij", jl, jl)
     bg = np.einsum("fmi,fm->i", jg, r)
@@ -54,10 +58,18 @@ def _blocks(layout: Layout, jg: np.ndarray, jl: np.ndarray, r: np.ndarray):
     return u, w, v, bg, bl
 
 
+RIDGE = 1e-12
+"""Relative ridge on every frame's block: a frame parameter the data do not see (a two-point
+body's turn about its own chord under free motion) stays where it is; the globals' information
+is unchanged (their cross terms with it vanish)."""
+
+
 def _fix_gauge(v: np.ndarray, fixed: np.ndarray) -> np.ndarray:
     v = v.copy()
     f, k = np.nonzero(fixed)
     v[f, k, k] = 1.0
+    idx = np.arange(v.shape[1])
+    v[:, idx, idx] += RIDGE * np.max(np.abs(v[:, idx, idx]), axis=1, keepdims=True)
     return v
 
 
@@ -163,6 +175,8 @@ def information_inverse(
     if not is_regular(s):
         return None, None
     cov = np.linalg.inv(s)
+    gf = fixed_globals(layout)
+    cov[gf, :], cov[:, gf] = 0.0, 0.0
     # leverage of frame f: trace of its rows of the hat matrix J (J^T J)^-1 J^T
     eff = jg - np.einsum("fmk,fkl,fil->fmi", jl, vinv, w)
     lev_g = np.einsum("fmi,ij,fmj->f", eff, cov, eff)
@@ -173,7 +187,12 @@ def information_inverse(
 def is_regular(s: np.ndarray, rcond: float = 1e-10) -> bool:
     """True when the information matrix is invertible at a sensible condition (scaled by its
     diagonal, the smallest eigenvalue above ``rcond`` times the largest)."""
+    if not np.all(np.isfinite(s)):
+        return False
     d = np.sqrt(np.maximum(np.diag(s), 1e-300))
     scaled = s / np.outer(d, d)
-    ev = np.linalg.eigvalsh(scaled)
+    try:
+        ev = np.linalg.eigvalsh(scaled)
+    except np.linalg.LinAlgError:
+        return False
     return bool(np.all(np.isfinite(ev)) and ev[0] > rcond * max(ev[-1], 1e-300))

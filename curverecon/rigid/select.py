@@ -26,8 +26,14 @@ from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ReconstructOptions
 
 
-def candidates(n_points: int, tangents: bool) -> list[str]:
-    """The motion models ``auto`` fits for these points (see the module docstring)."""
+def candidates(n_points: int, tangents: bool, projection: str = "orthographic") -> list[str]:
+    """The motion models ``auto`` fits for these points (see the module docstring); under a
+    pinhole or a stereo pair also rotation-free, and only the models the points determine."""
+    if projection != "orthographic":
+        from curverecon.model.configuration import motion_determined
+
+        models = ["rotation-free", "uniform-rotation", "fixed-axis", "force-field", "free"]
+        return [m for m in models if motion_determined(m, n_points, tangents, projection) is None]
     out = ["uniform-rotation", "fixed-axis", "force-field"]
     if n_points >= 3 or tangents:
         out.append("free")
@@ -82,13 +88,14 @@ def reconstruct_auto(obs: RigidObservations, options: ReconstructOptions) -> Rec
     cfg = obs.configuration
     scores: dict = {}
     best = None
-    for motion in candidates(obs.n_points, cfg.tangents):
+    for motion in candidates(obs.n_points, cfg.tangents, cfg.projection):
         try:
-            if obs.n_frames < min_frames(motion, obs.n_points):
-                raise CurveReconError(f"needs at least {min_frames(motion, obs.n_points)} frames")
+            need = min_frames(motion, obs.n_points, cfg.projection, cfg.tangents)
+            if obs.n_frames < need:
+                raise CurveReconError(f"needs at least {need} frames")
             cand = obs.with_motion(motion)
             cand.require_reconstructable(options.point_sigma, options.tangent_sigma_deg)
-            if motion == "free" and obs.n_points == 2:
+            if motion == "free" and obs.n_points == 2 and cfg.projection == "orthographic":
                 score, make = _score_paper(cand, options)
             else:
                 score, make = _score_rigid(cand, motion, options)

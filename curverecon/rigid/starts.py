@@ -31,7 +31,7 @@ TRIM = 0.2
 """Fraction of frames left out of a start's score (outlier frames)."""
 
 
-def _trimmed(res2: np.ndarray, axis: int = -1) -> np.ndarray:
+def trimmed_sum(res2: np.ndarray, axis: int = -1) -> np.ndarray:
     """Sum of the smallest (1 - TRIM) of the squared residuals along ``axis``."""
     n = res2.shape[axis]
     keep = max(1, int(np.ceil((1.0 - TRIM) * n)))
@@ -77,7 +77,7 @@ def axis_starts(layout: Layout, data: RigidData, count: int = 4) -> list[RigidSt
     for k in range(vecs.shape[1]):
         h, kk, res = _axis_fit(axes, vecs[:, k])
         fits.append((h, kk))
-        score += _trimmed(res * res)
+        score += trimmed_sum(res * res)
     order = np.argsort(score)
     chosen: list[int] = []
     for i in order:
@@ -139,7 +139,7 @@ def _depth_score(v1, v2, z1, z2):
     prod = np.sqrt(np.maximum(a, 0) * np.maximum(b, 0))
     scale = np.sqrt(len1 + len2)[:, None]
     res = (prod - rhs) / scale + (np.minimum(a, 0) + np.minimum(b, 0)) / scale
-    return _trimmed(res * res)
+    return trimmed_sum(res * res)
 
 
 def free_starts(layout: Layout, data: RigidData, count: int = 3) -> list[RigidState]:

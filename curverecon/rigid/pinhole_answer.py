@@ -1,0 +1,142 @@
+"""A perspective or stereo row's fit as the toolkit's answer.
+
+Units (CONTRACT.md, "Configurations"): perspective lengths in units of A's depth in frame 0
+(A3 z = 1 there; the force field's fit, gauged by its parabola, is rescaled to it) or, when the
+document gives ``length_AB``, in its units (|AB| = length_AB); stereo lengths in the units of
+the rig's t.  ``frame_poses`` (N, 3, 4) are [R_f | T_f] with X_f = R_f X_0 + T_f (frame 0's
+camera coordinates to frame f's; camera 0's for stereo); ``points3`` are every point in every
+frame's camera coordinates with its depth.  With polylines the curve stage runs on the fitted
+poses: ``curve.pinhole.curve_on_pinhole_poses`` (perspective) or ``curve.stereo.stereo_curve3d``
+(stereo), where this build has them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from curverecon.model.configuration import RigidObservations
+from curverecon.model.reconstruction import Reconstruction
+from curverecon.options import ReconstructOptions
+from curverecon.rigid.answer import chord_std, motion_parameters, paper_answer
+from curverecon.rigid.measurements import RigidData
+from curverecon.rigid.model import (
+    Layout,
+    frame_angles,
+    frame_rotations,
+    normalise,
+    points3,
+    tangent_vectors,
+    with_frames,
+)
+from curverecon.rigid.refinement import RigidFit
+
+CURVE_MISSING = "curve stage under perspective not available"
+
+
+def answer_scale(obs: RigidObservations, p3: np.ndarray) -> float:
+    """The factor from the fit's lengths to the answer's units (module docstring)."""
+    cfg = obs.configuration
+    if cfg.projection != "perspective":
+        return 1.0
+    if cfg.length_ab is not None:
+        return float(cfg.length_ab) / float(np.linalg.norm(p3[0, 1] - p3[0, 0]))
+    return 1.0 / float(p3[0, 0, 2])
+
+
+def frame_poses(rot: np.ndarray, p3: np.ndarray) -> np.ndarray:
+    """(N, 3, 4) [R_f | T_f], T_f = A_f - R_f A_0 (X_f = R_f X_0 + T_f)."""
+    trans = p3[:, 0] - np.einsum("fij,j->fi", rot, p3[0, 0])
+    return np.concatenate([rot, trans[..., None]], axis=2)
+
+
+def curve_stage(obs: RigidObservations, poses: np.ndarray, p3: np.ndarray, idx, sigma: float):
+    """(curve3d (M, 3) or None, its std (M,) or None, warnings) on the inlier frames ``idx``."""
+    if obs.curves is None:
+        return None, None, []
+    cfg = obs.configuration
+    curves = [obs.curves[i] for i in idx]
+    try:
+        if cfg.projection == "stereo":
+            from curverecon.curve.stereo import stereo_curve3d
+
+            other = [obs.view1.curves[i] for i in idx]
+            curve, std = stereo_curve3d(cfg.rig, curves, other, poses[idx], sigma)
+            return curve, std, []
+        from curverecon.curve.pinhole import curve_on_pinhole_poses
+
+        return curve_on_pinhole_poses(cfg.camera, poses[idx], curves, p3[0], sigma)
+    except ImportError:
+        return None, None, [CURVE_MISSING]
+
+
+def _motion(layout: Layout, fit: RigidFit, data: RigidData, scale: float) -> dict:
+    """``motion_parameters`` in the answer's units (the force field's 3-D parabola scaled)."""
+    mp = motion_parameters(layout, fit, data)
+    if layout.centred:
+        g = np.asarray(fit.state.parabola, float) * scale
+        mp["position"], mp["velocity"], mp["acceleration"] = (v.tolist() for v in g)
+        if fit.covariance is not None:
+            g0 = 3 * layout.n_body + (4 if layout.tangents else 0) + 6
+            sd = np.sqrt(np.maximum(np.diag(fit.covariance)[g0 : g0 + 3], 0.0)) * scale
+            mp.setdefault("std", {})["acceleration"] = sd.tolist()
+    return mp
+
+
+def pinhole_answer(
+    obs: RigidObservations,
+    layout: Layout,
+    fit: RigidFit,
+    inliers: np.ndarray,
+    data: RigidData,
+    options: ReconstructOptions,
+) -> Reconstruction:
+    """The Reconstruction of a fitted pinhole row (every frame; outlier frames with their last
+    parameters)."""
+    idx = np.flatnonzero(inliers)
+    full = normalise(layout, fit.full_state or fit.state, data.times)
+    state = with_frames(full, idx)
+    p3 = points3(layout, full, data.times)
+    scale = answer_scale(obs, p3)
+    p3 = p3 * scale
+    rot = frame_rotations(layout, full, data.times)[0]
+    poses = frame_poses(rot, p3)
+    warnings = list(obs.warnings)
+    if layout.projection == "stereo" and len(layout.points) == 2 and layout.free_rotations:
+        warnings.append(
+            "A and B alone: each frame's turn about the chord AB is not determined (the frame "
+            "poses keep one; the points are determined)"
+        )
+    curve3d, curve_std, more = curve_stage(obs, poses, p3, idx, options.point_sigma)
+    warnings += more
+    tangents3 = tangent_vectors(state)
+    shape, paper_poses = paper_answer(layout, full, data.times, tangents3)
+    shape[0] *= scale
+    paper_poses[:, 3:5] *= scale
+    std = np.array([chord_std(layout, state, fit.covariance) * scale, np.nan, np.nan, np.nan])
+    mp = _motion(layout, replace(fit, state=state), data.subset(idx), scale)
+    if "angle_deg" in mp:
+        mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()
+    frame_chi2 = np.full(data.n_frames, np.nan)
+    frame_chi2[idx] = fit.frame_chi2
+    cfg = obs.configuration.to_json_dict()
+    cfg["motion"] = layout.motion
+    names = layout.points
+    return Reconstruction(
+        shape=shape,
+        poses=paper_poses,
+        std=std,
+        inliers=inliers,
+        warnings=warnings,
+        method="auto",
+        chi2=float(fit.chi2),
+        frame_chi2=frame_chi2,
+        estimator="ml",
+        curve3d=curve3d,
+        curve3d_std=curve_std,
+        points3=[{n: p3[f, k].tolist() for k, n in enumerate(names)} for f in range(len(p3))],
+        configuration=cfg,
+        motion_parameters=mp,
+        frame_poses=poses,
+    )
