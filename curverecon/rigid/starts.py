@@ -192,7 +192,8 @@ def free_state(layout: Layout, data: RigidData, vecs: np.ndarray, z0: np.ndarray
 
 def reset_rotations(layout: Layout, state: RigidState, data: RigidData) -> RigidState:
     """The state with every frame's free rotation (but frame 0's) aligned again from its images
-    (:func:`align_rotations`, on the depth branch the tangents prefer where given): a frame left
+    (:func:`align_rotations`, on the depth branch the further points or else the tangents
+    prefer where given): a frame left
     on a poor local minimum of its own parameters starts again from the closed form."""
     if not layout.free_rotations:
         return state
@@ -204,7 +205,10 @@ def reset_rotations(layout: Layout, state: RigidState, data: RigidData) -> Rigid
     if not layout.centred:
         q, img = q[1:], img[:, 1:]
     rots, other = align_rotations(q[:2], img[:, :2])
-    if layout.tangents and state.directions is not None:
+    if len(q) > 2:  # a body off one plane: the further points choose each frame's branch
+        worse = _extra_misfit(other, q[2:], img[:, 2:]) < _extra_misfit(rots, q[2:], img[:, 2:])
+        rots = np.where(worse[:, None, None], other, rots)
+    elif layout.tangents and state.directions is not None:
         rots = _better_tangents(data, rots, other)
     out = state.copy()
     out.rotations[1:] = rots[1:]
