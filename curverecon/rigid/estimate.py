@@ -166,10 +166,14 @@ def readmit(
     layout: Layout, data: RigidData, fit: RigidFit, inliers: np.ndarray, o: OutlierOptions
 ) -> tuple[np.ndarray, RigidFit]:
     """(inliers, fit): every frame refitted from the inliers' answer (the flagged frames'
-    rotations aligned again, ``rigid.starts.reset_rotations``); when no frame of that fit fails
-    the outlier test, it replaces the answer with every frame an inlier.  Free rotations: a
-    search that settled on a wrong minimum misfits a few good frames by far, the test drops
-    them and the fit on the rest stays on that minimum; refitted with them it leaves it."""
+    rotations aligned again, ``rigid.starts.reset_rotations``); that fit replaces the answer,
+    every frame an inlier, when no frame fails the outlier test at the stated noise and its
+    robust cost sum_f min(chi2_f, T) is below the answer's (flagged frames at T).  Free
+    rotations: a search that settled on a wrong minimum misfits a few good frames by far, the
+    test drops them and the fit on the rest stays on that minimum; refitted with them it
+    leaves it.  Real outlier frames pull such a refit, so it costs more and they stay out."""
+    from curverecon.rigid.measurements import residuals
+
     state = fit.full_state or fit.state
     best = None
     for start in (state, reset_rotations(layout, state, data)):
@@ -182,11 +186,13 @@ def readmit(
     if best is None:
         return inliers, fit
     dof = frame_dof(layout)
-    expected = np.maximum(layout.n_measurements - best.leverage, 0.05 * dof)
-    st = best.frame_chi2 * dof / expected
     thr = float(chi2_dist.isf(o.false_alarm, dof))
-    thr *= max(1.0, float(np.median(st)) / float(chi2_dist.median(dof)))
-    if np.max(st) > thr:
+    r = residuals(layout, state, data)
+    old = np.where(inliers, np.sum(r * r, axis=1), thr)
+    if np.sum(np.minimum(best.frame_chi2, thr)) >= np.sum(np.minimum(old, thr)):
+        return inliers, fit
+    expected = np.maximum(layout.n_measurements - best.leverage, 0.05 * dof)
+    if np.max(best.frame_chi2 * dof / expected) > thr:
         return inliers, fit
     best.full_state = best.state
     return np.ones(data.n_frames, bool), best
