@@ -17,8 +17,8 @@ refined at once:
   parabola (the equation is linear in aa, bb, ab and aa bb - ab^2).
 
 :func:`search` returns the distinct minima, best first; ``rigid.starts`` turns them into states
-(depths from the invariants, rotations aligned).  On noise-free scenes of 14 frames the best
-minimum is the truth in 29 of 30 (docs/accuracy.md); the maximum likelihood then runs from it.
+(depths from the invariants, rotations aligned).  The bench's 30 noise-free scenes of 14
+frames (seed 2026) all come out within 1e-14 of the chord (docs/accuracy.md).
 """
 
 from __future__ import annotations
