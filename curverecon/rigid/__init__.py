@@ -8,8 +8,9 @@ its frames (orthographic, perspective, stereo).
 - ``measurements.py``: standardised residuals and Jacobians from ``generated/rigid_model.py``;
 - ``refinement.py``: maximum likelihood (Levenberg-Marquardt, Schur complement), covariance,
   Fisher information (Cramer-Rao bound);
-- ``starts.py``: start states from every frame (robust scores); ``geometry.py``: a state from
-  3-D points and rotations (a minimal solver's or a simulator's);
+- ``starts.py``: start states from every frame (robust scores); ``parabola.py``: the force
+  field's global search (the mass centre's parabola and the body's invariants);
+  ``geometry.py``: a state from 3-D points and rotations (a minimal solver's or a simulator's);
 - ``estimate.py``: one row's fit, outlier frames, degenerate fits refused;
 - ``select.py``: ``--motion auto`` (BIC with a robust chi2);
 - ``answer.py``: the answer in the toolkit's conventions; ``curve.py``: section 4 on the row's

@@ -198,6 +198,42 @@ def outlier_frames(
     return best
 
 
+def readmit(
+    layout: Layout, data: RigidData, fit: RigidFit, inliers: np.ndarray, o: OutlierOptions
+) -> tuple[np.ndarray, RigidFit]:
+    """(inliers, fit): every frame refitted from the inliers' answer (the flagged frames'
+    rotations aligned again, ``rigid.starts.reset_rotations``); that fit replaces the answer,
+    every frame an inlier, when no frame fails the outlier test at the stated noise and its
+    robust cost sum_f min(chi2_f, T) is below the answer's (flagged frames at T).  Free
+    rotations: a search that settled on a wrong minimum misfits a few good frames by far, the
+    test drops them and the fit on the rest stays on that minimum; refitted with them it
+    leaves it.  Real outlier frames pull such a refit, so it costs more and they stay out."""
+    from curverecon.rigid.measurements import residuals
+
+    state = fit.full_state or fit.state
+    best = None
+    for start in (state, reset_rotations(layout, state, data)):
+        try:
+            cur = refine(layout, start, data, max_iter=200)
+        except (np.linalg.LinAlgError, FloatingPointError, ValueError):
+            continue
+        if cur.leverage is not None and (best is None or cur.chi2 < best.chi2):
+            best = cur
+    if best is None:
+        return inliers, fit
+    dof = frame_dof(layout)
+    thr = float(chi2_dist.isf(o.false_alarm, dof))
+    r = residuals(layout, state, data)
+    old = np.where(inliers, np.sum(r * r, axis=1), thr)
+    if np.sum(np.minimum(best.frame_chi2, thr)) >= np.sum(np.minimum(old, thr)):
+        return inliers, fit
+    expected = np.maximum(layout.n_measurements - best.leverage, 0.05 * dof)
+    if np.max(best.frame_chi2 * dof / expected) > thr:
+        return inliers, fit
+    best.full_state = best.state
+    return np.ones(data.n_frames, bool), best
+
+
 def _expand(layout, sub_state, idx, full_state):
     """The full-length state with the subset's values (the dropped frame keeps its old ones)."""
     s = full_state.copy()
@@ -249,6 +285,8 @@ def fit_row(
     threshold = float(chi2_dist.isf(o.false_alarm, frame_dof(layout)))
     fit, consensus = best_fit(layout, data, threshold)
     inliers, fit = outlier_frames(layout, data, fit, min_frames, o, consensus)
+    if layout.free_rotations and not np.all(inliers):
+        inliers, fit = readmit(layout, data, fit, inliers, o)
     sub = data.subset(np.flatnonzero(inliers))
     check_degenerate(layout, fit, sub)
     return fit, inliers

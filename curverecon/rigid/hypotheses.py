@@ -52,6 +52,8 @@ def solver_for(layout: Layout):
         module = importlib.import_module(name)
     except ImportError:
         return None
+    if not getattr(module, "PRACTICAL", True):  # the force field: its starts alone
+        return None
     return module if tuple(getattr(module, "POINTS", ())) == layout.points[:3] else None
 
 

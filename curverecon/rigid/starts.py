@@ -13,10 +13,9 @@
   z_kf^2 = |V_k|^2 - |v_kf|^2.  A grid over (z_1 >= 0, z_2) scored by the trimmed residuals
   gives the body; each frame's rotation follows by aligning the body's triad (Kabsch), on the
   depth sign (Necker reversal) whose tangents fit better where tangents are given.
-* Force field: the mass centre's image from a parabola through the points' mean image (the
-  fifth of the frames farthest from it left out, three times), the
-  mass centre at the body's mean point and each frame's rotation aligning the body with the
-  images (depths from the lengths); the grid over B's depth gives the starts.
+* Force field: the distinct minima of the parabola search (``rigid.parabola``: the mass
+  centre's image and the body's invariants from every frame's equation); frame 0's depths from
+  the invariants, each frame's rotation aligning the body with the images.
 """
 
 from __future__ import annotations
@@ -193,7 +192,8 @@ def free_state(layout: Layout, data: RigidData, vecs: np.ndarray, z0: np.ndarray
 
 def reset_rotations(layout: Layout, state: RigidState, data: RigidData) -> RigidState:
     """The state with every frame's free rotation (but frame 0's) aligned again from its images
-    (:func:`align_rotations`, on the depth branch the tangents prefer where given): a frame left
+    (:func:`align_rotations`, on the depth branch the further points or else the tangents
+    prefer where given): a frame left
     on a poor local minimum of its own parameters starts again from the closed form."""
     if not layout.free_rotations:
         return state
@@ -205,7 +205,10 @@ def reset_rotations(layout: Layout, state: RigidState, data: RigidData) -> Rigid
     if not layout.centred:
         q, img = q[1:], img[:, 1:]
     rots, other = align_rotations(q[:2], img[:, :2])
-    if layout.tangents and state.directions is not None:
+    if len(q) > 2:  # a body off one plane: the further points choose each frame's branch
+        worse = _extra_misfit(other, q[2:], img[:, 2:]) < _extra_misfit(rots, q[2:], img[:, 2:])
+        rots = np.where(worse[:, None, None], other, rots)
+    elif layout.tangents and state.directions is not None:
         rots = _better_tangents(data, rots, other)
     out = state.copy()
     out.rotations[1:] = rots[1:]
@@ -228,38 +231,61 @@ def _better_tangents(data: RigidData, rots: np.ndarray, other: np.ndarray) -> np
     return out
 
 
-def force_field_starts(layout: Layout, data: RigidData, count: int = 4) -> list[RigidState]:
-    """Starts of the force-field row (see the module docstring)."""
+def force_field_starts(layout: Layout, data: RigidData, count: int = 3) -> list[RigidState]:
+    """Starts of the force-field row: the distinct minima of the parabola search
+    (``rigid.parabola``) as states (see the module docstring)."""
+    from curverecon.rigid.parabola import search
+
+    return [
+        force_field_state(layout, data, par, inv)
+        for par, inv, _ in search(data.points[:, :2], data.times, TRIM, count)
+    ]
+
+
+def force_field_state(
+    layout: Layout, data: RigidData, parabola: np.ndarray, inv: np.ndarray
+) -> RigidState:
+    """The force field's state from the mass centre's parabola (3, 2) and the invariants
+    (|a|^2, |b|^2, a.b) of a = A - G, b = B - G: frame 0's depths from them, every frame's
+    rotation aligned (:func:`align_rotations`); further points by linear least squares over
+    the frames, each frame on the depth branch they fit better."""
     t = data.times
-    design = np.column_stack([np.ones_like(t), t, 0.5 * t * t])
-    mean_img = data.points.mean(axis=1)
-    keep = np.ones(len(t), bool)
-    for _ in range(3):  # trimmed: the frames farthest from the parabola left out
-        parabola = np.linalg.lstsq(design[keep], mean_img[keep], rcond=None)[0]
-        dist = np.linalg.norm(design @ parabola - mean_img, axis=1)
-        keep = dist <= np.quantile(dist, 1.0 - TRIM)
-    vecs = data.points[:, 1:] - data.points[:, :1]
-    r = 2.0 * float(np.max(np.linalg.norm(vecs, axis=-1)))
-    out = []
-    for z in np.linspace(-r, r, count + 1)[1:] if count > 1 else [0.5 * r]:
-        body = np.column_stack([data.points[0], np.zeros(len(data.points[0]))])
-        body[1:, 2] = z * np.linspace(1, 1, len(body) - 1)
-        body -= body.mean(axis=0)
-        img = data.points - (design @ parabola)[:, None]
-        lengths2 = np.sum(body * body, axis=1)
-        zf = np.sqrt(np.maximum(lengths2[None] - np.sum(img * img, axis=2), 0.0))
-        zf *= np.sign(body[:, 2] + 1e-9)[None]
-        dst = np.concatenate([img, zf[..., None]], axis=2)
-        src = np.vstack([body, np.cross(body[0], body[1])])
-        dst = np.concatenate([dst, np.cross(dst[:, 0], dst[:, 1])[:, None]], axis=1)
-        rots = kabsch(src, dst)
-        rots = np.einsum("fij,kj->fik", rots, rots[0])
-        state = RigidState(body=np.einsum("ij,kj->ki", rots[0], body), rotations=rots)
-        state.parabola = parabola.copy()
-        if layout.tangents:
-            state.directions = tangent_directions(data, rots)
-        out.append(state)
-    return out
+    centre = np.column_stack([np.ones_like(t), t, 0.5 * t * t]) @ parabola
+    img = data.points - centre[:, None]
+    p0, q0 = img[0, 0], img[0, 1]
+    za = np.sqrt(max(inv[0] - p0 @ p0, 0.0))
+    zb = np.sqrt(max(inv[1] - q0 @ q0, 0.0)) * (1.0 if inv[2] - p0 @ q0 >= 0 else -1.0)
+    ab = np.array([[*p0, za], [*q0, zb]])
+    rots, other = align_rotations(ab, img[:, :2])
+    extra = np.zeros((0, 3))
+    for _ in range(3 if img.shape[1] > 2 else 0):
+        extra = _extra_points(rots, img[:, 2:])
+        worse = _extra_misfit(other, extra, img[:, 2:]) < _extra_misfit(rots, extra, img[:, 2:])
+        rots, other = (
+            np.where(worse[:, None, None], other, rots),
+            np.where(worse[:, None, None], rots, other),
+        )
+    if img.shape[1] > 2:
+        extra = _extra_points(rots, img[:, 2:])
+    if layout.tangents:
+        rots = _better_tangents(data, rots, other)
+    body = np.vstack([ab, extra])
+    rots = np.einsum("fij,kj->fik", rots, rots[0])
+    state = RigidState(body=np.einsum("ij,kj->ki", rots[0], body), rotations=rots)
+    state.parabola = np.array(parabola, float)
+    if layout.tangents:
+        state.directions = tangent_directions(data, rots)
+    return state
+
+
+def _extra_points(rots: np.ndarray, img: np.ndarray) -> np.ndarray:
+    """(K, 3) body vectors X with [R_f X]_xy = img_fk by least squares over the frames."""
+    a = rots[:, :2].reshape(-1, 3)
+    return np.linalg.lstsq(a, img.transpose(0, 2, 1).reshape(-1, img.shape[1]), rcond=None)[0].T
+
+
+def _extra_misfit(rots: np.ndarray, extra: np.ndarray, img: np.ndarray) -> np.ndarray:
+    return np.sum((np.einsum("fij,kj->fki", rots[:, :2], extra) - img) ** 2, axis=(1, 2))
 
 
 def starts(layout: Layout, data: RigidData) -> list[RigidState]:

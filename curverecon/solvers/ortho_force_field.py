@@ -8,9 +8,10 @@ so nine frames: the Jacobian of nine frames' equations at the truth has rank 9 (
 solution; eight frames: rank 8, a curve of solutions), which makes the seed's "n" a 9.  Nine
 quartics in nine unknowns have up to 4^9 = 262,144 solutions (Bezout); msolve does not finish
 them within ``make derive``'s budget, and a homotopy over that many paths would take minutes per
-solve, so there is no practical minimal solver: estimation starts from another seed (the rigid
-stage's own).  :func:`residuals` evaluates the generated equation and its gradient
-(``generated/section2_minimal.py``, ``force_field_residual``) for that stage.
+solve, so there is no practical minimal solver: estimation starts from a global search over
+all frames instead (``rigid/parabola.py``: the equation as a Sampson distance, a batch of starts
+of the parabola refined at once).  :func:`residuals` evaluates the generated equation and its
+gradient (``generated/section2_minimal.py``, ``force_field_residual``) for that search.
 """
 
 from __future__ import annotations
