@@ -140,6 +140,17 @@ def parameter_vector(layout, state, times, mirror: bool | None = None) -> np.nda
     return np.concatenate(parts)
 
 
+def axis_reversed(layout, v: np.ndarray) -> np.ndarray:
+    """A fixed-axis parameter vector with the axis reversed, n -> -n (kappa -> pi - kappa,
+    lam -> lam + pi), the angles negated (not in the vector): the same rotations.  The
+    normalisation's sign (a non-negative angle sum) flips with noise when the angles sum to
+    about zero (a tilt series about its middle), and that flip is no error."""
+    out = np.array(v, float)
+    k = layout.global_names().index("axis_kappa")
+    out[k], out[k + 1] = np.pi - out[k], out[k + 1] + np.pi
+    return out
+
+
 def _wrap_diff(layout, d: np.ndarray) -> np.ndarray:
     """Angle parameters' differences wrapped to (-pi, pi]."""
     names = layout.global_names()
@@ -167,8 +178,10 @@ def accuracy_scenes(seed: int, row: int, indices: range) -> list[dict]:
         truth = _truth_state(sc, layout, data)
         crlb = np.sqrt(np.diag(np.linalg.inv(fisher_information(layout, truth, data))))
         # the truth in both mirror images: where B lies near A's depth the estimate's mirror
-        # choice may differ from the truth's, and the mirror is no error
+        # choice may differ from the truth's, and the mirror is no error; a fixed axis also
+        # with the opposite axis sign (Rot(n, a) = Rot(-n, -a): the same motion)
         tvs = [parameter_vector(layout, truth, sc.times, m) for m in (False, True)]
+        tvs += [axis_reversed(layout, t) for t in tvs if layout.motion == "fixed-axis"]
 
         def closest(v, tvs=tvs, crlb=crlb, layout=layout):
             ds = [_wrap_diff(layout, v - t) for t in tvs]
