@@ -190,6 +190,8 @@ def accuracy_scenes(seed: int, row: int, indices: range) -> list[dict]:
         oracle = refine(layout, truth, data, covariance=False, max_iter=200)
         z_oracle = closest(parameter_vector(layout, oracle.state, sc.times)) / crlb
         rec = {"index": i}
+        if sc.axis is not None:  # the axis's angle out of the image plane (degrees)
+            rec["axis_tilt_deg"] = float(np.degrees(np.arcsin(min(abs(sc.axis[2]), 1.0))))
         try:
             lay, fit, inl = fit_motion(observations(sc, motion), motion, _options())
             est = fit.full_state or fit.state
