@@ -134,7 +134,11 @@ def axis_polish(
     consensus frames to convergence and every frame's own parameters fitted to them, kept if
     the robust cost falls.  The consensus fit's body comes from the frames below the threshold
     at the start's own parameters; when the consensus then takes every frame it stops there,
-    and a basin left 7 above its minimum in chi2 lost to a wrong one (bench seed 2026)."""
+    and a basin left 7 above its minimum in chi2 lost to a wrong one (bench seed 2026).  An
+    axis the answer would refuse (within ``MIN_AXIS_TILT_DEG`` of the viewing direction) costs
+    every frame's threshold more: a circle about the line of sight that takes in an outlier
+    frame no longer beats the scene's own axis (it is still the answer, and refused, when no
+    other fits)."""
     got = consensus_fit(layout, data, state, threshold)
     if got is None:
         return None
@@ -148,11 +152,18 @@ def axis_polish(
     if full is None:
         return got
     new_cost = float(np.sum(np.minimum(full.frame_chi2, threshold)))
-    if new_cost >= cost:
-        return got
-    new = full.frame_chi2 <= threshold
-    new[0] = True
-    return full, new, new_cost
+    if new_cost < cost:
+        new = full.frame_chi2 <= threshold
+        new[0] = True
+        fit, cons, cost = full, new, new_cost
+    if _axis_tilt_deg(fit.state) < MIN_AXIS_TILT_DEG:  # refused if chosen: last in line
+        cost += data.n_frames * threshold
+    return fit, cons, cost
+
+
+def _axis_tilt_deg(state) -> float:
+    """The axis's angle from the viewing direction (degrees)."""
+    return float(np.degrees(np.arccos(min(abs(float(axis_vector(state.axis)[2])), 1.0))))
 
 
 def axis_initial(layout: Layout, data: RigidData, est, initial: list) -> list:
@@ -246,8 +257,7 @@ def _expand(layout, sub_state, idx, full_state):
 def check_degenerate(layout: Layout, fit: RigidFit, data: RigidData) -> None:
     """Refuse (CurveReconError, one line) a fitted motion that does not determine the body."""
     if fit.state.axis is not None:
-        n = axis_vector(fit.state.axis)
-        tilt = np.degrees(np.arccos(min(abs(float(n[2])), 1.0)))
+        tilt = _axis_tilt_deg(fit.state)
         if tilt < MIN_AXIS_TILT_DEG:
             raise CurveReconError(
                 f"motion {layout.motion}: the fitted axis is {tilt:.2f} degrees from the viewing "
