@@ -110,13 +110,15 @@ def best_fit(layout: Layout, data: RigidData, threshold: float) -> tuple[RigidFi
     if solver is not None and data.n_frames >= solver.FRAMES:
         polish = axis_polish if layout.motion in AXIS_MOTIONS else consensus_fit
         est = FrameSampleEstimator(layout, data, solver, threshold, polish)
-        if layout.motion in AXIS_MOTIONS:
-            initial = axis_initial(layout, data, est, initial)
+        polished = axis_initial(layout, data, est, initial) if polish is axis_polish else []
         model, _ = lo_ransac(est, RANSAC, initial_models=initial)
         if model is not None and model.fit is None:
             model = est.refine_model(model)
         if model is not None and model.fit is not None:
             best = (model.fit, model.consensus, model.cost)
+        for h in polished:  # beside the loop, which ranks its models unpolished
+            if h.fit is not None and (best is None or h.cost < best[2]):
+                best = (h.fit, h.consensus, h.cost)
     else:
         for h in initial:
             got = consensus_fit(layout, data, h.state, threshold)
@@ -167,11 +169,13 @@ def _axis_tilt_deg(state) -> float:
 
 
 def axis_initial(layout: Layout, data: RigidData, est, initial: list) -> list:
-    """The axis rows' initial models, each polished before the loop scores it: the
-    all-frame starts and the global search over the axis and B's depth
-    (``rigid.axis_search``).  Unpolished, a start from a grid cell scores worse than a
-    minimal sample's exact fit of four frames in a wrong basin, and only the best-scoring
-    model is polished."""
+    """The axis rows' starts polished, compared with the loop's answer by their robust costs:
+    the all-frame starts and the global search over the axis and B's depth
+    (``rigid.axis_search``).  The loop polishes a model only when its unpolished cost beats
+    the best so far: a start from a grid cell scores worse unpolished than a minimal sample's
+    exact fit of four frames in a wrong basin.  Given to the loop polished, they left no
+    sample's unpolished cost below theirs, and a sample the loop had polished into the
+    scene's basin was never polished (uniform rotation, bench seed 2026)."""
     from curverecon.rigid.axis_search import ellipse_starts
     from curverecon.rigid.hypotheses import Hypothesis
 
