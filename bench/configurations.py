@@ -16,7 +16,8 @@ Rows (key names): ``ortho_uniform_rotation`` (A, B), ``ortho_fixed_axis`` (A, B)
   answer's standard deviations;
 - ``success_rate_20pct_outliers``: a fifth of the frames with random points (``OUTLIER_SCENES``);
   success as for the paper's row, by the answer's accuracy: c within 5 % of the truth (a frame of
-  random points that happens to fit within the noise is no error); beside it
+  random points that happens to fit within the noise is no error); ``_oracle`` the same for
+  maximum likelihood on the good frames alone started at the truth; beside it
   ``outlier_frames_flagged_rate`` (outlier frames flagged) and ``good_frames_flagged_rate``;
 - ``curve_within_1pct_rate``: with 0.5 px polylines (and points), 20 frames: curve3d's
   symmetric mean distance from the true curve within 1 % of its length (the curve bench's
@@ -25,8 +26,11 @@ Rows (key names): ``ortho_uniform_rotation`` (A, B), ``ortho_fixed_axis`` (A, B)
   (20 frames, 1 px): the chosen model is the scene's.
 
 The minimal solvers' keys come from ``bench.config_minimal.run(seed, scenes)`` where it exists.
-``python -m bench.configurations [--seed N] [--quick]`` prints the keys as JSON (a held-out
-seed), without touching the report.
+``python -m bench.configurations [--seed N] [--quick] [--kinds K ...] [--rows R ...]
+[--noise PX]`` prints the keys as JSON (a held-out seed, a part of the section, the accuracy
+scenes at another noise), without touching the report.  The axis rows add
+``rmse_over_crlb_tilt5`` (with ``_oracle``: scenes whose axis is at least 5 degrees out of the
+image plane) and ``chi2_at_oracle_rate`` (the estimate fits no worse than the oracle).
 """
 
 from __future__ import annotations
@@ -140,6 +144,17 @@ def parameter_vector(layout, state, times, mirror: bool | None = None) -> np.nda
     return np.concatenate(parts)
 
 
+def axis_reversed(layout, v: np.ndarray) -> np.ndarray:
+    """A fixed-axis parameter vector with the axis reversed, n -> -n (kappa -> pi - kappa,
+    lam -> lam + pi), the angles negated (not in the vector): the same rotations.  The
+    normalisation's sign (a non-negative angle sum) flips with noise when the angles sum to
+    about zero (a tilt series about its middle), and that flip is no error."""
+    out = np.array(v, float)
+    k = layout.global_names().index("axis_kappa")
+    out[k], out[k + 1] = np.pi - out[k], out[k + 1] + np.pi
+    return out
+
+
 def _wrap_diff(layout, d: np.ndarray) -> np.ndarray:
     """Angle parameters' differences wrapped to (-pi, pi]."""
     names = layout.global_names()
@@ -150,8 +165,9 @@ def _wrap_diff(layout, d: np.ndarray) -> np.ndarray:
     return out
 
 
-def accuracy_scenes(seed: int, row: int, indices: range) -> list[dict]:
-    """Per scene: errors / CRLB of the answer and of the oracle, and the 3-sigma coverage."""
+def accuracy_scenes(seed: int, row: int, indices: range, noise: float = 1.0) -> list[dict]:
+    """Per scene: errors / CRLB of the answer and of the oracle, the 3-sigma coverage, both
+    fits' chi2 over every frame; ``noise`` the points' noise (pixels)."""
     from curverecon.rigid import fit_motion, reconstruct_rigid, rigid_data  # noqa: F401
     from curverecon.rigid.measurements import RigidData
     from curverecon.rigid.model import Layout
@@ -161,14 +177,16 @@ def accuracy_scenes(seed: int, row: int, indices: range) -> list[dict]:
     frames = 30 if motion == "force-field" else 20
     out = []
     for i in indices:
-        sc = make_rigid_scene(motion, names, frames, scene_seed(seed, "accuracy", row, i))
+        sc = make_rigid_scene(motion, names, frames, scene_seed(seed, "accuracy", row, i), noise)
         layout = Layout(motion, tuple(names), False)
-        data = RigidData(sc.times, sc.points, None, 1.0, 1.0)
+        data = RigidData(sc.times, sc.points, None, noise, 1.0)
         truth = _truth_state(sc, layout, data)
         crlb = np.sqrt(np.diag(np.linalg.inv(fisher_information(layout, truth, data))))
         # the truth in both mirror images: where B lies near A's depth the estimate's mirror
-        # choice may differ from the truth's, and the mirror is no error
+        # choice may differ from the truth's, and the mirror is no error; a fixed axis also
+        # with the opposite axis sign (Rot(n, a) = Rot(-n, -a): the same motion)
         tvs = [parameter_vector(layout, truth, sc.times, m) for m in (False, True)]
+        tvs += [axis_reversed(layout, t) for t in tvs if layout.motion == "fixed-axis"]
 
         def closest(v, tvs=tvs, crlb=crlb, layout=layout):
             ds = [_wrap_diff(layout, v - t) for t in tvs]
@@ -177,9 +195,13 @@ def accuracy_scenes(seed: int, row: int, indices: range) -> list[dict]:
         oracle = refine(layout, truth, data, covariance=False, max_iter=200)
         z_oracle = closest(parameter_vector(layout, oracle.state, sc.times)) / crlb
         rec = {"index": i}
+        if sc.axis is not None:  # the axis's angle out of the image plane (degrees)
+            rec["axis_tilt_deg"] = float(np.degrees(np.arcsin(min(abs(sc.axis[2]), 1.0))))
         try:
-            lay, fit, inl = fit_motion(observations(sc, motion), motion, _options())
+            lay, fit, inl = fit_motion(observations(sc, motion), motion, _options(noise))
             est = fit.full_state or fit.state
+            rec["chi2"] = refine(layout, est, data, covariance=False, max_iter=0).chi2
+            rec["chi2_oracle"] = oracle.chi2
             d = closest(parameter_vector(layout, est, sc.times))
             rec["z"] = (d / crlb).tolist()
             sd = (
@@ -231,6 +253,7 @@ def outlier_scenes(seed: int, row: int, indices: range) -> list[dict]:
         )
         c = float(np.linalg.norm(sc.points3[0, 1] - sc.points3[0, 0]))
         rec_out = {"index": i, "success": False, "flagged": 0.0, "good_flagged": 0.0}
+        rec_out["oracle_success"] = _outlier_oracle(sc, motion, names, c)
         try:
             rec = reconstruct_rigid(observations(sc, motion))
             flagged = ~np.asarray(rec.inliers)
@@ -241,6 +264,22 @@ def outlier_scenes(seed: int, row: int, indices: range) -> list[dict]:
             pass
         out.append(rec_out)
     return out
+
+
+def _outlier_oracle(sc: RigidScene, motion: str, names: str, c: float) -> bool:
+    """Maximum likelihood on the good frames alone (the outlier frames known), started at the
+    truth: c within 5 % of the truth (what the outliers' success asks of the estimate)."""
+    from curverecon.rigid.measurements import RigidData
+    from curverecon.rigid.model import Layout, body_vectors, with_frames
+    from curverecon.rigid.refinement import refine
+
+    layout = Layout(motion, tuple(names), False)
+    good = np.flatnonzero(~sc.outliers)
+    data = RigidData(sc.times, sc.points, None, 1.0, 1.0)
+    truth = with_frames(_truth_state(sc, layout, data), good)
+    fit = refine(layout, truth, data.subset(good), covariance=False, max_iter=200)
+    q = body_vectors(layout, fit.state)
+    return bool(abs(float(np.linalg.norm(q[1] - q[0])) - c) <= 0.05 * c)
 
 
 def curve_error(scene: RigidScene, curve3d: np.ndarray) -> float:
@@ -284,12 +323,41 @@ def auto_scenes(seed: int, row: int, indices: range) -> list[dict]:
     return out
 
 
+TILT_DEG = 5.0
+"""Scenes whose axis lies at least this far out of the image plane: nearer, B's depth is
+barely determined (the image ellipse's minor axis about 5 px at a chord of 100 px) and the
+likelihood has distant minima that fit better than the truth's."""
+
+
+def _axis_keys(key: str, ok: list[dict]) -> dict:
+    """The axis rows' diagnostic keys: ``rmse_over_crlb_tilt5`` (and its ``_oracle``) over the
+    scenes whose axis is at least ``TILT_DEG`` out of the image plane; ``chi2_at_oracle_rate``
+    the fraction of scenes whose estimate fits every frame no worse than the oracle (chi2 at
+    most 0.5 above it: the search found the likelihood's best basin known)."""
+    if "axis_tilt_deg" not in ok[0]:
+        return {}
+    tilted = [r for r in ok if r["axis_tilt_deg"] >= TILT_DEG]
+    z = np.array([r["z"] for r in tilted])
+    zo = np.array([r["z_oracle"] for r in tilted])
+    return {
+        f"config_{key}_rmse_over_crlb_tilt5": round(float(np.sqrt(np.mean(z**2, 0)).max()), 3),
+        f"config_{key}_rmse_over_crlb_tilt5_oracle": round(
+            float(np.sqrt(np.mean(zo**2, 0)).max()), 3
+        ),
+        f"config_{key}_tilt5_scenes": len(tilted),
+        f"config_{key}_chi2_at_oracle_rate": round(
+            float(np.mean([r["chi2"] <= r["chi2_oracle"] + 0.5 for r in ok])), 3
+        ),
+    }
+
+
 def _summarise(groups: dict[str, list[dict]]) -> dict:
     out: dict = {}
     for row, key in enumerate(ROWS):
         acc = groups.get(f"accuracy|{row}", [])
         ok = [r for r in acc if "z" in r]
         if ok:
+            out.update(_axis_keys(key, ok))
             z = np.array([r["z"] for r in ok])
             out[f"config_{key}_rmse_over_crlb"] = round(float(np.sqrt(np.mean(z**2, 0)).max()), 3)
             out[f"config_{key}_rmse_over_crlb_median_param"] = round(
@@ -314,6 +382,9 @@ def _summarise(groups: dict[str, list[dict]]) -> dict:
             out[f"config_{key}_success_rate_20pct_outliers"] = round(
                 float(np.mean([r["success"] for r in ol])), 3
             )
+            out[f"config_{key}_success_rate_20pct_outliers_oracle"] = round(
+                float(np.mean([r["oracle_success"] for r in ol])), 3
+            )
             out[f"config_{key}_outlier_frames_flagged_rate"] = round(
                 float(np.mean([r["flagged"] for r in ol])), 3
             )
@@ -334,8 +405,18 @@ def _summarise(groups: dict[str, list[dict]]) -> dict:
     return out
 
 
-def run(quick: bool = False, seed: int | None = None, workers: int = WORKERS) -> dict:
-    """The section's report keys for ``seed`` (default ``DEFAULT_SEED``)."""
+def run(
+    quick: bool = False,
+    seed: int | None = None,
+    workers: int = WORKERS,
+    kinds: tuple[str, ...] = KINDS,
+    noise: float = 1.0,
+    rows: tuple[str, ...] = tuple(ROWS),
+) -> dict:
+    """The section's report keys for ``seed`` (default ``DEFAULT_SEED``); ``kinds`` a subset
+    of ``KINDS`` and ``rows`` of ``ROWS`` (the minimal solvers' keys only with all of both;
+    ``auto`` scenes of every motion whatever ``rows``), ``noise`` the accuracy scenes' point
+    noise (pixels)."""
     seed = DEFAULT_SEED if seed is None else seed
     t0 = time.time()
     warnings.filterwarnings("ignore", category=RuntimeWarning)
@@ -347,14 +428,17 @@ def run(quick: bool = False, seed: int | None = None, workers: int = WORKERS) ->
         "auto": (auto_scenes, 1 if quick else AUTO_SCENES),
     }
     tasks = [
-        Task(fn, (seed, row, r), len(r), f"{kind}|{row}")
+        Task(fn, (seed, row, r) + ((noise,) if kind == "accuracy" else ()), len(r), f"{kind}|{row}")
         for kind, (fn, n) in counts.items()
+        if kind in kinds
         for row in range(len(ROWS))
+        if kind == "auto" or list(ROWS)[row] in rows
         for r in chunks(n, CHUNK)
     ]
     groups = run_tasks(tasks, workers, "configurations", progress=True)
     out = _summarise(groups)
-    out.update(_minimal(seed, quick))
+    if set(kinds) == set(KINDS) and set(rows) == set(ROWS):
+        out.update(_minimal(seed, quick))
     out["config_seed"] = seed
     out["config_seconds"] = round(time.time() - t0, 1)
     return out
@@ -380,8 +464,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=None)
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--workers", type=int, default=WORKERS)
+    parser.add_argument("--kinds", nargs="+", choices=KINDS, default=list(KINDS))
+    parser.add_argument("--noise", type=float, default=1.0, help="accuracy scenes' noise (px)")
+    parser.add_argument("--rows", nargs="+", choices=list(ROWS), default=list(ROWS))
     args = parser.parse_args(argv)
-    print(json.dumps(run(args.quick, args.seed, args.workers), indent=1))
+    out = run(args.quick, args.seed, args.workers, tuple(args.kinds), args.noise, tuple(args.rows))
+    print(json.dumps(out, indent=1))
     return 0
 
 
