@@ -166,3 +166,20 @@ def test_command_writes_frame_poses(tmp_path):
         np.testing.assert_allclose(fr["R"], tf["frame_pose"]["R"], atol=1e-6)
         np.testing.assert_allclose(fr["T"], tf["frame_pose"]["T"], atol=1e-6 * 1000)
         np.testing.assert_allclose(fr["points3"]["C"], tf["points3"]["C"], atol=1e-6 * 1000)
+
+
+def test_an_answer_the_frames_hardly_determine_says_so():
+    """A and B under a force field seen in perspective: every frame may turn about the chord
+    while the unseen mass centre stays on its parabola, so c's std comes out many times c; the
+    answer warns.  A uniform rotation of the same size and noise does not."""
+    opts = ReconstructOptions(point_sigma=1.0)
+    doc, _ = simulate_camera_configuration("perspective", "force-field", "AB", 30, 0, noise_px=1.0)
+    rec = reconstruct_rigid(observations_from_dict(doc), opts)
+    assert rec.std[0] > 0.5 * rec.c
+    assert any("hardly determine the body" in w for w in rec.warnings)
+    doc, _ = simulate_camera_configuration(
+        "perspective", "uniform-rotation", "AB", 20, 0, noise_px=1.0
+    )
+    rec = reconstruct_rigid(observations_from_dict(doc), opts)
+    assert rec.std[0] < 0.5 * rec.c
+    assert not any("hardly determine" in w for w in rec.warnings)

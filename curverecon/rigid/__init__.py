@@ -44,6 +44,7 @@ from curverecon.rigid.answer import (
     motion_parameters,
     paper_answer,
     points3_dicts,
+    undetermined_warning,
 )
 from curverecon.rigid.estimate import fit_row
 from curverecon.rigid.measurements import RigidData
@@ -112,6 +113,7 @@ def answer(
         warnings += more
     shape, poses = paper_answer(layout, full, data.times, tangents3)
     std = np.array([chord_std(layout, state, fit.covariance), np.nan, np.nan, np.nan])
+    warnings += undetermined_warning(float(shape[0]), float(std[0]))
     mp = motion_parameters(layout, replace(fit, state=state), sub)
     if "angle_deg" in mp:
         mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()

@@ -132,3 +132,21 @@ def points3_dicts(layout: Layout, state: RigidState, times: np.ndarray) -> list[
     """Per frame {name: [x, y, z]} (camera coordinates, A at z = 0)."""
     p3 = points3(layout, state, times)
     return [{n: p3[f, k].tolist() for k, n in enumerate(layout.points)} for f in range(len(p3))]
+
+
+UNDETERMINED_FRACTION = 0.5
+"""An answer whose std of c exceeds this fraction of c (or is not finite) carries a warning that
+the frames hardly determine the body.  The bench's rows (1 px, 20 frames) have c's own bound at
+0.4-6 % of c, the perspective force field with A and B alone at 10 times c (docs/accuracy.md,
+"Perspective and stereo rows")."""
+
+
+def undetermined_warning(c: float, c_std: float) -> list[str]:
+    """A one-line warning when the std of c (input units) says the frames hardly determine the
+    body's size, else nothing."""
+    if np.isfinite(c_std) and c_std <= UNDETERMINED_FRACTION * abs(c):
+        return []
+    return [
+        f"c = {c:.4g} with std {c_std:.3g}: these frames hardly determine the body (std above "
+        f"{UNDETERMINED_FRACTION:.0%} of c): more frames, a further point or tangents would help"
+    ]

@@ -19,7 +19,12 @@ import numpy as np
 from curverecon.model.configuration import RigidObservations
 from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ReconstructOptions
-from curverecon.rigid.answer import chord_std, motion_parameters, paper_answer
+from curverecon.rigid.answer import (
+    chord_std,
+    motion_parameters,
+    paper_answer,
+    undetermined_warning,
+)
 from curverecon.rigid.measurements import RigidData
 from curverecon.rigid.model import (
     Layout,
@@ -115,6 +120,7 @@ def pinhole_answer(
     shape[0] *= scale
     paper_poses[:, 3:5] *= scale
     std = np.array([chord_std(layout, state, fit.covariance) * scale, np.nan, np.nan, np.nan])
+    warnings += undetermined_warning(float(shape[0]), float(std[0]))
     mp = _motion(layout, replace(fit, state=state), data.subset(idx), scale)
     if "angle_deg" in mp:
         mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()
