@@ -140,7 +140,9 @@ def pinhole_answer(
         frame_chi2=frame_chi2,
         estimator="ml",
         curve3d=curve3d,
-        curve3d_std=curve_std,
+        # the stereo curve's std is across the curve (a match slides along it freely)
+        curve3d_std=None if layout.projection == "stereo" else curve_std,
+        curve3d_normal_std=curve_std if layout.projection == "stereo" else None,
         points3=[{n: p3[f, k].tolist() for k, n in enumerate(names)} for f in range(len(p3))],
         configuration=cfg,
         motion_parameters=mp,
