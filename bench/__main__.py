@@ -287,6 +287,7 @@ EXTRA_SECTIONS = {
     "honest": "bench.honest",
     "minimal": "bench.minimal",
     "outliers": "bench.outliers",
+    "perspective": "bench.perspective",
     "scale": "bench.scale",
     "start": "bench.start",
     "trace": "bench.trace",

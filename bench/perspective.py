@@ -1,0 +1,33 @@
+"""Section ``perspective``: the perspective and stereo rows of the Section 2 table
+(``bench.configurations_persp``: noise-free exactness, RMSE over the Cramer-Rao bound, std
+coverage, outlier frames) and the ordinary camera beyond the table (``bench.persp_curve``: free
+motion, A, B and polylines under a pinhole; the curve rate at a fifth of the distance and
+against the distance, plotted in bench/persp_curve_vs_distance.png).
+
+``python -m bench --only perspective`` (about 10 minutes on 2 cores); each module also runs
+alone with its own seed (``python -m bench.configurations_persp --seed S``,
+``python -m bench.persp_curve --seed S``).  The minimal solvers' keys of these rows come from
+the configurations section (``bench.config_minimal_persp``).
+"""
+
+from __future__ import annotations
+
+from bench import configurations_persp, persp_curve
+
+CURVE_SCENES = 20
+"""Scenes of the ordinary camera at a fifth of the distance (the target's cell)."""
+
+SWEEP_SCENES = 3
+"""Scenes at each other distance of the sweep (about 16 s a scene on one core)."""
+
+
+def run(quick: bool = False) -> dict:
+    out = configurations_persp.run(scale=0.1 if quick else 1.0)
+    out.update(
+        persp_curve.run(
+            scenes=2 if quick else CURVE_SCENES,
+            sweep_scenes=1 if quick else SWEEP_SCENES,
+            workers=configurations_persp.WORKERS,
+        )
+    )
+    return out
