@@ -7,10 +7,14 @@ z = (estimate - truth) / std for c, alpha, beta and phi (angles wrapped), the st
 figure: ``honest_z_abs_max_by_frames`` (the largest |z|) and ``honest_z_within_3_rate_by_frames``
 (the share of (scene, parameter) pairs with |z| <= 3), keyed by frames; the targets: at least
 0.98 within 3, none above 4.5; ``honest_z_beyond_3_by_frames`` lists the pairs beyond 3 (scene,
-parameter, z).  Also the reconstruction's median seconds and the bias
-correction's (``curverecon.refine.bias.ml_bias``) median seconds per size.
+parameter, z); ``honest_z_rms_by_frames`` the root mean square of z over every pair (1 for an
+exact error bar, below 1 for one wider than the errors).  Also the reconstruction's median
+seconds and the bias correction's (``curverecon.refine.bias.ml_bias``) median seconds per size.
+Each scene's record (``--details PATH``) also holds the fold's gain of its correction and its z
+without that gain (``z_unit_gain``, the std's systematic term undivided).
 
-``python -m bench.honest [--quick] [--seed S]`` prints the figures as JSON; ``python -m bench
+``python -m bench.honest [--quick] [--seed S] [--frames F] [--details PATH]`` prints the
+figures as JSON; ``python -m bench
 --only honest`` merges them into the report (seed ``SEED``; ``HELDOUT_SEED`` was never looked at
 while choosing the method's numbers).
 """
