@@ -165,7 +165,15 @@ def label_search(
     """The shape and labelling that fit the frames best, each frame in its better labelling
     (module docstring, steps 1-2); frame 0 unexchanged."""
     o = o or LabelOptions()
-    spec = GridSpec.for_frames(o.grid_frames_factor * obs.n_frames)
+    coarse = GridSpec.for_frames(2 * obs.n_frames)  # every frame costed in both labellings
+    spec = GridSpec(
+        *(
+            int(v)
+            for v in np.maximum(
+                o.grid, (coarse.n_gamma, coarse.n_alpha, coarse.n_beta, coarse.n_phi)
+            )
+        )
+    )
     trunc = math.sin(math.radians(spec.truncate_deg)) ** 2
     x = _grid_minima(obs, spec, o.starts)
     steps = 0.5 * np.radians(
