@@ -166,15 +166,10 @@ def label_search(
     """The shape and labelling that fit the frames best, each frame in its better labelling
     (module docstring, steps 1-2); frame 0 unexchanged."""
     o = o or LabelOptions()
-    coarse = GridSpec.for_frames(2 * obs.n_frames)  # every frame costed in both labellings
-    spec = GridSpec(
-        *(
-            int(v)
-            for v in np.maximum(
-                o.grid, (coarse.n_gamma, coarse.n_alpha, coarse.n_beta, coarse.n_phi)
-            )
-        )
-    )
+    spec = GridSpec.for_frames(o.grid_frames_factor * obs.n_frames)
+    if obs.curves is not None:
+        size = (spec.n_gamma, spec.n_alpha, spec.n_beta, spec.n_phi)
+        spec = GridSpec(*(int(v) for v in np.maximum(o.curve_grid, size)))
     trunc = math.sin(math.radians(spec.truncate_deg)) ** 2
     x = _grid_minima(obs, spec, o.starts)
     steps = 0.5 * np.radians(
