@@ -8,9 +8,10 @@ discrete unknown per frame, like its pose branch.  This stage decides it and han
 pipeline consistently labelled frames:
 
 1. the label search (:func:`label_search`): the global search's grid of the pose-free cost
-   (``robust.search``'s, :func:`_grid_costs`) with every frame's misfit the better of its two
-   labellings; its best local minima polished by compass steps on that cost; the distinct
-   results, in order, refined by maximum likelihood with every frame in its better labelling
+   (``robust.search``'s, :func:`_grid_costs`; with polylines at least
+   ``LabelOptions.curve_grid``) with every frame's misfit the better of its two labellings;
+   its best local minima polished by compass steps on that cost; the distinct results, in
+   order, refined by maximum likelihood with every frame in its better labelling
    (:func:`_refined`) and scored by their truncated chi2 with the shape held fixed
    (``robust.frame_samples.fixed_shape_fit``) in the better labelling per frame, plus a penalty
    for every frame that fits both about equally (a shape fitting most frames either way, alpha
@@ -18,10 +19,11 @@ pipeline consistently labelled frames:
    best is refined again from its own labels.  That cost is symmetric under the exchange of
    alpha and beta with every frame's labels, so frame 0 is held unexchanged: the answer names
    A and B as in frame 0;
-2. with polylines (``curve.labels``): section 4's curve (the pipeline without the bundle) is
-   fitted to every polyline in either direction; where one direction fits clearly closer it
-   decides that frame, and frame 0 is tried against all the others (its end points alone often
-   leave its labelling open), the labelling whose curve fits the polylines closer kept;
+2. with polylines (``curve.labels``): section 4's curve on every frame's pose at the label
+   search's shape (:func:`_quick_curve`) is fitted to every polyline in either direction;
+   where one direction fits clearly closer it decides that frame, and frame 0 is tried against
+   all the others (its end points alone often leave its labelling open), the labelling whose
+   curve fits the polylines closer kept;
 3. the ordinary pipeline on the relabelled frames (A and B, tangent_A and tangent_B swapped,
    the polyline reversed); at its answer every frame's labelling is checked again (chi2 in
    either labelling at the answer's shape; with polylines the answer's curve fitted to them),
