@@ -183,3 +183,17 @@ def test_a_polyline_is_fitted_in_its_own_direction():
         polyline = polyline + rng.normal(0.0, 0.3, polyline.shape)
         right, wrong = placed_rms(body, polyline), placed_rms(body, polyline[::-1])
         assert right < 1.0 and wrong > 3.0 * right
+
+
+def test_relabelled_curve_scene_gives_the_labels_and_curve_of_its_consistent_twin():
+    """16 frames with 0.5 px polylines, 40 % of them relabelled (the polyline reversed too):
+    the labels the stage decides are the simulation's, and the 3-D curve is its consistent
+    twin's."""
+    sc = make_scene(np.random.default_rng(12), 16, 0.5, 0.5, with_curve=True)
+    twin = reconstruct(sc.observations)
+    unordered, mask = _relabelled(sc.observations, 0.4, 4)
+    rec = reconstruct(unordered)
+    assert np.array_equal(rec.ends_exchanged, mask)
+    assert rec.curve3d is not None and twin.curve3d is not None
+    assert rec.curve3d.shape == twin.curve3d.shape
+    assert np.allclose(rec.curve3d, twin.curve3d, rtol=1e-6, atol=1e-6)

@@ -8,9 +8,10 @@ discrete unknown per frame, like its pose branch.  This stage decides it and han
 pipeline consistently labelled frames:
 
 1. the label search (:func:`label_search`): the global search's grid of the pose-free cost
-   (``robust.search``'s, :func:`_grid_costs`) with every frame's misfit the better of its two
-   labellings; its best local minima polished by compass steps on that cost; the distinct
-   results, in order, refined by maximum likelihood with every frame in its better labelling
+   (``robust.search``'s, :func:`_grid_costs`; with polylines at least
+   ``LabelOptions.curve_grid``) with every frame's misfit the better of its two labellings;
+   its best local minima polished by compass steps on that cost; the distinct results, in
+   order, refined by maximum likelihood with every frame in its better labelling
    (:func:`_refined`) and scored by their truncated chi2 with the shape held fixed
    (``robust.frame_samples.fixed_shape_fit``) in the better labelling per frame, plus a penalty
    for every frame that fits both about equally (a shape fitting most frames either way, alpha
@@ -18,10 +19,11 @@ pipeline consistently labelled frames:
    best is refined again from its own labels.  That cost is symmetric under the exchange of
    alpha and beta with every frame's labels, so frame 0 is held unexchanged: the answer names
    A and B as in frame 0;
-2. with polylines (``curve.labels``): section 4's curve (the pipeline without the bundle) is
-   fitted to every polyline in either direction; where one direction fits clearly closer it
-   decides that frame, and frame 0 is tried against all the others (its end points alone often
-   leave its labelling open), the labelling whose curve fits the polylines closer kept;
+2. with polylines (``curve.labels``): section 4's curve on every frame's pose at the label
+   search's shape (:func:`_quick_curve`) is fitted to every polyline in either direction;
+   where one direction fits clearly closer it decides that frame, and frame 0 is tried against
+   all the others (its end points alone often leave its labelling open), the labelling whose
+   curve fits the polylines closer kept;
 3. the ordinary pipeline on the relabelled frames (A and B, tangent_A and tangent_B swapped,
    the polyline reversed); at its answer every frame's labelling is checked again (chi2 in
    either labelling at the answer's shape; with polylines the answer's curve fitted to them),
@@ -44,10 +46,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy import ndimage
 
+from curverecon.curve import section4
 from curverecon.curve.labels import polyline_misfits
 from curverecon.errors import CurveReconError
 from curverecon.model.observations import Observations
-from curverecon.model.pose import normalise
+from curverecon.model.pose import normalise, rotations, translations
 from curverecon.model.reconstruction import Alternative, Reconstruction
 from curverecon.options import LabelOptions, ReconstructOptions
 from curverecon.refine.ml import refine
@@ -166,6 +169,9 @@ def label_search(
     (module docstring, steps 1-2); frame 0 unexchanged."""
     o = o or LabelOptions()
     spec = GridSpec.for_frames(o.grid_frames_factor * obs.n_frames)
+    if obs.curves is not None:
+        size = (spec.n_gamma, spec.n_alpha, spec.n_beta, spec.n_phi)
+        spec = GridSpec(*(int(v) for v in np.maximum(o.curve_grid, size)))
     trunc = math.sin(math.radians(spec.truncate_deg)) ** 2
     x = _grid_minima(obs, spec, o.starts)
     steps = 0.5 * np.radians(
@@ -269,7 +275,9 @@ def reconstruct_any_labels(
         # frame 0 tried against the others unless its end points decide it clearly
         weak = obs.tangents_from_curve or not obs.ends_given
         swap = weak or abs(other[0] - same[0]) < o.polyline_dchi2
-        consistent, exchanged = _polyline_start(consistent, exchanged, opts, run, o, swap)
+        consistent, exchanged = _polyline_start(
+            consistent, exchanged, found.shape, opts, run, o, swap
+        )
     rec = run(consistent, opts)
     for _ in range(o.max_rounds):
         flip, decided, _ = _label_flips(rec, consistent, ps, ts, o)
@@ -299,35 +307,68 @@ def reconstruct_any_labels(
 def _polyline_start(
     obs: Observations,
     exchanged: np.ndarray,
+    shape: np.ndarray,
     opts: ReconstructOptions,
     run: Runner,
     o: LabelOptions,
     try_swap: bool = True,
 ) -> tuple[Observations, np.ndarray]:
     """The label search's labelling, or (``try_swap``) the same with frame 0 exchanged against
-    the others, whichever section 4's curve (the pipeline without the bundle) fits the
-    polylines closer (mean over frames of the closer direction's RMS), then every frame
-    relabelled where its polyline clearly says so (:func:`_label_flips`).  Frame 0's end
-    points alone often leave its labelling open, and a wrong one sets it against every other
-    frame."""
+    the others, whichever section 4's curve fits the polylines closer (mean over frames of the
+    closer direction's RMS), then every frame relabelled where its polyline clearly says so
+    (:func:`_label_flips`).  Frame 0's end points alone often leave its labelling open, and a
+    wrong one sets it against every other frame.  The curve is placed on the poses that fit
+    ``shape`` (the label search's, held fixed; with frame 0 exchanged against the others the
+    same shape with alpha and beta exchanged) (:func:`_quick_curve`), or where section 4
+    fails there, comes from the pipeline without the bundle."""
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
+    others = np.arange(obs.n_frames) > 0
+    best = None
+    for swap in (False, True)[: 1 + try_swap]:
+        cand = exchange(obs, others) if swap else obs
+        start = _renamed(shape) if swap else shape
+        rec = _quick_curve(cand, start, opts, run)
+        if rec is None:
+            continue
+        flip, _, score = _label_flips(rec, cand, ps, ts, o, every_frame=True)
+        if best is None or score < best[0]:
+            best = (score, cand, exchanged ^ (others & swap), flip)
+    if best is None:
+        return obs, exchanged
+    _, cand, exchanged, flip = best
+    return exchange(cand, flip), exchanged ^ flip
+
+
+def _renamed(shape: np.ndarray) -> np.ndarray:
+    """``shape`` with alpha and beta exchanged (A and B named the other way round), normalised."""
+    return normalise(shape[[0, 2, 1, 3]], np.zeros((1, 5)))[0]
+
+
+def _quick_curve(
+    obs: Observations, shape: np.ndarray, opts: ReconstructOptions, run: Runner
+) -> Reconstruction | None:
+    """Section 4's curve (``curve.section4``) on every frame's pose at ``shape`` held fixed
+    (``fixed_shape_fit``: each frame's best branch), as a reconstruction with that shape and
+    those poses; where section 4 cannot place it, the pipeline's without the bundle; None
+    where that fails too."""
+    ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
+    fit = fixed_shape_fit(obs, shape, ps, ts)
+    try:
+        res = section4.reconstruct_curve(obs.curves, rotations(fit.poses), translations(fit.poses))
+        return Reconstruction(
+            shape, fit.poses, None, np.ones(obs.n_frames, bool), curve3d=res.points
+        )
+    except CurveReconError:
+        pass
     quick = replace(  # section 4's curve; no LO-RANSAC for a wrong labelling's odd frame
         opts,
         curve=replace(opts.curve, bundle=False),
         frame_samples=replace(opts.frame_samples, enabled=False),
     )
-    others = np.arange(obs.n_frames) > 0
-    best = None
-    for swap in (False, True)[: 1 + try_swap]:
-        cand = exchange(obs, others) if swap else obs
-        try:
-            rec = run(cand, quick)
-        except CurveReconError:
-            continue
-        flip, _, score = _label_flips(rec, cand, ps, ts, o, every_frame=True)
-        if best is None or score < best[0]:
-            best = (score, exchange(cand, flip), exchanged ^ (others & swap) ^ flip)
-    return (obs, exchanged) if best is None else best[1:]
+    try:
+        return run(obs, quick)
+    except CurveReconError:
+        return None
 
 
 def _label_flips(
