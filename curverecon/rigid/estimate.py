@@ -366,7 +366,8 @@ def fit_row(
     threshold = float(chi2_dist.isf(o.false_alarm, frame_dof(layout)))
     fit, consensus = best_fit(layout, data, threshold)
     inliers, fit = outlier_frames(layout, data, fit, min_frames, o, consensus)
-    if layout.free_rotations and not np.all(inliers):
+    if layout.free_rotations and not layout.pinhole and not np.all(inliers):
+        # orthographic rows only: its rotations are re-aligned from the images' closed form
         inliers, fit = readmit(layout, data, fit, inliers, o)
     sub = data.subset(np.flatnonzero(inliers))
     check_degenerate(layout, fit, sub)
