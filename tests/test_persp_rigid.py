@@ -183,3 +183,17 @@ def test_an_answer_the_frames_hardly_determine_says_so():
     rec = reconstruct_rigid(observations_from_dict(doc), opts)
     assert rec.std[0] < 0.5 * rec.c
     assert not any("hardly determine" in w for w in rec.warnings)
+
+
+def test_stereo_outlier_frames_are_flagged():
+    """A stereo pair, A and B under free motion, a fifth of the frames' points random: the
+    answer flags exactly those frames and keeps c within 2 % (the construction's truth)."""
+    doc, truth = simulate_camera_configuration(
+        "stereo", "free", "AB", 20, 11, noise_px=1.0, outlier_fraction=0.2
+    )
+    rec = reconstruct_rigid(observations_from_dict(doc), ReconstructOptions(point_sigma=1.0))
+    bad = np.zeros(20, bool)
+    bad[truth["outlier_frames"]] = True
+    assert bad.any()
+    np.testing.assert_array_equal(~np.asarray(rec.inliers), bad)
+    assert rec.c == pytest.approx(truth["c"], rel=0.02)
