@@ -4,7 +4,8 @@ coverage, outlier frames) and the ordinary camera beyond the table (``bench.pers
 motion, A, B and polylines under a pinhole; the curve rate at a fifth of the distance and
 against the distance, plotted in bench/persp_curve_vs_distance.png).
 
-``python -m bench --only perspective`` (about 10 minutes on 2 cores); each module also runs
+``python -m bench --only perspective`` (about 10 minutes on 2 cores; more scenes: `python -m
+bench.persp_curve --scenes N`); each module also runs
 alone with its own seed (``python -m bench.configurations_persp --seed S``,
 ``python -m bench.persp_curve --seed S``).  The minimal solvers' keys of these rows come from
 the configurations section (``bench.config_minimal_persp``).
@@ -14,11 +15,12 @@ from __future__ import annotations
 
 from bench import configurations_persp, persp_curve
 
-CURVE_SCENES = 20
-"""Scenes of the ordinary camera at a fifth of the distance (the target's cell)."""
+CURVE_SCENES = 12
+"""Scenes of the ordinary camera at a fifth of the distance (the target's cell); 26 s a scene
+(median, one core), so that ``make bench`` stays within 45 minutes on 2 cores."""
 
-SWEEP_SCENES = 3
-"""Scenes at each other distance of the sweep (about 16 s a scene on one core)."""
+SWEEP_SCENES = 2
+"""Scenes at each other distance of the sweep."""
 
 
 def run(quick: bool = False) -> dict:
