@@ -299,16 +299,34 @@ def _rigid_observations(
     """A configuration beyond the paper's own: points (A and B from the polylines where not
     given), optional tangents and polylines (each used only when every frame gives it)."""
     _require_frames_identified(data, frames)
-    view = _view_arrays(data, frames, names)
-    cfg = _configuration(data, motion, ("A", "B", *names), view.tangents is not None)
+    return _assemble(data, motion, times, names, _view_arrays(data, frames, names))
+
+
+def _assemble(
+    data: dict,
+    motion: str,
+    times: np.ndarray | None,
+    names: list[str],
+    first: _View,
+    second: _View | None = None,
+) -> RigidObservations:
+    """The observations of camera 0's view ``first`` (and stereo camera 1's ``second``)."""
+    cfg = _configuration(data, motion, ("A", "B", *names), first.tangents is not None)
+    n = len(first.points)
+    warnings = list(first.warnings)
+    view1 = None
+    if second is not None:
+        warnings += [f"camera 1: {w}" for w in second.warnings]
+        view1 = StereoView(second.points, second.tangents, second.curves)
     return RigidObservations(
         cfg,
-        np.arange(float(len(frames))) if times is None else times,
-        view.points,
-        view.tangents,
-        view.curves,
-        np.arange(len(frames)),
-        view.warnings,
+        np.arange(float(n)) if times is None else times,
+        first.points,
+        first.tangents,
+        first.curves,
+        np.arange(n),
+        warnings,
+        view1,
     )
 
 
@@ -350,17 +368,7 @@ def _stereo_observations(
         raise CurveReconError("tangents must be given in both cameras' views or in neither")
     if (first.curves is None) != (second.curves is None):
         raise CurveReconError("polylines must be given in both cameras' views or in neither")
-    cfg = _configuration(data, motion, ("A", "B", *names), first.tangents is not None)
-    return RigidObservations(
-        cfg,
-        np.arange(float(len(frames))) if times is None else times,
-        first.points,
-        first.tangents,
-        first.curves,
-        np.arange(len(frames)),
-        first.warnings + [f"camera 1: {w}" for w in second.warnings],
-        StereoView(second.points, second.tangents, second.curves),
-    )
+    return _assemble(data, motion, times, names, first, second)
 
 
 def _configuration(data: dict, motion: str, names: tuple, tangents: bool) -> Configuration:
