@@ -1,21 +1,26 @@
-"""LO-RANSAC over minimal samples of frames: the perspective rotation-free and fixed-axis rows.
+"""Minimal samples of frames for the perspective rotation-free and fixed-axis rows.
 
-* Rotation-free (A, B): two-frame samples (below).
-* Fixed axis (A, B, C): three-frame samples (``solvers/persp_fixed_axis_3pt.py``, about 0.4 s a
-  sample), each solution extended to every frame by its angle about the axis
-  (``rigid.pinhole_starts.extend_axis``); few samples (``AXIS_RANSAC``).  The all-frame starts
-  include one sample of spread frames; when an outlier frame falls among them the
-  weak-perspective starts alone decided, and on one scene in five (bench seed 0) they led to a
-  wrong basin.
+* Rotation-free (A, B): LO-RANSAC over two-frame samples (below).
+* Fixed axis (A, B, C), more than three frames (:func:`axis_samples`): the all-frame starts
+  (``rigid.pinhole_starts``: the minimal solver on three spread frames 0, N // 3, 2N // 3 and
+  weak perspective) polished by the consensus fit; when one of those spread frames is outside
+  the best consensus (an outlier frame among them: then weak perspective alone decided, and on
+  one scene in five, bench seed 0, it led to a wrong basin), ``AXIS_SAMPLES`` more triples,
+  one frame drawn from each third of the consensus frames (of every frame when the consensus
+  holds fewer than half), go through the solver (``solvers/persp_fixed_axis_3pt.py``, a
+  homotopy, about 0.4 s a sample on a quiet core), each solution extended to every frame by
+  its angle about the axis (``rigid.pinhole_starts.extend_axis``); each sample's
+  ``AXIS_POLISHED`` solutions of least robust cost are polished, the lowest robust cost of all
+  kept; the draws stop once a sample leads to a new best whose consensus holds its frames.
+  A sample's exact fit of three noisy frames scores worse unpolished than a polished start in
+  a wrong basin, and its best unpolished solution is not always the one that polishes into
+  the scene's basin (bench seed 0), hence two polished per sample.  Scenes whose spread frames
+  agree draw no sample.
 
-Every row keeps its all-frame starts (``rigid.pinhole_starts``) as the loop's initial models,
-and the best-scoring unpolished sample models are polished after the loop
-(``RansacOptions.final_refinements``): a sample's exact fit of a few noisy frames scores
-worse unpolished than a polished start in a wrong basin.  The uniform rotation's five-frame
-solver (``solvers/persp_uniform_rotation.py``) is not sampled: at 1 px its solutions of five
-frames scored no better than the weak-perspective starts, and the one bench scene (seed 0) whose
-answer missed while the oracle's did not went to the same wrong basin from a sample near the
-truth (c within 1 %).
+The uniform rotation's five-frame solver (``solvers/persp_uniform_rotation.py``) is not
+sampled: at 1 px its solutions of five frames scored no better than the weak-perspective
+starts, and the one bench scene (seed 0) whose answer missed while the oracle's did not went
+to the same wrong basin from a sample near the truth (c within 1 %).
 
 The rotation-free row's minimal solver (``solvers/persp_rotation_free.py``, closed form: one
 linear solve of two frames) gives the body D_P = X_P - A (the same in every frame) with A's
@@ -39,12 +44,13 @@ from curverecon.robust.ransac import RansacOptions
 RANSAC = RansacOptions(max_iterations=60, min_iterations=20, success_prob=0.99, seed=0)
 """Two-frame samples at 20 % outlier frames need 5 draws for 0.99 (times 3); 20 at least."""
 
-AXIS_RANSAC = RansacOptions(
-    max_iterations=6, min_iterations=4, success_prob=0.99, seed=0, final_refinements=2
-)
-"""Three-frame samples through the 0.4 s homotopy: at 20 % outlier frames one sample is clean
-with probability 0.51, and all of 4 to 6 samples (the loop's adaptive count at that ratio is
-above 6) miss with 0.014; the 2 best unpolished sample models polished after the loop."""
+AXIS_SAMPLES = 4
+"""Triples drawn when a spread frame is outside the consensus: drawn from every frame at 20 %
+outlier frames each is clean with probability 0.51 and all 4 miss with 0.06; drawn from the
+consensus frames, rarely."""
+
+AXIS_POLISHED = 2
+"""Solutions of each sample polished (least unpolished robust cost first)."""
 
 
 def extend_rotation_free(data: RigidData, body: np.ndarray) -> RigidState | None:
@@ -64,37 +70,58 @@ def extend_rotation_free(data: RigidData, body: np.ndarray) -> RigidState | None
     return state
 
 
-class FixedAxisEstimator(FrameSampleEstimator):
-    """Three frames through the homotopy solver, extended by the axis angles (module
-    docstring)."""
+def _spread_triple(rng: np.random.Generator, pool: np.ndarray) -> np.ndarray:
+    """One frame drawn from each third of ``pool`` (sorted frame indices, at least three)."""
+    return np.array([rng.choice(part) for part in np.array_split(pool, 3)])
 
-    def __init__(self, layout: Layout, data: RigidData, threshold: float, polish):
-        from curverecon.solvers import persp_fixed_axis_3pt as solver
 
-        super().__init__(layout, data, solver, threshold, polish)
+def axis_samples(layout: Layout, data: RigidData, threshold: float, initial: list, polish):
+    """(fit over every frame, its consensus frames) of the fixed-axis row (module docstring);
+    None when nothing converged."""
+    from curverecon.rigid.pinhole_starts import _solver_states
+    from curverecon.solvers import persp_fixed_axis_3pt as solver
 
-    def generate_models(self, sample: np.ndarray) -> list[Hypothesis]:
-        from curverecon.rigid.pinhole_starts import _solver_states
-
-        return [Hypothesis(s) for s in _solver_states(self.layout, self.data, np.sort(sample))]
+    n = data.n_frames
+    best = None
+    for h in initial:
+        got = polish(layout, data, h.state, threshold)
+        if got is not None and (best is None or got[2] < best[2]):
+            best = got
+    spread = np.array([0, n // 3, 2 * n // 3])
+    if best is not None and np.all(best[1][spread]):
+        return best[:2]
+    pool = np.arange(n)
+    if best is not None and np.count_nonzero(best[1]) >= max(n / 2, 3):
+        pool = np.flatnonzero(best[1])
+    est = FrameSampleEstimator(layout, data, solver, threshold, polish)
+    rng = np.random.default_rng(0)
+    for _ in range(AXIS_SAMPLES):
+        triple = _spread_triple(rng, pool)
+        models = [Hypothesis(st) for st in _solver_states(layout, data, triple)]
+        improved = False
+        for h in sorted(models, key=lambda h: est.score_model(h)[0])[:AXIS_POLISHED]:
+            got = polish(layout, data, h.state, threshold)
+            if got is not None and (best is None or got[2] < best[2]):
+                best, improved = got, True
+        if improved and np.all(best[1][triple]):
+            break  # the sample led to the best consensus and agrees with it
+    return None if best is None else best[:2]
 
 
 def sample_loop(layout: Layout, data: RigidData, threshold: float, initial: list, polish):
-    """(fit over every frame, its consensus frames) of LO-RANSAC over the row's minimal
-    samples with the all-frame starts ``initial`` as initial models; None where the row has
-    no practical solver here (these points, too few frames) or nothing converged."""
+    """(fit over every frame, its consensus frames) from the row's minimal samples with the
+    all-frame starts ``initial``; None where the row has no practical solver here (these
+    points, too few frames) or nothing converged."""
     from curverecon.robust.ransac import lo_ransac
 
-    names = tuple(layout.points)
     if layout.projection != "perspective" or layout.tangents:
         return None
-    if layout.motion == "rotation-free":
-        est, opts = RotationFreeEstimator(layout, data, threshold, polish), RANSAC
-    elif layout.motion == "fixed-axis" and names == ("A", "B", "C") and data.n_frames > 3:
-        est, opts = FixedAxisEstimator(layout, data, threshold, polish), AXIS_RANSAC
-    else:
+    if layout.motion == "fixed-axis" and tuple(layout.points) == ("A", "B", "C"):
+        return axis_samples(layout, data, threshold, initial, polish) if data.n_frames > 3 else None
+    if layout.motion != "rotation-free":
         return None
-    model, _ = lo_ransac(est, opts, initial_models=initial)
+    est = RotationFreeEstimator(layout, data, threshold, polish)
+    model, _ = lo_ransac(est, RANSAC, initial_models=initial)
     if model is not None and model.fit is None:
         model = est.refine_model(model)
     if model is None or model.fit is None:
