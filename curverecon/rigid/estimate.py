@@ -125,20 +125,14 @@ def best_fit(layout: Layout, data: RigidData, threshold: float) -> tuple[RigidFi
     from curverecon.robust.ransac import lo_ransac
 
     if layout.pinhole:
+        from curverecon.rigid.pinhole_ransac import sample_loop
         from curverecon.rigid.pinhole_starts import pinhole_starts
 
         initial = [Hypothesis(s) for s in pinhole_starts(layout, data)]
         solver = None
-        if layout.projection == "perspective" and layout.motion == "rotation-free":
-            from curverecon.rigid.pinhole_ransac import RANSAC as PINHOLE_RANSAC
-            from curverecon.rigid.pinhole_ransac import RotationFreeEstimator
-
-            est = RotationFreeEstimator(layout, data, threshold, consensus_fit)
-            model, _ = lo_ransac(est, PINHOLE_RANSAC, initial_models=initial)
-            if model is not None and model.fit is None:
-                model = est.refine_model(model)
-            if model is not None and model.fit is not None:
-                return model.fit, model.consensus
+        got = sample_loop(layout, data, threshold, initial, consensus_fit)
+        if got is not None:
+            return got
     else:
         initial = [Hypothesis(s) for s in starts(layout, data)]
         solver = solver_for(layout)
