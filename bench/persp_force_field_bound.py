@@ -26,11 +26,13 @@ def skew(v: np.ndarray) -> np.ndarray:
     return np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
 
 
-def scene(rng: np.random.Generator, frames: int, sweep_deg: float, c: float = 0.2):
+def scene(
+    rng: np.random.Generator, frames: int, sweep_deg: float, c: float = 0.2, offset: float = 0.14
+):
     """(a, b, parabola (3, 3) rows g0, g1, g2, rotations (F, 3, 3), times, focal px)."""
     u = rng.uniform(-0.3, 0.3)
-    a = np.array([(-0.5 - u) * c, -0.14 * c, 0.0])
-    b = np.array([(0.5 - u) * c, -0.14 * c, 0.0])
+    a = np.array([(-0.5 - u) * c, -offset * c, 0.0])
+    b = np.array([(0.5 - u) * c, -offset * c, 0.0])
     r0 = Rotation.random(random_state=rng).as_matrix()
     t = np.arange(frames, dtype=float)
     tau = t / (frames - 1)
@@ -82,12 +84,12 @@ def chord_bound(jac: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
 
 
 def median_bound(sweep_deg: float, frames: int, perspective: bool = True, scenes: int = 20,
-                 seed: int = 5, c: float = 0.2) -> float:  # fmt: skip
+                 seed: int = 5, c: float = 0.2, offset: float = 0.14) -> float:  # fmt: skip
     """Median over ``scenes`` constructions of c's relative bound at 1 px."""
     rng = np.random.default_rng(seed)
     out = []
     for _ in range(scenes):
-        a, b, g, rots, t, focal = scene(rng, frames, sweep_deg, c)
+        a, b, g, rots, t, focal = scene(rng, frames, sweep_deg, c, offset)
         out.append(chord_bound(jacobian(a, b, g, rots, t, focal, perspective), a, b))
     return float(np.median(out))
 
@@ -111,6 +113,29 @@ def bench_scene_bound(seed: int, frames: int, distance: float) -> float:
     return chord_bound(jacobian(a, b, g, rots, t, focal), a, b)
 
 
+def tangent_bound(seed: int, frames: int = 30, tangent_deg: float = 0.5) -> float:
+    """c's relative bound at 1 px and ``tangent_deg`` on ``simulate_camera_configuration``'s
+    force-field scene with tangents: the runtime's Fisher information at the truth."""
+    from bench.configurations_persp import truth_state
+    from curverecon.io import observations_from_dict
+    from curverecon.options import ReconstructOptions
+    from curverecon.rigid import rigid_data
+    from curverecon.rigid.answer import chord_std
+    from curverecon.rigid.model import Layout
+    from curverecon.rigid.refinement import information_inverse
+    from curverecon.simulate import simulate_camera_configuration
+
+    doc, truth = simulate_camera_configuration(
+        "perspective", "force-field", "AB", frames, seed, tangent_noise_deg=tangent_deg
+    )
+    layout = Layout("force-field", ("A", "B"), True, "perspective")
+    opts = ReconstructOptions(point_sigma=1.0, tangent_sigma_deg=tangent_deg)
+    data = rigid_data(observations_from_dict(doc), opts)
+    state = truth_state(layout, data, truth, "AB")
+    cov, _ = information_inverse(layout, state, data)
+    return chord_std(layout, state, cov) / float(np.linalg.norm(state.body[1] - state.body[0]))
+
+
 def main() -> None:
     frames = (12, 20, 30, 60, 120)
     print("median relative bound of c, 1 px, chord 160 px, 20 scenes; rows: turn (degrees)")
@@ -120,6 +145,11 @@ def main() -> None:
         print(f"{sweep:5.0f}  " + "  ".join(f"{v:7.3g}" for v in row), flush=True)
     for c in (0.02, 0.05, 0.1, 0.2, 0.4):
         print(f"720 degrees, 30 frames, chord / distance {c}: {median_bound(720.0, 30, c=c):.3g}")
+    for offset in (0.0, 0.05, 0.14, 0.3, 0.6, 1.0):
+        got = median_bound(720.0, 30, offset=offset)
+        print(f"720 degrees, 30 frames, mass centre {offset} c from the chord: {got:.3g}")
+    tangents = [tangent_bound(s) for s in range(3)]
+    print("tangents (0.5 degrees), simulate's scenes, 30 frames, seeds 0-2:", *tangents)
     for sweep in (240.0, 720.0):
         ortho = median_bound(sweep, 30, perspective=False)
         print(f"orthographic twin, {sweep:.0f} degrees, 30 frames: {ortho:.3g}")
