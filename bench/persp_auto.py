@@ -35,7 +35,7 @@ ROWS = {
     "force_field": ("force-field", "AB"),
 }
 SCENES = 20
-"""Scenes per row (the issue's least count for a rate)."""
+"""Scenes per row (the least count for a rate the product asks for)."""
 CHUNK = 5
 DEFAULT_SEED = 0
 
