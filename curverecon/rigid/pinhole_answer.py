@@ -16,6 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from curverecon.errors import CurveReconError
 from curverecon.model.configuration import RigidObservations
 from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ReconstructOptions
@@ -41,10 +42,17 @@ CURVE_MISSING = "curve stage under perspective not available"
 
 
 def answer_scale(obs: RigidObservations, p3: np.ndarray) -> float:
-    """The factor from the fit's lengths to the answer's units (module docstring)."""
+    """The factor from the fit's lengths to the answer's units (module docstring).  Raises
+    CurveReconError when the fit puts A behind the camera in frame 0 (a pinhole sees X and -X
+    alike; such a fit is a wrong minimum, and its units would turn c negative)."""
     cfg = obs.configuration
     if cfg.projection != "perspective":
         return 1.0
+    if not p3[0, 0, 2] > 0:
+        raise CurveReconError(
+            f"motion {cfg.motion}: the best fit puts A behind the camera in frame 0 (no start "
+            "reached a fit in front of it; the frames hardly determine this motion)"
+        )
     if cfg.length_ab is not None:
         return float(cfg.length_ab) / float(np.linalg.norm(p3[0, 1] - p3[0, 0]))
     return 1.0 / float(p3[0, 0, 2])

@@ -133,7 +133,9 @@ def sample_loop(layout: Layout, data: RigidData, threshold: float, initial: list
     points, too few frames) or nothing converged."""
     from curverecon.robust.ransac import lo_ransac
 
-    if layout.projection != "perspective" or layout.tangents:
+    if layout.projection != "perspective":
+        return None
+    if layout.tangents and layout.motion != "rotation-free":
         return None
     if layout.motion == "fixed-axis" and tuple(layout.points) == ("A", "B", "C"):
         return axis_samples(layout, data, threshold, initial, polish) if data.n_frames > 3 else None
@@ -146,6 +148,17 @@ def sample_loop(layout: Layout, data: RigidData, threshold: float, initial: list
     if model is None or model.fit is None:
         return None
     return model.fit, model.consensus
+
+
+def with_tangents(layout: Layout, data: RigidData, state: RigidState) -> np.ndarray:
+    """(2, 2) polar, azimuth of the body tangents at A and B of a rotation-free state from the
+    frames' image angles (``pinhole_starts.tangent_planes``, every rotation the identity)."""
+    from curverecon.rigid.pinhole_starts import tangent_planes
+
+    body = np.concatenate([np.zeros((1, 3)), state.body])
+    p3 = state.translations[:, None, :] + body[None]
+    rots = np.broadcast_to(np.eye(3), (data.n_frames, 3, 3))
+    return tangent_planes(layout, data, p3, rots)
 
 
 class RotationFreeEstimator(FrameSampleEstimator):
@@ -170,6 +183,8 @@ class RotationFreeEstimator(FrameSampleEstimator):
             if len(self.layout.points) > 2:
                 return []  # further points: the all-frame closed form alone
             state = extend_rotation_free(self.data, p3[0, 1:] - p3[0, :1])
+            if state is not None and self.layout.tangents:
+                state.directions = with_tangents(self.layout, self.data, state)
             if state is not None:
                 out.append(Hypothesis(state))
         return out
