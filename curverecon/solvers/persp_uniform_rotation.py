@@ -17,11 +17,15 @@ fit the frames as well (aliasing), as for the orthographic row.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import cache
 
+import numba
 import numpy as np
 
+from curverecon import jit_cache
 from curverecon.errors import CurveReconError
+from curverecon.generated import persp_uniform_rotation_kernel as kernel_module
 from curverecon.generated import persp_uniform_rotation_system as system_module
 from curverecon.solvers import homotopy
 from curverecon.solvers.camera import Camera
@@ -43,10 +47,41 @@ SPACING_TOLERANCE = 1e-6
 """Largest deviation of a time step from the mean step, relative to it, taken as equal."""
 
 
+@numba.njit(cache=True, nogil=True)
+def _track_kernels(q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end):  # type: ignore[no-untyped-def]
+    """The homotopy tracker on the generated straight-line kernels
+    (``generated/persp_uniform_rotation_kernel.py``, ``homotopy.track_generated``)."""
+    k = kernel_module
+    homotopy.track_generated(
+        k.coefficients, k.coefficients_t, k.coefficient_rates, k.residual_jacobian,
+        k.residual_jacobian_t, homotopy._solve_pair, k.N_COEFFICIENTS,
+        q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end,
+    )  # fmt: skip
+
+
+@numba.njit(cache=True, nogil=True)
+def _newton_kernels(xs, q, plan, iterations):  # type: ignore[no-untyped-def]
+    """Newton's method on the generated kernels (``homotopy.newton_generated``)."""
+    k = kernel_module
+    homotopy.newton_generated(
+        k.coefficients, k.residual_jacobian, k.N_COEFFICIENTS, xs, q, plan, iterations
+    )
+
+
+# numba caches the two above on this file's source alone (curverecon.jit_cache)
+jit_cache.drop_stale((_track_kernels, _newton_kernels), (homotopy, kernel_module))
+
+
 @cache
 def _system() -> homotopy.PolynomialSystem:
-    """The tracked system (the generated tables)."""
-    return homotopy.PolynomialSystem.from_module(system_module)
+    """The tracked system: the generated tables, tracked on the generated kernels when these
+    were written for the same system."""
+    tables = homotopy.PolynomialSystem.from_module(system_module)
+    k = kernel_module
+    same = (k.UNKNOWNS, k.PARAMETERS) == (system_module.UNKNOWNS, system_module.PARAMETERS)
+    if not same:
+        return tables
+    return replace(tables, tracker=_track_kernels, newton=_newton_kernels)
 
 
 def solve(points: np.ndarray, times: np.ndarray, camera: Camera) -> RigidSolutions:
