@@ -9,7 +9,9 @@ frames, as the seed's table says.  msolve counts 26 complex solutions (random an
 instances; no symmetry: the chart n = (n1, n2, 1) and mu fix the rotation's sign), six frames
 leave the truth alone.  No closed form was found, so the 26 solutions at generic complex rays
 (``generated/persp_uniform_rotation_system.py``, found by monodromy) are tracked to the frames'
-rays (:mod:`curverecon.solvers.homotopy`), the real ones kept.  General times are not
+rays (:mod:`curverecon.solvers.homotopy`, on the straight-line kernels of
+``generated/persp_uniform_rotation_kernel.py``: 2.5 times faster than the tables), the real ones
+kept.  General times are not
 polynomial (cos w t); the solver takes equally spaced times (a constant frame rate) and refuses
 others.  The step angle is the principal one (|w dt| < 180 degrees): w + 360 k / dt degrees
 fit the frames as well (aliasing), as for the orthographic row.
