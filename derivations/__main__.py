@@ -108,10 +108,13 @@ def _system_module(module: str, filename: str) -> str | None:
     return _record_module(module, filename, "minimal_system", "system")
 
 
-def _system_kernel_module(module: str, filename: str) -> str | None:
-    """Render straight-line numba kernels of the PolynomialSystem ``module.minimal_system()``
-    (F, F_x and F_t by way of the coefficient matrix W(q); the homotopy tracker's fast path)."""
-    build = _optional(module, "minimal_system")
+def _system_kernel_module(
+    module: str, filename: str, builder: str = "minimal_system", unroll_solver: bool = True
+) -> str | None:
+    """Render straight-line numba kernels of the PolynomialSystem ``module.builder()`` (F, F_x
+    and F_t by way of the coefficient matrix W(q); the homotopy tracker's fast path), with the
+    linear solve unrolled too when ``unroll_solver``."""
+    build = _optional(module, builder)
     if build is None:
         return None
     record = build()
@@ -130,6 +133,7 @@ def _system_kernel_module(module: str, filename: str) -> str | None:
         doc=doc,
         system=record,
         filename=f"generated/{filename}",
+        unroll_solver=unroll_solver,
     )
 
 
@@ -217,6 +221,27 @@ TARGETS: tuple[tuple[str, str, Callable[[], str | None]], ...] = (
             "persp_fixed_axis_system.py",
             "fixed_axis_record",
             "system",
+        ),
+    ),
+    (
+        "persp_uniform_rotation_kernel.py",
+        "the perspective uniform rotation system as straight-line numba kernels (its 15 dense "
+        "unknowns solved by the tracker's loop) (derivations/section2_perspective.py)",
+        lambda: _system_kernel_module(
+            "derivations.section2_perspective",
+            "persp_uniform_rotation_kernel.py",
+            "uniform_rotation_record",
+            unroll_solver=False,
+        ),
+    ),
+    (
+        "persp_fixed_axis_kernel.py",
+        "the perspective fixed-axis system as straight-line numba kernels "
+        "(derivations/section2_perspective.py)",
+        lambda: _system_kernel_module(
+            "derivations.section2_perspective",
+            "persp_fixed_axis_kernel.py",
+            "fixed_axis_record",
         ),
     ),
 )

@@ -30,6 +30,10 @@
   system solved by monodromy (derivations/section2_perspective.py)
 - ``persp_fixed_axis_system``: perspective rotation about a fixed direction, three points, three
   frames, with its start system solved by monodromy (derivations/section2_perspective.py)
+- ``persp_uniform_rotation_kernel``: the perspective uniform rotation system as straight-line numba
+  kernels (its 15 dense unknowns solved by the tracker's loop) (derivations/section2_perspective.py)
+- ``persp_fixed_axis_kernel``: the perspective fixed-axis system as straight-line numba kernels
+  (derivations/section2_perspective.py)
 """
 
 __all__ = (
@@ -46,4 +50,6 @@ __all__ = (
     "section2_perspective",
     "persp_uniform_rotation_system",
     "persp_fixed_axis_system",
+    "persp_uniform_rotation_kernel",
+    "persp_fixed_axis_kernel",
 )

@@ -188,3 +188,31 @@ def test_counts_on_random_instances(row: str, frames: int, expected: int) -> Non
     count = d.count_system(row, frames, d._random_values(row, frames, 11))
     assert count.degree == expected
     assert count.dimension == (0 if expected else -1)
+
+
+@pytest.mark.parametrize("row", ("persp_uniform_rotation", "persp_fixed_axis_3pt"))
+def test_tracked_on_the_generated_kernels(row: str) -> None:
+    """The solver tracks on the generated straight-line kernels, and at a random complex point
+    they give the system of the generated tables (F and F_x, evaluated term by term)."""
+    from curverecon.solvers import homotopy
+
+    system = _solver(row)._system()
+    assert system.tracker is not None and system.newton is not None
+    rng = np.random.default_rng(3)
+    shape = (system.n_unknowns,)
+    x = rng.normal(size=shape) + 1j * rng.normal(size=shape)
+    q = rng.normal(size=system.n_parameters) + 1j * rng.normal(size=system.n_parameters)
+    f_tab, jac_tab = system.evaluate(x, q)
+    tables = homotopy.PolynomialSystem.from_module(
+        importlib.import_module(f"curverecon.generated.{row.removesuffix('_3pt')}_system")
+    )
+    assert tables.tracker is None
+    k = importlib.import_module(f"curverecon.generated.{row.removesuffix('_3pt')}_kernel")
+    w = np.empty(k.N_COEFFICIENTS, np.complex128)
+    k.coefficients(q, w)
+    f = np.empty(system.n_equations, np.complex128)
+    jac = np.empty((system.n_equations, system.n_unknowns), np.complex128)
+    k.residual_jacobian(x, w, f, jac)
+    scale = 1 + np.abs(f_tab).max()
+    assert np.abs(f - f_tab).max() <= 1e-12 * scale
+    assert np.abs(jac - jac_tab).max() <= 1e-12 * (1 + np.abs(jac_tab).max())

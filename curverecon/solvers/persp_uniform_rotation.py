@@ -9,7 +9,9 @@ frames, as the seed's table says.  msolve counts 26 complex solutions (random an
 instances; no symmetry: the chart n = (n1, n2, 1) and mu fix the rotation's sign), six frames
 leave the truth alone.  No closed form was found, so the 26 solutions at generic complex rays
 (``generated/persp_uniform_rotation_system.py``, found by monodromy) are tracked to the frames'
-rays (:mod:`curverecon.solvers.homotopy`), the real ones kept.  General times are not
+rays (:mod:`curverecon.solvers.homotopy`, on the straight-line kernels of
+``generated/persp_uniform_rotation_kernel.py``: 2.5 times faster than the tables), the real ones
+kept.  General times are not
 polynomial (cos w t); the solver takes equally spaced times (a constant frame rate) and refuses
 others.  The step angle is the principal one (|w dt| < 180 degrees): w + 360 k / dt degrees
 fit the frames as well (aliasing), as for the orthographic row.
@@ -17,11 +19,15 @@ fit the frames as well (aliasing), as for the orthographic row.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import cache
 
+import numba
 import numpy as np
 
+from curverecon import jit_cache
 from curverecon.errors import CurveReconError
+from curverecon.generated import persp_uniform_rotation_kernel as kernel_module
 from curverecon.generated import persp_uniform_rotation_system as system_module
 from curverecon.solvers import homotopy
 from curverecon.solvers.camera import Camera
@@ -43,10 +49,41 @@ SPACING_TOLERANCE = 1e-6
 """Largest deviation of a time step from the mean step, relative to it, taken as equal."""
 
 
+@numba.njit(cache=True, nogil=True)
+def _track_kernels(q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end):  # type: ignore[no-untyped-def]
+    """The homotopy tracker on the generated straight-line kernels
+    (``generated/persp_uniform_rotation_kernel.py``, ``homotopy.track_generated``)."""
+    k = kernel_module
+    homotopy.track_generated(
+        k.coefficients, k.coefficients_t, k.coefficient_rates, k.residual_jacobian,
+        k.residual_jacobian_t, homotopy._solve_pair, k.N_COEFFICIENTS,
+        q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end,
+    )  # fmt: skip
+
+
+@numba.njit(cache=True, nogil=True)
+def _newton_kernels(xs, q, plan, iterations):  # type: ignore[no-untyped-def]
+    """Newton's method on the generated kernels (``homotopy.newton_generated``)."""
+    k = kernel_module
+    homotopy.newton_generated(
+        k.coefficients, k.residual_jacobian, k.N_COEFFICIENTS, xs, q, plan, iterations
+    )
+
+
+# numba caches the two above on this file's source alone (curverecon.jit_cache)
+jit_cache.drop_stale((_track_kernels, _newton_kernels), (homotopy, kernel_module))
+
+
 @cache
 def _system() -> homotopy.PolynomialSystem:
-    """The tracked system (the generated tables)."""
-    return homotopy.PolynomialSystem.from_module(system_module)
+    """The tracked system: the generated tables, tracked on the generated kernels when these
+    were written for the same system."""
+    tables = homotopy.PolynomialSystem.from_module(system_module)
+    k = kernel_module
+    same = (k.UNKNOWNS, k.PARAMETERS) == (system_module.UNKNOWNS, system_module.PARAMETERS)
+    if not same:
+        return tables
+    return replace(tables, tracker=_track_kernels, newton=_newton_kernels)
 
 
 def solve(points: np.ndarray, times: np.ndarray, camera: Camera) -> RigidSolutions:

@@ -609,6 +609,9 @@ class SystemKernelCode:
     """The body of ``solve_pair``, that plan written out (:func:`print_linear_solver`)."""
     solver_one_lines: tuple[str, ...]
     """The body of ``solve_one``, the same for one right-hand side."""
+    dense_unknowns: int = 0
+    """Unknowns of the plan's dense system; when the solve is not unrolled (``solver_lines``
+    empty) the tracker's own loop solve is used and the module says so."""
 
 
 def print_linear_solver(plan: Sequence[int], two: bool) -> tuple[str, ...]:
@@ -708,7 +711,9 @@ def print_linear_solver(plan: Sequence[int], two: bool) -> tuple[str, ...]:
     return tuple(lines)
 
 
-def system_kernels(record: PolynomialSystem, config: NumPyConfig) -> SystemKernelCode:
+def system_kernels(
+    record: PolynomialSystem, config: NumPyConfig, unroll_solver: bool = True
+) -> SystemKernelCode:
     """Straight-line kernels of a parametric system F(x; q) = W(q) u(x) (``u`` the unknown
     monomials, ``W`` the coefficient matrix, a polynomial in the parameters):
 
@@ -721,7 +726,9 @@ def system_kernels(record: PolynomialSystem, config: NumPyConfig) -> SystemKerne
     The split lets a tracker evaluate W once per t and reuse it for every Newton iteration
     there.  Entries that do not depend on q are written into the residual kernels as numbers.
     Terms come from :func:`system_terms`, so the entries are the same sums as the table-driven
-    module's."""
+    module's.  ``unroll_solver``: also ``solve_one`` and ``solve_pair``, the plan's linear solve
+    unrolled (its length grows as the cube of the dense unknowns: 15 of them wrote 15,000
+    lines; without it the tracker's loop solve serves)."""
     n_u = len(record.unknowns)
     umons, pmons, terms = system_terms(record.equations, record.unknowns, record.parameters)
     params = tuple(record.parameters)
@@ -817,8 +824,9 @@ def system_kernels(record: PolynomialSystem, config: NumPyConfig) -> SystemKerne
         coefficient_rows=tuple(_pack(rows, width)),
         kernels=kernels,
         elimination_repr=repr(tuple(int(v) for v in plan)),
-        solver_lines=print_linear_solver(plan, True),
-        solver_one_lines=print_linear_solver(plan, False),
+        solver_lines=print_linear_solver(plan, True) if unroll_solver else (),
+        solver_one_lines=print_linear_solver(plan, False) if unroll_solver else (),
+        dense_unknowns=int(plan[0] - plan[1]),
     )
 
 
@@ -936,11 +944,12 @@ def render_system_kernel_module(
     system: PolynomialSystem,
     filename: str = "generated/system_kernel.py",
     config: NumPyConfig | None = None,
+    unroll_solver: bool = True,
 ) -> str:
     """The formatted text of a module of straight-line numba kernels of a parametric polynomial
     system (``templates/system_kernel.py.jinja``, :func:`system_kernels`)."""
     config = config or NumPyConfig()
-    code = system_kernels(system, config)
+    code = system_kernels(system, config, unroll_solver)
     return _render(SYSTEM_KERNEL_TEMPLATE_NAME, source, doc, filename, config, kernel=code)
 
 

@@ -1,0 +1,3958 @@
+# -------------------------------------------------------------------------------------------------
+# Generated, do not edit / do not modify: change derivations/ and run `make derive`.
+#
+# Derivation: derivations/section2_perspective.py
+# Template:   derivations/codegen/templates/system_kernel.py.jinja
+# SymPy:      1.14.0
+# -------------------------------------------------------------------------------------------------
+"""Straight-line numba kernels of generated/persp_fixed_axis_system.py (generated).
+
+The system F(x; q) = W(q) u(x) of derivations/section2_perspective.py, written out after one
+common-subexpression pass instead of read from tables: ``coefficients`` and ``coefficients_t``
+give the nonzero entries of W (and dW/dt along dq), ``residual_jacobian`` and
+``residual_jacobian_t`` give F, F_x (and F_t) from them.  Complex arithmetic; every argument a
+contiguous complex128 array.  curverecon.solvers.homotopy tracks paths with these when a system
+comes with them, and reads the tables of the system module otherwise.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+UNKNOWNS = ("b0", "c0", "n1", "n2", "mu1", "mu2")
+PARAMETERS = (
+    "a0x",
+    "a0y",
+    "a0z",
+    "b0x",
+    "b0y",
+    "b0z",
+    "c0x",
+    "c0y",
+    "c0z",
+    "nab1x",
+    "nab1y",
+    "nab1z",
+    "nac1x",
+    "nac1y",
+    "nac1z",
+    "nbc1x",
+    "nbc1y",
+    "nbc1z",
+    "nab2x",
+    "nab2y",
+    "nab2z",
+    "nac2x",
+    "nac2y",
+    "nac2z",
+    "nbc2x",
+    "nbc2y",
+    "nbc2z",
+)
+EQUATIONS = (
+    "plane equation 0",
+    "plane equation 1",
+    "plane equation 2",
+    "plane equation 3",
+    "plane equation 4",
+    "plane equation 5",
+)
+
+#: Entries of the coefficient matrix W(q) the kernels exchange (nonzero ones only).
+N_COEFFICIENTS = 120
+
+#: (equation, exponents of UNKNOWNS of the unknown monomial) of each entry of W, in order.
+# fmt: off
+COEFFICIENT_ENTRIES = (
+    (0, (0, 0, 0, 0, 0, 0)), (0, (0, 0, 0, 0, 1, 0)), (0, (0, 0, 0, 0, 2, 0)),
+    (0, (0, 0, 0, 1, 1, 0)), (0, (0, 0, 0, 1, 2, 0)), (0, (0, 0, 0, 2, 2, 0)),
+    (0, (0, 0, 1, 0, 1, 0)), (0, (0, 0, 1, 0, 2, 0)), (0, (0, 0, 1, 1, 2, 0)),
+    (0, (0, 0, 2, 0, 2, 0)), (0, (1, 0, 0, 0, 0, 0)), (0, (1, 0, 0, 0, 1, 0)),
+    (0, (1, 0, 0, 0, 2, 0)), (0, (1, 0, 0, 1, 1, 0)), (0, (1, 0, 0, 1, 2, 0)),
+    (0, (1, 0, 0, 2, 2, 0)), (0, (1, 0, 1, 0, 1, 0)), (0, (1, 0, 1, 0, 2, 0)),
+    (0, (1, 0, 1, 1, 2, 0)), (0, (1, 0, 2, 0, 2, 0)), (1, (0, 0, 0, 0, 0, 0)),
+    (1, (0, 0, 0, 0, 1, 0)), (1, (0, 0, 0, 0, 2, 0)), (1, (0, 0, 0, 1, 1, 0)),
+    (1, (0, 0, 0, 1, 2, 0)), (1, (0, 0, 0, 2, 2, 0)), (1, (0, 0, 1, 0, 1, 0)),
+    (1, (0, 0, 1, 0, 2, 0)), (1, (0, 0, 1, 1, 2, 0)), (1, (0, 0, 2, 0, 2, 0)),
+    (1, (0, 1, 0, 0, 0, 0)), (1, (0, 1, 0, 0, 1, 0)), (1, (0, 1, 0, 0, 2, 0)),
+    (1, (0, 1, 0, 1, 1, 0)), (1, (0, 1, 0, 1, 2, 0)), (1, (0, 1, 0, 2, 2, 0)),
+    (1, (0, 1, 1, 0, 1, 0)), (1, (0, 1, 1, 0, 2, 0)), (1, (0, 1, 1, 1, 2, 0)),
+    (1, (0, 1, 2, 0, 2, 0)), (2, (0, 1, 0, 0, 0, 0)), (2, (0, 1, 0, 0, 1, 0)),
+    (2, (0, 1, 0, 0, 2, 0)), (2, (0, 1, 0, 1, 1, 0)), (2, (0, 1, 0, 1, 2, 0)),
+    (2, (0, 1, 0, 2, 2, 0)), (2, (0, 1, 1, 0, 1, 0)), (2, (0, 1, 1, 0, 2, 0)),
+    (2, (0, 1, 1, 1, 2, 0)), (2, (0, 1, 2, 0, 2, 0)), (2, (1, 0, 0, 0, 0, 0)),
+    (2, (1, 0, 0, 0, 1, 0)), (2, (1, 0, 0, 0, 2, 0)), (2, (1, 0, 0, 1, 1, 0)),
+    (2, (1, 0, 0, 1, 2, 0)), (2, (1, 0, 0, 2, 2, 0)), (2, (1, 0, 1, 0, 1, 0)),
+    (2, (1, 0, 1, 0, 2, 0)), (2, (1, 0, 1, 1, 2, 0)), (2, (1, 0, 2, 0, 2, 0)),
+    (3, (0, 0, 0, 0, 0, 0)), (3, (0, 0, 0, 0, 0, 1)), (3, (0, 0, 0, 0, 0, 2)),
+    (3, (0, 0, 0, 1, 0, 1)), (3, (0, 0, 0, 1, 0, 2)), (3, (0, 0, 0, 2, 0, 2)),
+    (3, (0, 0, 1, 0, 0, 1)), (3, (0, 0, 1, 0, 0, 2)), (3, (0, 0, 1, 1, 0, 2)),
+    (3, (0, 0, 2, 0, 0, 2)), (3, (1, 0, 0, 0, 0, 0)), (3, (1, 0, 0, 0, 0, 1)),
+    (3, (1, 0, 0, 0, 0, 2)), (3, (1, 0, 0, 1, 0, 1)), (3, (1, 0, 0, 1, 0, 2)),
+    (3, (1, 0, 0, 2, 0, 2)), (3, (1, 0, 1, 0, 0, 1)), (3, (1, 0, 1, 0, 0, 2)),
+    (3, (1, 0, 1, 1, 0, 2)), (3, (1, 0, 2, 0, 0, 2)), (4, (0, 0, 0, 0, 0, 0)),
+    (4, (0, 0, 0, 0, 0, 1)), (4, (0, 0, 0, 0, 0, 2)), (4, (0, 0, 0, 1, 0, 1)),
+    (4, (0, 0, 0, 1, 0, 2)), (4, (0, 0, 0, 2, 0, 2)), (4, (0, 0, 1, 0, 0, 1)),
+    (4, (0, 0, 1, 0, 0, 2)), (4, (0, 0, 1, 1, 0, 2)), (4, (0, 0, 2, 0, 0, 2)),
+    (4, (0, 1, 0, 0, 0, 0)), (4, (0, 1, 0, 0, 0, 1)), (4, (0, 1, 0, 0, 0, 2)),
+    (4, (0, 1, 0, 1, 0, 1)), (4, (0, 1, 0, 1, 0, 2)), (4, (0, 1, 0, 2, 0, 2)),
+    (4, (0, 1, 1, 0, 0, 1)), (4, (0, 1, 1, 0, 0, 2)), (4, (0, 1, 1, 1, 0, 2)),
+    (4, (0, 1, 2, 0, 0, 2)), (5, (0, 1, 0, 0, 0, 0)), (5, (0, 1, 0, 0, 0, 1)),
+    (5, (0, 1, 0, 0, 0, 2)), (5, (0, 1, 0, 1, 0, 1)), (5, (0, 1, 0, 1, 0, 2)),
+    (5, (0, 1, 0, 2, 0, 2)), (5, (0, 1, 1, 0, 0, 1)), (5, (0, 1, 1, 0, 0, 2)),
+    (5, (0, 1, 1, 1, 0, 2)), (5, (0, 1, 2, 0, 0, 2)), (5, (1, 0, 0, 0, 0, 0)),
+    (5, (1, 0, 0, 0, 0, 1)), (5, (1, 0, 0, 0, 0, 2)), (5, (1, 0, 0, 1, 0, 1)),
+    (5, (1, 0, 0, 1, 0, 2)), (5, (1, 0, 0, 2, 0, 2)), (5, (1, 0, 1, 0, 0, 1)),
+    (5, (1, 0, 1, 0, 0, 2)), (5, (1, 0, 1, 1, 0, 2)), (5, (1, 0, 2, 0, 0, 2)),
+)
+# fmt: on
+
+# Compiled on first call and cached next to this file (numba's LLVM).  Complex arithmetic;
+# fastmath without the finite-math flags, as the homotopy tracker that calls these.
+_JIT = {"cache": True, "nogil": True, "fastmath": {"contract", "reassoc", "arcp", "nsz"}}
+
+
+@numba.njit(**_JIT)
+def coefficients(q: np.ndarray, w: np.ndarray) -> None:
+    """The nonzero entries of the coefficient matrix W(q) (COEFFICIENT_ENTRIES order).
+
+    Outputs written in place (every entry): w.
+    """
+    a0x = q[0]
+    a0y = q[1]
+    a0z = q[2]
+    b0x = q[3]
+    b0y = q[4]
+    b0z = q[5]
+    c0x = q[6]
+    c0y = q[7]
+    c0z = q[8]
+    nab1x = q[9]
+    nab1y = q[10]
+    nab1z = q[11]
+    nac1x = q[12]
+    nac1y = q[13]
+    nac1z = q[14]
+    nbc1x = q[15]
+    nbc1y = q[16]
+    nbc1z = q[17]
+    nab2x = q[18]
+    nab2y = q[19]
+    nab2z = q[20]
+    nac2x = q[21]
+    nac2y = q[22]
+    nac2z = q[23]
+    nbc2x = q[24]
+    nbc2y = q[25]
+    nbc2z = q[26]
+    _tmp0 = a0z * nab1z
+    _tmp1 = a0x * nab1x
+    _tmp2 = a0y * nab1y
+    _tmp3 = _tmp1 + _tmp2
+    _tmp4 = a0x * nab1y
+    _tmp5 = a0x * nab1z
+    _tmp6 = a0z * nab1x
+    _tmp7 = a0y * nab1z
+    _tmp8 = b0z * nab1z
+    _tmp9 = b0x * nab1x
+    _tmp10 = b0y * nab1y
+    _tmp11 = _tmp10 + _tmp9
+    _tmp12 = b0x * nab1y
+    _tmp13 = b0y * nab1x
+    _tmp14 = b0x * nab1z
+    _tmp15 = b0y * nab1z
+    _tmp16 = b0z * nab1y
+    _tmp17 = a0z * nac1z
+    _tmp18 = a0x * nac1x
+    _tmp19 = a0y * nac1y
+    _tmp20 = _tmp18 + _tmp19
+    _tmp21 = a0x * nac1y
+    _tmp22 = a0x * nac1z
+    _tmp23 = a0z * nac1x
+    _tmp24 = a0y * nac1z
+    _tmp25 = c0z * nac1z
+    _tmp26 = c0x * nac1x
+    _tmp27 = c0y * nac1y
+    _tmp28 = _tmp26 + _tmp27
+    _tmp29 = c0x * nac1y
+    _tmp30 = c0y * nac1x
+    _tmp31 = c0x * nac1z
+    _tmp32 = c0y * nac1z
+    _tmp33 = c0z * nac1y
+    _tmp34 = c0z * nbc1z
+    _tmp35 = c0x * nbc1x
+    _tmp36 = c0y * nbc1y
+    _tmp37 = _tmp35 + _tmp36
+    _tmp38 = c0x * nbc1y
+    _tmp39 = c0y * nbc1x
+    _tmp40 = c0x * nbc1z
+    _tmp41 = c0y * nbc1z
+    _tmp42 = c0z * nbc1y
+    _tmp43 = b0z * nbc1z
+    _tmp44 = b0x * nbc1x
+    _tmp45 = b0y * nbc1y
+    _tmp46 = _tmp44 + _tmp45
+    _tmp47 = b0x * nbc1y
+    _tmp48 = b0x * nbc1z
+    _tmp49 = b0z * nbc1x
+    _tmp50 = b0y * nbc1z
+    _tmp51 = a0z * nab2z
+    _tmp52 = a0x * nab2x
+    _tmp53 = a0y * nab2y
+    _tmp54 = _tmp52 + _tmp53
+    _tmp55 = a0x * nab2y
+    _tmp56 = a0x * nab2z
+    _tmp57 = a0z * nab2x
+    _tmp58 = a0y * nab2z
+    _tmp59 = b0z * nab2z
+    _tmp60 = b0x * nab2x
+    _tmp61 = b0y * nab2y
+    _tmp62 = _tmp60 + _tmp61
+    _tmp63 = b0x * nab2y
+    _tmp64 = b0y * nab2x
+    _tmp65 = b0x * nab2z
+    _tmp66 = b0y * nab2z
+    _tmp67 = b0z * nab2y
+    _tmp68 = a0z * nac2z
+    _tmp69 = a0x * nac2x
+    _tmp70 = a0y * nac2y
+    _tmp71 = _tmp69 + _tmp70
+    _tmp72 = a0x * nac2y
+    _tmp73 = a0x * nac2z
+    _tmp74 = a0z * nac2x
+    _tmp75 = a0y * nac2z
+    _tmp76 = c0z * nac2z
+    _tmp77 = c0x * nac2x
+    _tmp78 = c0y * nac2y
+    _tmp79 = _tmp77 + _tmp78
+    _tmp80 = c0x * nac2y
+    _tmp81 = c0y * nac2x
+    _tmp82 = c0x * nac2z
+    _tmp83 = c0y * nac2z
+    _tmp84 = c0z * nac2y
+    _tmp85 = c0z * nbc2z
+    _tmp86 = c0x * nbc2x
+    _tmp87 = c0y * nbc2y
+    _tmp88 = _tmp86 + _tmp87
+    _tmp89 = c0x * nbc2y
+    _tmp90 = c0y * nbc2x
+    _tmp91 = c0x * nbc2z
+    _tmp92 = c0y * nbc2z
+    _tmp93 = c0z * nbc2y
+    _tmp94 = b0z * nbc2z
+    _tmp95 = b0x * nbc2x
+    _tmp96 = b0y * nbc2y
+    _tmp97 = _tmp95 + _tmp96
+    _tmp98 = b0x * nbc2y
+    _tmp99 = b0x * nbc2z
+    _tmp100 = b0z * nbc2x
+    _tmp101 = b0y * nbc2z
+    w[0] = -_tmp0 - _tmp3
+    w[1] = -2 * _tmp4 + 2 * a0y * nab1x
+    w[2] = -_tmp0 + _tmp3
+    w[3] = 2 * _tmp5 - 2 * _tmp6
+    w[4] = -2 * _tmp7 - 2 * a0z * nab1y
+    w[5] = _tmp0 + _tmp1 - _tmp2
+    w[6] = -2 * _tmp7 + 2 * a0z * nab1y
+    w[7] = -2 * _tmp5 - 2 * _tmp6
+    w[8] = -2 * _tmp4 - 2 * a0y * nab1x
+    w[9] = _tmp0 - _tmp1 + _tmp2
+    w[10] = _tmp11 + _tmp8
+    w[11] = 2 * _tmp12 - 2 * _tmp13
+    w[12] = -_tmp11 + _tmp8
+    w[13] = -2 * _tmp14 + 2 * b0z * nab1x
+    w[14] = 2 * _tmp15 + 2 * _tmp16
+    w[15] = _tmp10 - _tmp8 - _tmp9
+    w[16] = 2 * _tmp15 - 2 * _tmp16
+    w[17] = 2 * _tmp14 + 2 * b0z * nab1x
+    w[18] = 2 * _tmp12 + 2 * _tmp13
+    w[19] = -_tmp10 - _tmp8 + _tmp9
+    w[20] = -_tmp17 - _tmp20
+    w[21] = -2 * _tmp21 + 2 * a0y * nac1x
+    w[22] = -_tmp17 + _tmp20
+    w[23] = 2 * _tmp22 - 2 * _tmp23
+    w[24] = -2 * _tmp24 - 2 * a0z * nac1y
+    w[25] = _tmp17 + _tmp18 - _tmp19
+    w[26] = -2 * _tmp24 + 2 * a0z * nac1y
+    w[27] = -2 * _tmp22 - 2 * _tmp23
+    w[28] = -2 * _tmp21 - 2 * a0y * nac1x
+    w[29] = _tmp17 - _tmp18 + _tmp19
+    w[30] = _tmp25 + _tmp28
+    w[31] = 2 * _tmp29 - 2 * _tmp30
+    w[32] = _tmp25 - _tmp28
+    w[33] = -2 * _tmp31 + 2 * c0z * nac1x
+    w[34] = 2 * _tmp32 + 2 * _tmp33
+    w[35] = -_tmp25 - _tmp26 + _tmp27
+    w[36] = 2 * _tmp32 - 2 * _tmp33
+    w[37] = 2 * _tmp31 + 2 * c0z * nac1x
+    w[38] = 2 * _tmp29 + 2 * _tmp30
+    w[39] = -_tmp25 + _tmp26 - _tmp27
+    w[40] = _tmp34 + _tmp37
+    w[41] = 2 * _tmp38 - 2 * _tmp39
+    w[42] = _tmp34 - _tmp37
+    w[43] = -2 * _tmp40 + 2 * c0z * nbc1x
+    w[44] = 2 * _tmp41 + 2 * _tmp42
+    w[45] = -_tmp34 - _tmp35 + _tmp36
+    w[46] = 2 * _tmp41 - 2 * _tmp42
+    w[47] = 2 * _tmp40 + 2 * c0z * nbc1x
+    w[48] = 2 * _tmp38 + 2 * _tmp39
+    w[49] = -_tmp34 + _tmp35 - _tmp36
+    w[50] = -_tmp43 - _tmp46
+    w[51] = -2 * _tmp47 + 2 * b0y * nbc1x
+    w[52] = -_tmp43 + _tmp46
+    w[53] = 2 * _tmp48 - 2 * _tmp49
+    w[54] = -2 * _tmp50 - 2 * b0z * nbc1y
+    w[55] = _tmp43 + _tmp44 - _tmp45
+    w[56] = -2 * _tmp50 + 2 * b0z * nbc1y
+    w[57] = -2 * _tmp48 - 2 * _tmp49
+    w[58] = -2 * _tmp47 - 2 * b0y * nbc1x
+    w[59] = _tmp43 - _tmp44 + _tmp45
+    w[60] = -_tmp51 - _tmp54
+    w[61] = -2 * _tmp55 + 2 * a0y * nab2x
+    w[62] = -_tmp51 + _tmp54
+    w[63] = 2 * _tmp56 - 2 * _tmp57
+    w[64] = -2 * _tmp58 - 2 * a0z * nab2y
+    w[65] = _tmp51 + _tmp52 - _tmp53
+    w[66] = -2 * _tmp58 + 2 * a0z * nab2y
+    w[67] = -2 * _tmp56 - 2 * _tmp57
+    w[68] = -2 * _tmp55 - 2 * a0y * nab2x
+    w[69] = _tmp51 - _tmp52 + _tmp53
+    w[70] = _tmp59 + _tmp62
+    w[71] = 2 * _tmp63 - 2 * _tmp64
+    w[72] = _tmp59 - _tmp62
+    w[73] = -2 * _tmp65 + 2 * b0z * nab2x
+    w[74] = 2 * _tmp66 + 2 * _tmp67
+    w[75] = -_tmp59 - _tmp60 + _tmp61
+    w[76] = 2 * _tmp66 - 2 * _tmp67
+    w[77] = 2 * _tmp65 + 2 * b0z * nab2x
+    w[78] = 2 * _tmp63 + 2 * _tmp64
+    w[79] = -_tmp59 + _tmp60 - _tmp61
+    w[80] = -_tmp68 - _tmp71
+    w[81] = -2 * _tmp72 + 2 * a0y * nac2x
+    w[82] = -_tmp68 + _tmp71
+    w[83] = 2 * _tmp73 - 2 * _tmp74
+    w[84] = -2 * _tmp75 - 2 * a0z * nac2y
+    w[85] = _tmp68 + _tmp69 - _tmp70
+    w[86] = -2 * _tmp75 + 2 * a0z * nac2y
+    w[87] = -2 * _tmp73 - 2 * _tmp74
+    w[88] = -2 * _tmp72 - 2 * a0y * nac2x
+    w[89] = _tmp68 - _tmp69 + _tmp70
+    w[90] = _tmp76 + _tmp79
+    w[91] = 2 * _tmp80 - 2 * _tmp81
+    w[92] = _tmp76 - _tmp79
+    w[93] = -2 * _tmp82 + 2 * c0z * nac2x
+    w[94] = 2 * _tmp83 + 2 * _tmp84
+    w[95] = -_tmp76 - _tmp77 + _tmp78
+    w[96] = 2 * _tmp83 - 2 * _tmp84
+    w[97] = 2 * _tmp82 + 2 * c0z * nac2x
+    w[98] = 2 * _tmp80 + 2 * _tmp81
+    w[99] = -_tmp76 + _tmp77 - _tmp78
+    w[100] = _tmp85 + _tmp88
+    w[101] = 2 * _tmp89 - 2 * _tmp90
+    w[102] = _tmp85 - _tmp88
+    w[103] = -2 * _tmp91 + 2 * c0z * nbc2x
+    w[104] = 2 * _tmp92 + 2 * _tmp93
+    w[105] = -_tmp85 - _tmp86 + _tmp87
+    w[106] = 2 * _tmp92 - 2 * _tmp93
+    w[107] = 2 * _tmp91 + 2 * c0z * nbc2x
+    w[108] = 2 * _tmp89 + 2 * _tmp90
+    w[109] = -_tmp85 + _tmp86 - _tmp87
+    w[110] = -_tmp94 - _tmp97
+    w[111] = -2 * _tmp98 + 2 * b0y * nbc2x
+    w[112] = -_tmp94 + _tmp97
+    w[113] = -2 * _tmp100 + 2 * _tmp99
+    w[114] = -2 * _tmp101 - 2 * b0z * nbc2y
+    w[115] = _tmp94 + _tmp95 - _tmp96
+    w[116] = -2 * _tmp101 + 2 * b0z * nbc2y
+    w[117] = -2 * _tmp100 - 2 * _tmp99
+    w[118] = -2 * _tmp98 - 2 * b0y * nbc2x
+    w[119] = _tmp94 - _tmp95 + _tmp96
+
+
+@numba.njit(**_JIT)
+def coefficients_t(q: np.ndarray, dq: np.ndarray, w: np.ndarray, wt: np.ndarray) -> None:
+    """W(q) as ``coefficients`` and its derivative dW/dt = W_q . dq along dq = dq/dt.
+
+    Outputs written in place (every entry): w, wt.
+    """
+    a0x = q[0]
+    a0y = q[1]
+    a0z = q[2]
+    b0x = q[3]
+    b0y = q[4]
+    b0z = q[5]
+    c0x = q[6]
+    c0y = q[7]
+    c0z = q[8]
+    nab1x = q[9]
+    nab1y = q[10]
+    nab1z = q[11]
+    nac1x = q[12]
+    nac1y = q[13]
+    nac1z = q[14]
+    nbc1x = q[15]
+    nbc1y = q[16]
+    nbc1z = q[17]
+    nab2x = q[18]
+    nab2y = q[19]
+    nab2z = q[20]
+    nac2x = q[21]
+    nac2y = q[22]
+    nac2z = q[23]
+    nbc2x = q[24]
+    nbc2y = q[25]
+    nbc2z = q[26]
+    d_a0x = dq[0]
+    d_a0y = dq[1]
+    d_a0z = dq[2]
+    d_b0x = dq[3]
+    d_b0y = dq[4]
+    d_b0z = dq[5]
+    d_c0x = dq[6]
+    d_c0y = dq[7]
+    d_c0z = dq[8]
+    d_nab1x = dq[9]
+    d_nab1y = dq[10]
+    d_nab1z = dq[11]
+    d_nac1x = dq[12]
+    d_nac1y = dq[13]
+    d_nac1z = dq[14]
+    d_nbc1x = dq[15]
+    d_nbc1y = dq[16]
+    d_nbc1z = dq[17]
+    d_nab2x = dq[18]
+    d_nab2y = dq[19]
+    d_nab2z = dq[20]
+    d_nac2x = dq[21]
+    d_nac2y = dq[22]
+    d_nac2z = dq[23]
+    d_nbc2x = dq[24]
+    d_nbc2y = dq[25]
+    d_nbc2z = dq[26]
+    _tmp0 = a0z * nab1z
+    _tmp1 = a0x * nab1x
+    _tmp2 = a0y * nab1y
+    _tmp3 = _tmp1 + _tmp2
+    _tmp4 = a0x * nab1y
+    _tmp5 = a0x * nab1z
+    _tmp6 = a0z * nab1x
+    _tmp7 = a0y * nab1z
+    _tmp8 = b0z * nab1z
+    _tmp9 = b0x * nab1x
+    _tmp10 = b0y * nab1y
+    _tmp11 = _tmp10 + _tmp9
+    _tmp12 = b0x * nab1y
+    _tmp13 = b0y * nab1x
+    _tmp14 = b0x * nab1z
+    _tmp15 = b0y * nab1z
+    _tmp16 = b0z * nab1y
+    _tmp17 = a0z * nac1z
+    _tmp18 = a0x * nac1x
+    _tmp19 = a0y * nac1y
+    _tmp20 = _tmp18 + _tmp19
+    _tmp21 = a0x * nac1y
+    _tmp22 = a0x * nac1z
+    _tmp23 = a0z * nac1x
+    _tmp24 = a0y * nac1z
+    _tmp25 = c0z * nac1z
+    _tmp26 = c0x * nac1x
+    _tmp27 = c0y * nac1y
+    _tmp28 = _tmp26 + _tmp27
+    _tmp29 = c0x * nac1y
+    _tmp30 = c0y * nac1x
+    _tmp31 = c0x * nac1z
+    _tmp32 = c0y * nac1z
+    _tmp33 = c0z * nac1y
+    _tmp34 = c0z * nbc1z
+    _tmp35 = c0x * nbc1x
+    _tmp36 = c0y * nbc1y
+    _tmp37 = _tmp35 + _tmp36
+    _tmp38 = c0x * nbc1y
+    _tmp39 = c0y * nbc1x
+    _tmp40 = c0x * nbc1z
+    _tmp41 = c0y * nbc1z
+    _tmp42 = c0z * nbc1y
+    _tmp43 = b0z * nbc1z
+    _tmp44 = b0x * nbc1x
+    _tmp45 = b0y * nbc1y
+    _tmp46 = _tmp44 + _tmp45
+    _tmp47 = b0x * nbc1y
+    _tmp48 = b0x * nbc1z
+    _tmp49 = b0z * nbc1x
+    _tmp50 = b0y * nbc1z
+    _tmp51 = a0z * nab2z
+    _tmp52 = a0x * nab2x
+    _tmp53 = a0y * nab2y
+    _tmp54 = _tmp52 + _tmp53
+    _tmp55 = a0x * nab2y
+    _tmp56 = a0x * nab2z
+    _tmp57 = a0z * nab2x
+    _tmp58 = a0y * nab2z
+    _tmp59 = b0z * nab2z
+    _tmp60 = b0x * nab2x
+    _tmp61 = b0y * nab2y
+    _tmp62 = _tmp60 + _tmp61
+    _tmp63 = b0x * nab2y
+    _tmp64 = b0y * nab2x
+    _tmp65 = b0x * nab2z
+    _tmp66 = b0y * nab2z
+    _tmp67 = b0z * nab2y
+    _tmp68 = a0z * nac2z
+    _tmp69 = a0x * nac2x
+    _tmp70 = a0y * nac2y
+    _tmp71 = _tmp69 + _tmp70
+    _tmp72 = a0x * nac2y
+    _tmp73 = a0x * nac2z
+    _tmp74 = a0z * nac2x
+    _tmp75 = a0y * nac2z
+    _tmp76 = c0z * nac2z
+    _tmp77 = c0x * nac2x
+    _tmp78 = c0y * nac2y
+    _tmp79 = _tmp77 + _tmp78
+    _tmp80 = c0x * nac2y
+    _tmp81 = c0y * nac2x
+    _tmp82 = c0x * nac2z
+    _tmp83 = c0y * nac2z
+    _tmp84 = c0z * nac2y
+    _tmp85 = c0z * nbc2z
+    _tmp86 = c0x * nbc2x
+    _tmp87 = c0y * nbc2y
+    _tmp88 = _tmp86 + _tmp87
+    _tmp89 = c0x * nbc2y
+    _tmp90 = c0y * nbc2x
+    _tmp91 = c0x * nbc2z
+    _tmp92 = c0y * nbc2z
+    _tmp93 = c0z * nbc2y
+    _tmp94 = b0z * nbc2z
+    _tmp95 = b0x * nbc2x
+    _tmp96 = b0y * nbc2y
+    _tmp97 = _tmp95 + _tmp96
+    _tmp98 = b0x * nbc2y
+    _tmp99 = b0x * nbc2z
+    _tmp100 = b0z * nbc2x
+    _tmp101 = b0y * nbc2z
+    _tmp102 = a0x * d_nab1x
+    _tmp103 = a0y * d_nab1y
+    _tmp104 = d_a0x * nab1x
+    _tmp105 = d_a0y * nab1y
+    _tmp106 = _tmp102 + _tmp103 + _tmp104 + _tmp105
+    _tmp107 = a0z * d_nab1z
+    _tmp108 = d_a0z * nab1z
+    _tmp109 = _tmp107 + _tmp108
+    _tmp110 = a0x * d_nab1y + d_a0x * nab1y
+    _tmp111 = a0z * d_nab1x
+    _tmp112 = d_a0z * nab1x
+    _tmp113 = a0x * d_nab1z + d_a0x * nab1z
+    _tmp114 = a0y * d_nab1z + d_a0y * nab1z
+    _tmp115 = b0x * d_nab1x
+    _tmp116 = b0y * d_nab1y
+    _tmp117 = d_b0x * nab1x
+    _tmp118 = d_b0y * nab1y
+    _tmp119 = _tmp115 + _tmp116 + _tmp117 + _tmp118
+    _tmp120 = b0z * d_nab1z
+    _tmp121 = d_b0z * nab1z
+    _tmp122 = _tmp120 + _tmp121
+    _tmp123 = b0y * d_nab1x
+    _tmp124 = d_b0y * nab1x
+    _tmp125 = b0x * d_nab1y + d_b0x * nab1y
+    _tmp126 = b0x * d_nab1z + d_b0x * nab1z
+    _tmp127 = b0z * d_nab1y
+    _tmp128 = d_b0z * nab1y
+    _tmp129 = b0y * d_nab1z + d_b0y * nab1z
+    _tmp130 = a0x * d_nac1x
+    _tmp131 = a0y * d_nac1y
+    _tmp132 = d_a0x * nac1x
+    _tmp133 = d_a0y * nac1y
+    _tmp134 = _tmp130 + _tmp131 + _tmp132 + _tmp133
+    _tmp135 = a0z * d_nac1z
+    _tmp136 = d_a0z * nac1z
+    _tmp137 = _tmp135 + _tmp136
+    _tmp138 = a0x * d_nac1y + d_a0x * nac1y
+    _tmp139 = a0z * d_nac1x
+    _tmp140 = d_a0z * nac1x
+    _tmp141 = a0x * d_nac1z + d_a0x * nac1z
+    _tmp142 = a0y * d_nac1z + d_a0y * nac1z
+    _tmp143 = c0x * d_nac1x
+    _tmp144 = c0y * d_nac1y
+    _tmp145 = d_c0x * nac1x
+    _tmp146 = d_c0y * nac1y
+    _tmp147 = _tmp143 + _tmp144 + _tmp145 + _tmp146
+    _tmp148 = c0z * d_nac1z
+    _tmp149 = d_c0z * nac1z
+    _tmp150 = _tmp148 + _tmp149
+    _tmp151 = c0y * d_nac1x
+    _tmp152 = d_c0y * nac1x
+    _tmp153 = c0x * d_nac1y + d_c0x * nac1y
+    _tmp154 = c0x * d_nac1z + d_c0x * nac1z
+    _tmp155 = c0z * d_nac1y
+    _tmp156 = d_c0z * nac1y
+    _tmp157 = c0y * d_nac1z + d_c0y * nac1z
+    _tmp158 = c0x * d_nbc1x
+    _tmp159 = c0y * d_nbc1y
+    _tmp160 = d_c0x * nbc1x
+    _tmp161 = d_c0y * nbc1y
+    _tmp162 = _tmp158 + _tmp159 + _tmp160 + _tmp161
+    _tmp163 = c0z * d_nbc1z
+    _tmp164 = d_c0z * nbc1z
+    _tmp165 = _tmp163 + _tmp164
+    _tmp166 = c0y * d_nbc1x
+    _tmp167 = d_c0y * nbc1x
+    _tmp168 = c0x * d_nbc1y + d_c0x * nbc1y
+    _tmp169 = c0x * d_nbc1z + d_c0x * nbc1z
+    _tmp170 = c0z * d_nbc1y
+    _tmp171 = d_c0z * nbc1y
+    _tmp172 = c0y * d_nbc1z + d_c0y * nbc1z
+    _tmp173 = b0x * d_nbc1x
+    _tmp174 = b0y * d_nbc1y
+    _tmp175 = d_b0x * nbc1x
+    _tmp176 = d_b0y * nbc1y
+    _tmp177 = _tmp173 + _tmp174 + _tmp175 + _tmp176
+    _tmp178 = b0z * d_nbc1z
+    _tmp179 = d_b0z * nbc1z
+    _tmp180 = _tmp178 + _tmp179
+    _tmp181 = b0x * d_nbc1y + d_b0x * nbc1y
+    _tmp182 = b0z * d_nbc1x
+    _tmp183 = d_b0z * nbc1x
+    _tmp184 = b0x * d_nbc1z + d_b0x * nbc1z
+    _tmp185 = b0y * d_nbc1z + d_b0y * nbc1z
+    _tmp186 = a0x * d_nab2x
+    _tmp187 = a0y * d_nab2y
+    _tmp188 = d_a0x * nab2x
+    _tmp189 = d_a0y * nab2y
+    _tmp190 = _tmp186 + _tmp187 + _tmp188 + _tmp189
+    _tmp191 = a0z * d_nab2z
+    _tmp192 = d_a0z * nab2z
+    _tmp193 = _tmp191 + _tmp192
+    _tmp194 = a0x * d_nab2y + d_a0x * nab2y
+    _tmp195 = a0z * d_nab2x
+    _tmp196 = d_a0z * nab2x
+    _tmp197 = a0x * d_nab2z + d_a0x * nab2z
+    _tmp198 = a0y * d_nab2z + d_a0y * nab2z
+    _tmp199 = b0x * d_nab2x
+    _tmp200 = b0y * d_nab2y
+    _tmp201 = d_b0x * nab2x
+    _tmp202 = d_b0y * nab2y
+    _tmp203 = _tmp199 + _tmp200 + _tmp201 + _tmp202
+    _tmp204 = b0z * d_nab2z
+    _tmp205 = d_b0z * nab2z
+    _tmp206 = _tmp204 + _tmp205
+    _tmp207 = b0y * d_nab2x
+    _tmp208 = d_b0y * nab2x
+    _tmp209 = b0x * d_nab2y + d_b0x * nab2y
+    _tmp210 = b0x * d_nab2z + d_b0x * nab2z
+    _tmp211 = b0z * d_nab2y
+    _tmp212 = d_b0z * nab2y
+    _tmp213 = b0y * d_nab2z + d_b0y * nab2z
+    _tmp214 = a0x * d_nac2x
+    _tmp215 = a0y * d_nac2y
+    _tmp216 = d_a0x * nac2x
+    _tmp217 = d_a0y * nac2y
+    _tmp218 = _tmp214 + _tmp215 + _tmp216 + _tmp217
+    _tmp219 = a0z * d_nac2z
+    _tmp220 = d_a0z * nac2z
+    _tmp221 = _tmp219 + _tmp220
+    _tmp222 = a0x * d_nac2y + d_a0x * nac2y
+    _tmp223 = a0z * d_nac2x
+    _tmp224 = d_a0z * nac2x
+    _tmp225 = a0x * d_nac2z + d_a0x * nac2z
+    _tmp226 = a0y * d_nac2z + d_a0y * nac2z
+    _tmp227 = c0x * d_nac2x
+    _tmp228 = c0y * d_nac2y
+    _tmp229 = d_c0x * nac2x
+    _tmp230 = d_c0y * nac2y
+    _tmp231 = _tmp227 + _tmp228 + _tmp229 + _tmp230
+    _tmp232 = c0z * d_nac2z
+    _tmp233 = d_c0z * nac2z
+    _tmp234 = _tmp232 + _tmp233
+    _tmp235 = c0y * d_nac2x
+    _tmp236 = d_c0y * nac2x
+    _tmp237 = c0x * d_nac2y + d_c0x * nac2y
+    _tmp238 = c0x * d_nac2z + d_c0x * nac2z
+    _tmp239 = c0z * d_nac2y
+    _tmp240 = d_c0z * nac2y
+    _tmp241 = c0y * d_nac2z + d_c0y * nac2z
+    _tmp242 = c0x * d_nbc2x
+    _tmp243 = c0y * d_nbc2y
+    _tmp244 = d_c0x * nbc2x
+    _tmp245 = d_c0y * nbc2y
+    _tmp246 = _tmp242 + _tmp243 + _tmp244 + _tmp245
+    _tmp247 = c0z * d_nbc2z
+    _tmp248 = d_c0z * nbc2z
+    _tmp249 = _tmp247 + _tmp248
+    _tmp250 = c0y * d_nbc2x
+    _tmp251 = d_c0y * nbc2x
+    _tmp252 = c0x * d_nbc2y + d_c0x * nbc2y
+    _tmp253 = c0x * d_nbc2z + d_c0x * nbc2z
+    _tmp254 = c0z * d_nbc2y
+    _tmp255 = d_c0z * nbc2y
+    _tmp256 = c0y * d_nbc2z + d_c0y * nbc2z
+    _tmp257 = b0x * d_nbc2x
+    _tmp258 = b0y * d_nbc2y
+    _tmp259 = d_b0x * nbc2x
+    _tmp260 = d_b0y * nbc2y
+    _tmp261 = _tmp257 + _tmp258 + _tmp259 + _tmp260
+    _tmp262 = b0z * d_nbc2z
+    _tmp263 = d_b0z * nbc2z
+    _tmp264 = _tmp262 + _tmp263
+    _tmp265 = b0x * d_nbc2y + d_b0x * nbc2y
+    _tmp266 = b0z * d_nbc2x
+    _tmp267 = d_b0z * nbc2x
+    _tmp268 = b0x * d_nbc2z + d_b0x * nbc2z
+    _tmp269 = b0y * d_nbc2z + d_b0y * nbc2z
+    w[0] = -_tmp0 - _tmp3
+    w[1] = -2 * _tmp4 + 2 * a0y * nab1x
+    w[2] = -_tmp0 + _tmp3
+    w[3] = 2 * _tmp5 - 2 * _tmp6
+    w[4] = -2 * _tmp7 - 2 * a0z * nab1y
+    w[5] = _tmp0 + _tmp1 - _tmp2
+    w[6] = -2 * _tmp7 + 2 * a0z * nab1y
+    w[7] = -2 * _tmp5 - 2 * _tmp6
+    w[8] = -2 * _tmp4 - 2 * a0y * nab1x
+    w[9] = _tmp0 - _tmp1 + _tmp2
+    w[10] = _tmp11 + _tmp8
+    w[11] = 2 * _tmp12 - 2 * _tmp13
+    w[12] = -_tmp11 + _tmp8
+    w[13] = -2 * _tmp14 + 2 * b0z * nab1x
+    w[14] = 2 * _tmp15 + 2 * _tmp16
+    w[15] = _tmp10 - _tmp8 - _tmp9
+    w[16] = 2 * _tmp15 - 2 * _tmp16
+    w[17] = 2 * _tmp14 + 2 * b0z * nab1x
+    w[18] = 2 * _tmp12 + 2 * _tmp13
+    w[19] = -_tmp10 - _tmp8 + _tmp9
+    w[20] = -_tmp17 - _tmp20
+    w[21] = -2 * _tmp21 + 2 * a0y * nac1x
+    w[22] = -_tmp17 + _tmp20
+    w[23] = 2 * _tmp22 - 2 * _tmp23
+    w[24] = -2 * _tmp24 - 2 * a0z * nac1y
+    w[25] = _tmp17 + _tmp18 - _tmp19
+    w[26] = -2 * _tmp24 + 2 * a0z * nac1y
+    w[27] = -2 * _tmp22 - 2 * _tmp23
+    w[28] = -2 * _tmp21 - 2 * a0y * nac1x
+    w[29] = _tmp17 - _tmp18 + _tmp19
+    w[30] = _tmp25 + _tmp28
+    w[31] = 2 * _tmp29 - 2 * _tmp30
+    w[32] = _tmp25 - _tmp28
+    w[33] = -2 * _tmp31 + 2 * c0z * nac1x
+    w[34] = 2 * _tmp32 + 2 * _tmp33
+    w[35] = -_tmp25 - _tmp26 + _tmp27
+    w[36] = 2 * _tmp32 - 2 * _tmp33
+    w[37] = 2 * _tmp31 + 2 * c0z * nac1x
+    w[38] = 2 * _tmp29 + 2 * _tmp30
+    w[39] = -_tmp25 + _tmp26 - _tmp27
+    w[40] = _tmp34 + _tmp37
+    w[41] = 2 * _tmp38 - 2 * _tmp39
+    w[42] = _tmp34 - _tmp37
+    w[43] = -2 * _tmp40 + 2 * c0z * nbc1x
+    w[44] = 2 * _tmp41 + 2 * _tmp42
+    w[45] = -_tmp34 - _tmp35 + _tmp36
+    w[46] = 2 * _tmp41 - 2 * _tmp42
+    w[47] = 2 * _tmp40 + 2 * c0z * nbc1x
+    w[48] = 2 * _tmp38 + 2 * _tmp39
+    w[49] = -_tmp34 + _tmp35 - _tmp36
+    w[50] = -_tmp43 - _tmp46
+    w[51] = -2 * _tmp47 + 2 * b0y * nbc1x
+    w[52] = -_tmp43 + _tmp46
+    w[53] = 2 * _tmp48 - 2 * _tmp49
+    w[54] = -2 * _tmp50 - 2 * b0z * nbc1y
+    w[55] = _tmp43 + _tmp44 - _tmp45
+    w[56] = -2 * _tmp50 + 2 * b0z * nbc1y
+    w[57] = -2 * _tmp48 - 2 * _tmp49
+    w[58] = -2 * _tmp47 - 2 * b0y * nbc1x
+    w[59] = _tmp43 - _tmp44 + _tmp45
+    w[60] = -_tmp51 - _tmp54
+    w[61] = -2 * _tmp55 + 2 * a0y * nab2x
+    w[62] = -_tmp51 + _tmp54
+    w[63] = 2 * _tmp56 - 2 * _tmp57
+    w[64] = -2 * _tmp58 - 2 * a0z * nab2y
+    w[65] = _tmp51 + _tmp52 - _tmp53
+    w[66] = -2 * _tmp58 + 2 * a0z * nab2y
+    w[67] = -2 * _tmp56 - 2 * _tmp57
+    w[68] = -2 * _tmp55 - 2 * a0y * nab2x
+    w[69] = _tmp51 - _tmp52 + _tmp53
+    w[70] = _tmp59 + _tmp62
+    w[71] = 2 * _tmp63 - 2 * _tmp64
+    w[72] = _tmp59 - _tmp62
+    w[73] = -2 * _tmp65 + 2 * b0z * nab2x
+    w[74] = 2 * _tmp66 + 2 * _tmp67
+    w[75] = -_tmp59 - _tmp60 + _tmp61
+    w[76] = 2 * _tmp66 - 2 * _tmp67
+    w[77] = 2 * _tmp65 + 2 * b0z * nab2x
+    w[78] = 2 * _tmp63 + 2 * _tmp64
+    w[79] = -_tmp59 + _tmp60 - _tmp61
+    w[80] = -_tmp68 - _tmp71
+    w[81] = -2 * _tmp72 + 2 * a0y * nac2x
+    w[82] = -_tmp68 + _tmp71
+    w[83] = 2 * _tmp73 - 2 * _tmp74
+    w[84] = -2 * _tmp75 - 2 * a0z * nac2y
+    w[85] = _tmp68 + _tmp69 - _tmp70
+    w[86] = -2 * _tmp75 + 2 * a0z * nac2y
+    w[87] = -2 * _tmp73 - 2 * _tmp74
+    w[88] = -2 * _tmp72 - 2 * a0y * nac2x
+    w[89] = _tmp68 - _tmp69 + _tmp70
+    w[90] = _tmp76 + _tmp79
+    w[91] = 2 * _tmp80 - 2 * _tmp81
+    w[92] = _tmp76 - _tmp79
+    w[93] = -2 * _tmp82 + 2 * c0z * nac2x
+    w[94] = 2 * _tmp83 + 2 * _tmp84
+    w[95] = -_tmp76 - _tmp77 + _tmp78
+    w[96] = 2 * _tmp83 - 2 * _tmp84
+    w[97] = 2 * _tmp82 + 2 * c0z * nac2x
+    w[98] = 2 * _tmp80 + 2 * _tmp81
+    w[99] = -_tmp76 + _tmp77 - _tmp78
+    w[100] = _tmp85 + _tmp88
+    w[101] = 2 * _tmp89 - 2 * _tmp90
+    w[102] = _tmp85 - _tmp88
+    w[103] = -2 * _tmp91 + 2 * c0z * nbc2x
+    w[104] = 2 * _tmp92 + 2 * _tmp93
+    w[105] = -_tmp85 - _tmp86 + _tmp87
+    w[106] = 2 * _tmp92 - 2 * _tmp93
+    w[107] = 2 * _tmp91 + 2 * c0z * nbc2x
+    w[108] = 2 * _tmp89 + 2 * _tmp90
+    w[109] = -_tmp85 + _tmp86 - _tmp87
+    w[110] = -_tmp94 - _tmp97
+    w[111] = -2 * _tmp98 + 2 * b0y * nbc2x
+    w[112] = -_tmp94 + _tmp97
+    w[113] = -2 * _tmp100 + 2 * _tmp99
+    w[114] = -2 * _tmp101 - 2 * b0z * nbc2y
+    w[115] = _tmp94 + _tmp95 - _tmp96
+    w[116] = -2 * _tmp101 + 2 * b0z * nbc2y
+    w[117] = -2 * _tmp100 - 2 * _tmp99
+    w[118] = -2 * _tmp98 - 2 * b0y * nbc2x
+    w[119] = _tmp94 - _tmp95 + _tmp96
+    wt[0] = -_tmp106 - _tmp109
+    wt[1] = -2 * _tmp110 + 2 * a0y * d_nab1x + 2 * d_a0y * nab1x
+    wt[2] = _tmp106 - _tmp107 - _tmp108
+    wt[3] = -2 * _tmp111 - 2 * _tmp112 + 2 * _tmp113
+    wt[4] = -2 * _tmp114 - 2 * a0z * d_nab1y - 2 * d_a0z * nab1y
+    wt[5] = _tmp102 - _tmp103 + _tmp104 - _tmp105 + _tmp109
+    wt[6] = -2 * _tmp114 + 2 * a0z * d_nab1y + 2 * d_a0z * nab1y
+    wt[7] = -2 * _tmp111 - 2 * _tmp112 - 2 * _tmp113
+    wt[8] = -2 * _tmp110 - 2 * a0y * d_nab1x - 2 * d_a0y * nab1x
+    wt[9] = -_tmp102 + _tmp103 - _tmp104 + _tmp105 + _tmp109
+    wt[10] = _tmp119 + _tmp122
+    wt[11] = -2 * _tmp123 - 2 * _tmp124 + 2 * _tmp125
+    wt[12] = -_tmp119 + _tmp120 + _tmp121
+    wt[13] = -2 * _tmp126 + 2 * b0z * d_nab1x + 2 * d_b0z * nab1x
+    wt[14] = 2 * _tmp127 + 2 * _tmp128 + 2 * _tmp129
+    wt[15] = -_tmp115 + _tmp116 - _tmp117 + _tmp118 - _tmp122
+    wt[16] = -2 * _tmp127 - 2 * _tmp128 + 2 * _tmp129
+    wt[17] = 2 * _tmp126 + 2 * b0z * d_nab1x + 2 * d_b0z * nab1x
+    wt[18] = 2 * _tmp123 + 2 * _tmp124 + 2 * _tmp125
+    wt[19] = _tmp115 - _tmp116 + _tmp117 - _tmp118 - _tmp122
+    wt[20] = -_tmp134 - _tmp137
+    wt[21] = -2 * _tmp138 + 2 * a0y * d_nac1x + 2 * d_a0y * nac1x
+    wt[22] = _tmp134 - _tmp135 - _tmp136
+    wt[23] = -2 * _tmp139 - 2 * _tmp140 + 2 * _tmp141
+    wt[24] = -2 * _tmp142 - 2 * a0z * d_nac1y - 2 * d_a0z * nac1y
+    wt[25] = _tmp130 - _tmp131 + _tmp132 - _tmp133 + _tmp137
+    wt[26] = -2 * _tmp142 + 2 * a0z * d_nac1y + 2 * d_a0z * nac1y
+    wt[27] = -2 * _tmp139 - 2 * _tmp140 - 2 * _tmp141
+    wt[28] = -2 * _tmp138 - 2 * a0y * d_nac1x - 2 * d_a0y * nac1x
+    wt[29] = -_tmp130 + _tmp131 - _tmp132 + _tmp133 + _tmp137
+    wt[30] = _tmp147 + _tmp150
+    wt[31] = -2 * _tmp151 - 2 * _tmp152 + 2 * _tmp153
+    wt[32] = -_tmp147 + _tmp148 + _tmp149
+    wt[33] = -2 * _tmp154 + 2 * c0z * d_nac1x + 2 * d_c0z * nac1x
+    wt[34] = 2 * _tmp155 + 2 * _tmp156 + 2 * _tmp157
+    wt[35] = -_tmp143 + _tmp144 - _tmp145 + _tmp146 - _tmp150
+    wt[36] = -2 * _tmp155 - 2 * _tmp156 + 2 * _tmp157
+    wt[37] = 2 * _tmp154 + 2 * c0z * d_nac1x + 2 * d_c0z * nac1x
+    wt[38] = 2 * _tmp151 + 2 * _tmp152 + 2 * _tmp153
+    wt[39] = _tmp143 - _tmp144 + _tmp145 - _tmp146 - _tmp150
+    wt[40] = _tmp162 + _tmp165
+    wt[41] = -2 * _tmp166 - 2 * _tmp167 + 2 * _tmp168
+    wt[42] = -_tmp162 + _tmp163 + _tmp164
+    wt[43] = -2 * _tmp169 + 2 * c0z * d_nbc1x + 2 * d_c0z * nbc1x
+    wt[44] = 2 * _tmp170 + 2 * _tmp171 + 2 * _tmp172
+    wt[45] = -_tmp158 + _tmp159 - _tmp160 + _tmp161 - _tmp165
+    wt[46] = -2 * _tmp170 - 2 * _tmp171 + 2 * _tmp172
+    wt[47] = 2 * _tmp169 + 2 * c0z * d_nbc1x + 2 * d_c0z * nbc1x
+    wt[48] = 2 * _tmp166 + 2 * _tmp167 + 2 * _tmp168
+    wt[49] = _tmp158 - _tmp159 + _tmp160 - _tmp161 - _tmp165
+    wt[50] = -_tmp177 - _tmp180
+    wt[51] = -2 * _tmp181 + 2 * b0y * d_nbc1x + 2 * d_b0y * nbc1x
+    wt[52] = _tmp177 - _tmp178 - _tmp179
+    wt[53] = -2 * _tmp182 - 2 * _tmp183 + 2 * _tmp184
+    wt[54] = -2 * _tmp185 - 2 * b0z * d_nbc1y - 2 * d_b0z * nbc1y
+    wt[55] = _tmp173 - _tmp174 + _tmp175 - _tmp176 + _tmp180
+    wt[56] = -2 * _tmp185 + 2 * b0z * d_nbc1y + 2 * d_b0z * nbc1y
+    wt[57] = -2 * _tmp182 - 2 * _tmp183 - 2 * _tmp184
+    wt[58] = -2 * _tmp181 - 2 * b0y * d_nbc1x - 2 * d_b0y * nbc1x
+    wt[59] = -_tmp173 + _tmp174 - _tmp175 + _tmp176 + _tmp180
+    wt[60] = -_tmp190 - _tmp193
+    wt[61] = -2 * _tmp194 + 2 * a0y * d_nab2x + 2 * d_a0y * nab2x
+    wt[62] = _tmp190 - _tmp191 - _tmp192
+    wt[63] = -2 * _tmp195 - 2 * _tmp196 + 2 * _tmp197
+    wt[64] = -2 * _tmp198 - 2 * a0z * d_nab2y - 2 * d_a0z * nab2y
+    wt[65] = _tmp186 - _tmp187 + _tmp188 - _tmp189 + _tmp193
+    wt[66] = -2 * _tmp198 + 2 * a0z * d_nab2y + 2 * d_a0z * nab2y
+    wt[67] = -2 * _tmp195 - 2 * _tmp196 - 2 * _tmp197
+    wt[68] = -2 * _tmp194 - 2 * a0y * d_nab2x - 2 * d_a0y * nab2x
+    wt[69] = -_tmp186 + _tmp187 - _tmp188 + _tmp189 + _tmp193
+    wt[70] = _tmp203 + _tmp206
+    wt[71] = -2 * _tmp207 - 2 * _tmp208 + 2 * _tmp209
+    wt[72] = -_tmp203 + _tmp204 + _tmp205
+    wt[73] = -2 * _tmp210 + 2 * b0z * d_nab2x + 2 * d_b0z * nab2x
+    wt[74] = 2 * _tmp211 + 2 * _tmp212 + 2 * _tmp213
+    wt[75] = -_tmp199 + _tmp200 - _tmp201 + _tmp202 - _tmp206
+    wt[76] = -2 * _tmp211 - 2 * _tmp212 + 2 * _tmp213
+    wt[77] = 2 * _tmp210 + 2 * b0z * d_nab2x + 2 * d_b0z * nab2x
+    wt[78] = 2 * _tmp207 + 2 * _tmp208 + 2 * _tmp209
+    wt[79] = _tmp199 - _tmp200 + _tmp201 - _tmp202 - _tmp206
+    wt[80] = -_tmp218 - _tmp221
+    wt[81] = -2 * _tmp222 + 2 * a0y * d_nac2x + 2 * d_a0y * nac2x
+    wt[82] = _tmp218 - _tmp219 - _tmp220
+    wt[83] = -2 * _tmp223 - 2 * _tmp224 + 2 * _tmp225
+    wt[84] = -2 * _tmp226 - 2 * a0z * d_nac2y - 2 * d_a0z * nac2y
+    wt[85] = _tmp214 - _tmp215 + _tmp216 - _tmp217 + _tmp221
+    wt[86] = -2 * _tmp226 + 2 * a0z * d_nac2y + 2 * d_a0z * nac2y
+    wt[87] = -2 * _tmp223 - 2 * _tmp224 - 2 * _tmp225
+    wt[88] = -2 * _tmp222 - 2 * a0y * d_nac2x - 2 * d_a0y * nac2x
+    wt[89] = -_tmp214 + _tmp215 - _tmp216 + _tmp217 + _tmp221
+    wt[90] = _tmp231 + _tmp234
+    wt[91] = -2 * _tmp235 - 2 * _tmp236 + 2 * _tmp237
+    wt[92] = -_tmp231 + _tmp232 + _tmp233
+    wt[93] = -2 * _tmp238 + 2 * c0z * d_nac2x + 2 * d_c0z * nac2x
+    wt[94] = 2 * _tmp239 + 2 * _tmp240 + 2 * _tmp241
+    wt[95] = -_tmp227 + _tmp228 - _tmp229 + _tmp230 - _tmp234
+    wt[96] = -2 * _tmp239 - 2 * _tmp240 + 2 * _tmp241
+    wt[97] = 2 * _tmp238 + 2 * c0z * d_nac2x + 2 * d_c0z * nac2x
+    wt[98] = 2 * _tmp235 + 2 * _tmp236 + 2 * _tmp237
+    wt[99] = _tmp227 - _tmp228 + _tmp229 - _tmp230 - _tmp234
+    wt[100] = _tmp246 + _tmp249
+    wt[101] = -2 * _tmp250 - 2 * _tmp251 + 2 * _tmp252
+    wt[102] = -_tmp246 + _tmp247 + _tmp248
+    wt[103] = -2 * _tmp253 + 2 * c0z * d_nbc2x + 2 * d_c0z * nbc2x
+    wt[104] = 2 * _tmp254 + 2 * _tmp255 + 2 * _tmp256
+    wt[105] = -_tmp242 + _tmp243 - _tmp244 + _tmp245 - _tmp249
+    wt[106] = -2 * _tmp254 - 2 * _tmp255 + 2 * _tmp256
+    wt[107] = 2 * _tmp253 + 2 * c0z * d_nbc2x + 2 * d_c0z * nbc2x
+    wt[108] = 2 * _tmp250 + 2 * _tmp251 + 2 * _tmp252
+    wt[109] = _tmp242 - _tmp243 + _tmp244 - _tmp245 - _tmp249
+    wt[110] = -_tmp261 - _tmp264
+    wt[111] = -2 * _tmp265 + 2 * b0y * d_nbc2x + 2 * d_b0y * nbc2x
+    wt[112] = _tmp261 - _tmp262 - _tmp263
+    wt[113] = -2 * _tmp266 - 2 * _tmp267 + 2 * _tmp268
+    wt[114] = -2 * _tmp269 - 2 * b0z * d_nbc2y - 2 * d_b0z * nbc2y
+    wt[115] = _tmp257 - _tmp258 + _tmp259 - _tmp260 + _tmp264
+    wt[116] = -2 * _tmp269 + 2 * b0z * d_nbc2y + 2 * d_b0z * nbc2y
+    wt[117] = -2 * _tmp266 - 2 * _tmp267 - 2 * _tmp268
+    wt[118] = -2 * _tmp265 - 2 * b0y * d_nbc2x - 2 * d_b0y * nbc2x
+    wt[119] = -_tmp257 + _tmp258 - _tmp259 + _tmp260 + _tmp264
+
+
+@numba.njit(**_JIT)
+def coefficient_rates(q: np.ndarray, dq: np.ndarray, wt: np.ndarray) -> None:
+    """dW/dt = W_q . dq alone (``coefficients_t`` without W): a tracker needs it only where it
+    keeps a tangent.
+
+    Outputs written in place (every entry): wt.
+    """
+    a0x = q[0]
+    a0y = q[1]
+    a0z = q[2]
+    b0x = q[3]
+    b0y = q[4]
+    b0z = q[5]
+    c0x = q[6]
+    c0y = q[7]
+    c0z = q[8]
+    nab1x = q[9]
+    nab1y = q[10]
+    nab1z = q[11]
+    nac1x = q[12]
+    nac1y = q[13]
+    nac1z = q[14]
+    nbc1x = q[15]
+    nbc1y = q[16]
+    nbc1z = q[17]
+    nab2x = q[18]
+    nab2y = q[19]
+    nab2z = q[20]
+    nac2x = q[21]
+    nac2y = q[22]
+    nac2z = q[23]
+    nbc2x = q[24]
+    nbc2y = q[25]
+    nbc2z = q[26]
+    d_a0x = dq[0]
+    d_a0y = dq[1]
+    d_a0z = dq[2]
+    d_b0x = dq[3]
+    d_b0y = dq[4]
+    d_b0z = dq[5]
+    d_c0x = dq[6]
+    d_c0y = dq[7]
+    d_c0z = dq[8]
+    d_nab1x = dq[9]
+    d_nab1y = dq[10]
+    d_nab1z = dq[11]
+    d_nac1x = dq[12]
+    d_nac1y = dq[13]
+    d_nac1z = dq[14]
+    d_nbc1x = dq[15]
+    d_nbc1y = dq[16]
+    d_nbc1z = dq[17]
+    d_nab2x = dq[18]
+    d_nab2y = dq[19]
+    d_nab2z = dq[20]
+    d_nac2x = dq[21]
+    d_nac2y = dq[22]
+    d_nac2z = dq[23]
+    d_nbc2x = dq[24]
+    d_nbc2y = dq[25]
+    d_nbc2z = dq[26]
+    _tmp0 = a0x * d_nab1x
+    _tmp1 = a0y * d_nab1y
+    _tmp2 = d_a0x * nab1x
+    _tmp3 = d_a0y * nab1y
+    _tmp4 = _tmp0 + _tmp1 + _tmp2 + _tmp3
+    _tmp5 = a0z * d_nab1z
+    _tmp6 = d_a0z * nab1z
+    _tmp7 = _tmp5 + _tmp6
+    _tmp8 = a0x * d_nab1y + d_a0x * nab1y
+    _tmp9 = a0z * d_nab1x
+    _tmp10 = d_a0z * nab1x
+    _tmp11 = a0x * d_nab1z + d_a0x * nab1z
+    _tmp12 = a0y * d_nab1z + d_a0y * nab1z
+    _tmp13 = b0x * d_nab1x
+    _tmp14 = b0y * d_nab1y
+    _tmp15 = d_b0x * nab1x
+    _tmp16 = d_b0y * nab1y
+    _tmp17 = _tmp13 + _tmp14 + _tmp15 + _tmp16
+    _tmp18 = b0z * d_nab1z
+    _tmp19 = d_b0z * nab1z
+    _tmp20 = _tmp18 + _tmp19
+    _tmp21 = b0y * d_nab1x
+    _tmp22 = d_b0y * nab1x
+    _tmp23 = b0x * d_nab1y + d_b0x * nab1y
+    _tmp24 = b0x * d_nab1z + d_b0x * nab1z
+    _tmp25 = b0z * d_nab1y
+    _tmp26 = d_b0z * nab1y
+    _tmp27 = b0y * d_nab1z + d_b0y * nab1z
+    _tmp28 = a0x * d_nac1x
+    _tmp29 = a0y * d_nac1y
+    _tmp30 = d_a0x * nac1x
+    _tmp31 = d_a0y * nac1y
+    _tmp32 = _tmp28 + _tmp29 + _tmp30 + _tmp31
+    _tmp33 = a0z * d_nac1z
+    _tmp34 = d_a0z * nac1z
+    _tmp35 = _tmp33 + _tmp34
+    _tmp36 = a0x * d_nac1y + d_a0x * nac1y
+    _tmp37 = a0z * d_nac1x
+    _tmp38 = d_a0z * nac1x
+    _tmp39 = a0x * d_nac1z + d_a0x * nac1z
+    _tmp40 = a0y * d_nac1z + d_a0y * nac1z
+    _tmp41 = c0x * d_nac1x
+    _tmp42 = c0y * d_nac1y
+    _tmp43 = d_c0x * nac1x
+    _tmp44 = d_c0y * nac1y
+    _tmp45 = _tmp41 + _tmp42 + _tmp43 + _tmp44
+    _tmp46 = c0z * d_nac1z
+    _tmp47 = d_c0z * nac1z
+    _tmp48 = _tmp46 + _tmp47
+    _tmp49 = c0y * d_nac1x
+    _tmp50 = d_c0y * nac1x
+    _tmp51 = c0x * d_nac1y + d_c0x * nac1y
+    _tmp52 = c0x * d_nac1z + d_c0x * nac1z
+    _tmp53 = c0z * d_nac1y
+    _tmp54 = d_c0z * nac1y
+    _tmp55 = c0y * d_nac1z + d_c0y * nac1z
+    _tmp56 = c0x * d_nbc1x
+    _tmp57 = c0y * d_nbc1y
+    _tmp58 = d_c0x * nbc1x
+    _tmp59 = d_c0y * nbc1y
+    _tmp60 = _tmp56 + _tmp57 + _tmp58 + _tmp59
+    _tmp61 = c0z * d_nbc1z
+    _tmp62 = d_c0z * nbc1z
+    _tmp63 = _tmp61 + _tmp62
+    _tmp64 = c0y * d_nbc1x
+    _tmp65 = d_c0y * nbc1x
+    _tmp66 = c0x * d_nbc1y + d_c0x * nbc1y
+    _tmp67 = c0x * d_nbc1z + d_c0x * nbc1z
+    _tmp68 = c0z * d_nbc1y
+    _tmp69 = d_c0z * nbc1y
+    _tmp70 = c0y * d_nbc1z + d_c0y * nbc1z
+    _tmp71 = b0x * d_nbc1x
+    _tmp72 = b0y * d_nbc1y
+    _tmp73 = d_b0x * nbc1x
+    _tmp74 = d_b0y * nbc1y
+    _tmp75 = _tmp71 + _tmp72 + _tmp73 + _tmp74
+    _tmp76 = b0z * d_nbc1z
+    _tmp77 = d_b0z * nbc1z
+    _tmp78 = _tmp76 + _tmp77
+    _tmp79 = b0x * d_nbc1y + d_b0x * nbc1y
+    _tmp80 = b0z * d_nbc1x
+    _tmp81 = d_b0z * nbc1x
+    _tmp82 = b0x * d_nbc1z + d_b0x * nbc1z
+    _tmp83 = b0y * d_nbc1z + d_b0y * nbc1z
+    _tmp84 = a0x * d_nab2x
+    _tmp85 = a0y * d_nab2y
+    _tmp86 = d_a0x * nab2x
+    _tmp87 = d_a0y * nab2y
+    _tmp88 = _tmp84 + _tmp85 + _tmp86 + _tmp87
+    _tmp89 = a0z * d_nab2z
+    _tmp90 = d_a0z * nab2z
+    _tmp91 = _tmp89 + _tmp90
+    _tmp92 = a0x * d_nab2y + d_a0x * nab2y
+    _tmp93 = a0z * d_nab2x
+    _tmp94 = d_a0z * nab2x
+    _tmp95 = a0x * d_nab2z + d_a0x * nab2z
+    _tmp96 = a0y * d_nab2z + d_a0y * nab2z
+    _tmp97 = b0x * d_nab2x
+    _tmp98 = b0y * d_nab2y
+    _tmp99 = d_b0x * nab2x
+    _tmp100 = d_b0y * nab2y
+    _tmp101 = _tmp100 + _tmp97 + _tmp98 + _tmp99
+    _tmp102 = b0z * d_nab2z
+    _tmp103 = d_b0z * nab2z
+    _tmp104 = _tmp102 + _tmp103
+    _tmp105 = b0y * d_nab2x
+    _tmp106 = d_b0y * nab2x
+    _tmp107 = b0x * d_nab2y + d_b0x * nab2y
+    _tmp108 = b0x * d_nab2z + d_b0x * nab2z
+    _tmp109 = b0z * d_nab2y
+    _tmp110 = d_b0z * nab2y
+    _tmp111 = b0y * d_nab2z + d_b0y * nab2z
+    _tmp112 = a0x * d_nac2x
+    _tmp113 = a0y * d_nac2y
+    _tmp114 = d_a0x * nac2x
+    _tmp115 = d_a0y * nac2y
+    _tmp116 = _tmp112 + _tmp113 + _tmp114 + _tmp115
+    _tmp117 = a0z * d_nac2z
+    _tmp118 = d_a0z * nac2z
+    _tmp119 = _tmp117 + _tmp118
+    _tmp120 = a0x * d_nac2y + d_a0x * nac2y
+    _tmp121 = a0z * d_nac2x
+    _tmp122 = d_a0z * nac2x
+    _tmp123 = a0x * d_nac2z + d_a0x * nac2z
+    _tmp124 = a0y * d_nac2z + d_a0y * nac2z
+    _tmp125 = c0x * d_nac2x
+    _tmp126 = c0y * d_nac2y
+    _tmp127 = d_c0x * nac2x
+    _tmp128 = d_c0y * nac2y
+    _tmp129 = _tmp125 + _tmp126 + _tmp127 + _tmp128
+    _tmp130 = c0z * d_nac2z
+    _tmp131 = d_c0z * nac2z
+    _tmp132 = _tmp130 + _tmp131
+    _tmp133 = c0y * d_nac2x
+    _tmp134 = d_c0y * nac2x
+    _tmp135 = c0x * d_nac2y + d_c0x * nac2y
+    _tmp136 = c0x * d_nac2z + d_c0x * nac2z
+    _tmp137 = c0z * d_nac2y
+    _tmp138 = d_c0z * nac2y
+    _tmp139 = c0y * d_nac2z + d_c0y * nac2z
+    _tmp140 = c0x * d_nbc2x
+    _tmp141 = c0y * d_nbc2y
+    _tmp142 = d_c0x * nbc2x
+    _tmp143 = d_c0y * nbc2y
+    _tmp144 = _tmp140 + _tmp141 + _tmp142 + _tmp143
+    _tmp145 = c0z * d_nbc2z
+    _tmp146 = d_c0z * nbc2z
+    _tmp147 = _tmp145 + _tmp146
+    _tmp148 = c0y * d_nbc2x
+    _tmp149 = d_c0y * nbc2x
+    _tmp150 = c0x * d_nbc2y + d_c0x * nbc2y
+    _tmp151 = c0x * d_nbc2z + d_c0x * nbc2z
+    _tmp152 = c0z * d_nbc2y
+    _tmp153 = d_c0z * nbc2y
+    _tmp154 = c0y * d_nbc2z + d_c0y * nbc2z
+    _tmp155 = b0x * d_nbc2x
+    _tmp156 = b0y * d_nbc2y
+    _tmp157 = d_b0x * nbc2x
+    _tmp158 = d_b0y * nbc2y
+    _tmp159 = _tmp155 + _tmp156 + _tmp157 + _tmp158
+    _tmp160 = b0z * d_nbc2z
+    _tmp161 = d_b0z * nbc2z
+    _tmp162 = _tmp160 + _tmp161
+    _tmp163 = b0x * d_nbc2y + d_b0x * nbc2y
+    _tmp164 = b0z * d_nbc2x
+    _tmp165 = d_b0z * nbc2x
+    _tmp166 = b0x * d_nbc2z + d_b0x * nbc2z
+    _tmp167 = b0y * d_nbc2z + d_b0y * nbc2z
+    wt[0] = -_tmp4 - _tmp7
+    wt[1] = -2 * _tmp8 + 2 * a0y * d_nab1x + 2 * d_a0y * nab1x
+    wt[2] = _tmp4 - _tmp5 - _tmp6
+    wt[3] = -2 * _tmp10 + 2 * _tmp11 - 2 * _tmp9
+    wt[4] = -2 * _tmp12 - 2 * a0z * d_nab1y - 2 * d_a0z * nab1y
+    wt[5] = _tmp0 - _tmp1 + _tmp2 - _tmp3 + _tmp7
+    wt[6] = -2 * _tmp12 + 2 * a0z * d_nab1y + 2 * d_a0z * nab1y
+    wt[7] = -2 * _tmp10 - 2 * _tmp11 - 2 * _tmp9
+    wt[8] = -2 * _tmp8 - 2 * a0y * d_nab1x - 2 * d_a0y * nab1x
+    wt[9] = -_tmp0 + _tmp1 - _tmp2 + _tmp3 + _tmp7
+    wt[10] = _tmp17 + _tmp20
+    wt[11] = -2 * _tmp21 - 2 * _tmp22 + 2 * _tmp23
+    wt[12] = -_tmp17 + _tmp18 + _tmp19
+    wt[13] = -2 * _tmp24 + 2 * b0z * d_nab1x + 2 * d_b0z * nab1x
+    wt[14] = 2 * _tmp25 + 2 * _tmp26 + 2 * _tmp27
+    wt[15] = -_tmp13 + _tmp14 - _tmp15 + _tmp16 - _tmp20
+    wt[16] = -2 * _tmp25 - 2 * _tmp26 + 2 * _tmp27
+    wt[17] = 2 * _tmp24 + 2 * b0z * d_nab1x + 2 * d_b0z * nab1x
+    wt[18] = 2 * _tmp21 + 2 * _tmp22 + 2 * _tmp23
+    wt[19] = _tmp13 - _tmp14 + _tmp15 - _tmp16 - _tmp20
+    wt[20] = -_tmp32 - _tmp35
+    wt[21] = -2 * _tmp36 + 2 * a0y * d_nac1x + 2 * d_a0y * nac1x
+    wt[22] = _tmp32 - _tmp33 - _tmp34
+    wt[23] = -2 * _tmp37 - 2 * _tmp38 + 2 * _tmp39
+    wt[24] = -2 * _tmp40 - 2 * a0z * d_nac1y - 2 * d_a0z * nac1y
+    wt[25] = _tmp28 - _tmp29 + _tmp30 - _tmp31 + _tmp35
+    wt[26] = -2 * _tmp40 + 2 * a0z * d_nac1y + 2 * d_a0z * nac1y
+    wt[27] = -2 * _tmp37 - 2 * _tmp38 - 2 * _tmp39
+    wt[28] = -2 * _tmp36 - 2 * a0y * d_nac1x - 2 * d_a0y * nac1x
+    wt[29] = -_tmp28 + _tmp29 - _tmp30 + _tmp31 + _tmp35
+    wt[30] = _tmp45 + _tmp48
+    wt[31] = -2 * _tmp49 - 2 * _tmp50 + 2 * _tmp51
+    wt[32] = -_tmp45 + _tmp46 + _tmp47
+    wt[33] = -2 * _tmp52 + 2 * c0z * d_nac1x + 2 * d_c0z * nac1x
+    wt[34] = 2 * _tmp53 + 2 * _tmp54 + 2 * _tmp55
+    wt[35] = -_tmp41 + _tmp42 - _tmp43 + _tmp44 - _tmp48
+    wt[36] = -2 * _tmp53 - 2 * _tmp54 + 2 * _tmp55
+    wt[37] = 2 * _tmp52 + 2 * c0z * d_nac1x + 2 * d_c0z * nac1x
+    wt[38] = 2 * _tmp49 + 2 * _tmp50 + 2 * _tmp51
+    wt[39] = _tmp41 - _tmp42 + _tmp43 - _tmp44 - _tmp48
+    wt[40] = _tmp60 + _tmp63
+    wt[41] = -2 * _tmp64 - 2 * _tmp65 + 2 * _tmp66
+    wt[42] = -_tmp60 + _tmp61 + _tmp62
+    wt[43] = -2 * _tmp67 + 2 * c0z * d_nbc1x + 2 * d_c0z * nbc1x
+    wt[44] = 2 * _tmp68 + 2 * _tmp69 + 2 * _tmp70
+    wt[45] = -_tmp56 + _tmp57 - _tmp58 + _tmp59 - _tmp63
+    wt[46] = -2 * _tmp68 - 2 * _tmp69 + 2 * _tmp70
+    wt[47] = 2 * _tmp67 + 2 * c0z * d_nbc1x + 2 * d_c0z * nbc1x
+    wt[48] = 2 * _tmp64 + 2 * _tmp65 + 2 * _tmp66
+    wt[49] = _tmp56 - _tmp57 + _tmp58 - _tmp59 - _tmp63
+    wt[50] = -_tmp75 - _tmp78
+    wt[51] = -2 * _tmp79 + 2 * b0y * d_nbc1x + 2 * d_b0y * nbc1x
+    wt[52] = _tmp75 - _tmp76 - _tmp77
+    wt[53] = -2 * _tmp80 - 2 * _tmp81 + 2 * _tmp82
+    wt[54] = -2 * _tmp83 - 2 * b0z * d_nbc1y - 2 * d_b0z * nbc1y
+    wt[55] = _tmp71 - _tmp72 + _tmp73 - _tmp74 + _tmp78
+    wt[56] = -2 * _tmp83 + 2 * b0z * d_nbc1y + 2 * d_b0z * nbc1y
+    wt[57] = -2 * _tmp80 - 2 * _tmp81 - 2 * _tmp82
+    wt[58] = -2 * _tmp79 - 2 * b0y * d_nbc1x - 2 * d_b0y * nbc1x
+    wt[59] = -_tmp71 + _tmp72 - _tmp73 + _tmp74 + _tmp78
+    wt[60] = -_tmp88 - _tmp91
+    wt[61] = -2 * _tmp92 + 2 * a0y * d_nab2x + 2 * d_a0y * nab2x
+    wt[62] = _tmp88 - _tmp89 - _tmp90
+    wt[63] = -2 * _tmp93 - 2 * _tmp94 + 2 * _tmp95
+    wt[64] = -2 * _tmp96 - 2 * a0z * d_nab2y - 2 * d_a0z * nab2y
+    wt[65] = _tmp84 - _tmp85 + _tmp86 - _tmp87 + _tmp91
+    wt[66] = -2 * _tmp96 + 2 * a0z * d_nab2y + 2 * d_a0z * nab2y
+    wt[67] = -2 * _tmp93 - 2 * _tmp94 - 2 * _tmp95
+    wt[68] = -2 * _tmp92 - 2 * a0y * d_nab2x - 2 * d_a0y * nab2x
+    wt[69] = -_tmp84 + _tmp85 - _tmp86 + _tmp87 + _tmp91
+    wt[70] = _tmp101 + _tmp104
+    wt[71] = -2 * _tmp105 - 2 * _tmp106 + 2 * _tmp107
+    wt[72] = -_tmp101 + _tmp102 + _tmp103
+    wt[73] = -2 * _tmp108 + 2 * b0z * d_nab2x + 2 * d_b0z * nab2x
+    wt[74] = 2 * _tmp109 + 2 * _tmp110 + 2 * _tmp111
+    wt[75] = _tmp100 - _tmp104 - _tmp97 + _tmp98 - _tmp99
+    wt[76] = -2 * _tmp109 - 2 * _tmp110 + 2 * _tmp111
+    wt[77] = 2 * _tmp108 + 2 * b0z * d_nab2x + 2 * d_b0z * nab2x
+    wt[78] = 2 * _tmp105 + 2 * _tmp106 + 2 * _tmp107
+    wt[79] = -_tmp100 - _tmp104 + _tmp97 - _tmp98 + _tmp99
+    wt[80] = -_tmp116 - _tmp119
+    wt[81] = -2 * _tmp120 + 2 * a0y * d_nac2x + 2 * d_a0y * nac2x
+    wt[82] = _tmp116 - _tmp117 - _tmp118
+    wt[83] = -2 * _tmp121 - 2 * _tmp122 + 2 * _tmp123
+    wt[84] = -2 * _tmp124 - 2 * a0z * d_nac2y - 2 * d_a0z * nac2y
+    wt[85] = _tmp112 - _tmp113 + _tmp114 - _tmp115 + _tmp119
+    wt[86] = -2 * _tmp124 + 2 * a0z * d_nac2y + 2 * d_a0z * nac2y
+    wt[87] = -2 * _tmp121 - 2 * _tmp122 - 2 * _tmp123
+    wt[88] = -2 * _tmp120 - 2 * a0y * d_nac2x - 2 * d_a0y * nac2x
+    wt[89] = -_tmp112 + _tmp113 - _tmp114 + _tmp115 + _tmp119
+    wt[90] = _tmp129 + _tmp132
+    wt[91] = -2 * _tmp133 - 2 * _tmp134 + 2 * _tmp135
+    wt[92] = -_tmp129 + _tmp130 + _tmp131
+    wt[93] = -2 * _tmp136 + 2 * c0z * d_nac2x + 2 * d_c0z * nac2x
+    wt[94] = 2 * _tmp137 + 2 * _tmp138 + 2 * _tmp139
+    wt[95] = -_tmp125 + _tmp126 - _tmp127 + _tmp128 - _tmp132
+    wt[96] = -2 * _tmp137 - 2 * _tmp138 + 2 * _tmp139
+    wt[97] = 2 * _tmp136 + 2 * c0z * d_nac2x + 2 * d_c0z * nac2x
+    wt[98] = 2 * _tmp133 + 2 * _tmp134 + 2 * _tmp135
+    wt[99] = _tmp125 - _tmp126 + _tmp127 - _tmp128 - _tmp132
+    wt[100] = _tmp144 + _tmp147
+    wt[101] = -2 * _tmp148 - 2 * _tmp149 + 2 * _tmp150
+    wt[102] = -_tmp144 + _tmp145 + _tmp146
+    wt[103] = -2 * _tmp151 + 2 * c0z * d_nbc2x + 2 * d_c0z * nbc2x
+    wt[104] = 2 * _tmp152 + 2 * _tmp153 + 2 * _tmp154
+    wt[105] = -_tmp140 + _tmp141 - _tmp142 + _tmp143 - _tmp147
+    wt[106] = -2 * _tmp152 - 2 * _tmp153 + 2 * _tmp154
+    wt[107] = 2 * _tmp151 + 2 * c0z * d_nbc2x + 2 * d_c0z * nbc2x
+    wt[108] = 2 * _tmp148 + 2 * _tmp149 + 2 * _tmp150
+    wt[109] = _tmp140 - _tmp141 + _tmp142 - _tmp143 - _tmp147
+    wt[110] = -_tmp159 - _tmp162
+    wt[111] = -2 * _tmp163 + 2 * b0y * d_nbc2x + 2 * d_b0y * nbc2x
+    wt[112] = _tmp159 - _tmp160 - _tmp161
+    wt[113] = -2 * _tmp164 - 2 * _tmp165 + 2 * _tmp166
+    wt[114] = -2 * _tmp167 - 2 * b0z * d_nbc2y - 2 * d_b0z * nbc2y
+    wt[115] = _tmp155 - _tmp156 + _tmp157 - _tmp158 + _tmp162
+    wt[116] = -2 * _tmp167 + 2 * b0z * d_nbc2y + 2 * d_b0z * nbc2y
+    wt[117] = -2 * _tmp164 - 2 * _tmp165 - 2 * _tmp166
+    wt[118] = -2 * _tmp163 - 2 * b0y * d_nbc2x - 2 * d_b0y * nbc2x
+    wt[119] = -_tmp155 + _tmp156 - _tmp157 + _tmp158 + _tmp162
+
+
+@numba.njit(**_JIT)
+def residual_jacobian(x: np.ndarray, w: np.ndarray, f: np.ndarray, jac: np.ndarray) -> None:
+    """F(x; q) = W(q) u(x) and its Jacobian F_x, from W's entries w.
+
+    Outputs written in place (every entry): f, jac.
+    """
+    b0 = x[0]
+    c0 = x[1]
+    n1 = x[2]
+    n2 = x[3]
+    mu1 = x[4]
+    mu2 = x[5]
+    w0 = w[0]
+    w1 = w[1]
+    w2 = w[2]
+    w3 = w[3]
+    w4 = w[4]
+    w5 = w[5]
+    w6 = w[6]
+    w7 = w[7]
+    w8 = w[8]
+    w9 = w[9]
+    w10 = w[10]
+    w11 = w[11]
+    w12 = w[12]
+    w13 = w[13]
+    w14 = w[14]
+    w15 = w[15]
+    w16 = w[16]
+    w17 = w[17]
+    w18 = w[18]
+    w19 = w[19]
+    w20 = w[20]
+    w21 = w[21]
+    w22 = w[22]
+    w23 = w[23]
+    w24 = w[24]
+    w25 = w[25]
+    w26 = w[26]
+    w27 = w[27]
+    w28 = w[28]
+    w29 = w[29]
+    w30 = w[30]
+    w31 = w[31]
+    w32 = w[32]
+    w33 = w[33]
+    w34 = w[34]
+    w35 = w[35]
+    w36 = w[36]
+    w37 = w[37]
+    w38 = w[38]
+    w39 = w[39]
+    w40 = w[40]
+    w41 = w[41]
+    w42 = w[42]
+    w43 = w[43]
+    w44 = w[44]
+    w45 = w[45]
+    w46 = w[46]
+    w47 = w[47]
+    w48 = w[48]
+    w49 = w[49]
+    w50 = w[50]
+    w51 = w[51]
+    w52 = w[52]
+    w53 = w[53]
+    w54 = w[54]
+    w55 = w[55]
+    w56 = w[56]
+    w57 = w[57]
+    w58 = w[58]
+    w59 = w[59]
+    w60 = w[60]
+    w61 = w[61]
+    w62 = w[62]
+    w63 = w[63]
+    w64 = w[64]
+    w65 = w[65]
+    w66 = w[66]
+    w67 = w[67]
+    w68 = w[68]
+    w69 = w[69]
+    w70 = w[70]
+    w71 = w[71]
+    w72 = w[72]
+    w73 = w[73]
+    w74 = w[74]
+    w75 = w[75]
+    w76 = w[76]
+    w77 = w[77]
+    w78 = w[78]
+    w79 = w[79]
+    w80 = w[80]
+    w81 = w[81]
+    w82 = w[82]
+    w83 = w[83]
+    w84 = w[84]
+    w85 = w[85]
+    w86 = w[86]
+    w87 = w[87]
+    w88 = w[88]
+    w89 = w[89]
+    w90 = w[90]
+    w91 = w[91]
+    w92 = w[92]
+    w93 = w[93]
+    w94 = w[94]
+    w95 = w[95]
+    w96 = w[96]
+    w97 = w[97]
+    w98 = w[98]
+    w99 = w[99]
+    w100 = w[100]
+    w101 = w[101]
+    w102 = w[102]
+    w103 = w[103]
+    w104 = w[104]
+    w105 = w[105]
+    w106 = w[106]
+    w107 = w[107]
+    w108 = w[108]
+    w109 = w[109]
+    w110 = w[110]
+    w111 = w[111]
+    w112 = w[112]
+    w113 = w[113]
+    w114 = w[114]
+    w115 = w[115]
+    w116 = w[116]
+    w117 = w[117]
+    w118 = w[118]
+    w119 = w[119]
+    _tmp0 = mu1 * w11
+    _tmp1 = n1 * w6
+    _tmp2 = n2 * w3
+    _tmp3 = mu1 * mu1
+    _tmp4 = b0 * w16
+    _tmp5 = mu1 * n1
+    _tmp6 = b0 * w13
+    _tmp7 = mu1 * n2
+    _tmp8 = _tmp3 * w12
+    _tmp9 = _tmp3 * n1
+    _tmp10 = _tmp3 * n2
+    _tmp11 = _tmp9 * w17
+    _tmp12 = _tmp10 * w14
+    _tmp13 = _tmp9 * n2
+    _tmp14 = n1 * n1
+    _tmp15 = _tmp14 * _tmp3
+    _tmp16 = n2 * n2
+    _tmp17 = _tmp16 * _tmp3
+    _tmp18 = _tmp13 * w18
+    _tmp19 = _tmp15 * w19
+    _tmp20 = _tmp17 * w15
+    _tmp21 = mu1 * w31
+    _tmp22 = n1 * w26
+    _tmp23 = n2 * w23
+    _tmp24 = c0 * w36
+    _tmp25 = c0 * w33
+    _tmp26 = _tmp3 * w32
+    _tmp27 = _tmp9 * w37
+    _tmp28 = _tmp10 * w34
+    _tmp29 = _tmp13 * w38
+    _tmp30 = _tmp15 * w39
+    _tmp31 = _tmp17 * w35
+    _tmp32 = mu1 * w51
+    _tmp33 = mu1 * w41
+    _tmp34 = b0 * w56
+    _tmp35 = b0 * w53
+    _tmp36 = c0 * w46
+    _tmp37 = c0 * w43
+    _tmp38 = _tmp3 * w52
+    _tmp39 = _tmp3 * w42
+    _tmp40 = _tmp9 * w57
+    _tmp41 = _tmp10 * w54
+    _tmp42 = _tmp9 * w47
+    _tmp43 = _tmp10 * w44
+    _tmp44 = _tmp13 * w58
+    _tmp45 = _tmp13 * w48
+    _tmp46 = _tmp15 * w59
+    _tmp47 = _tmp17 * w55
+    _tmp48 = _tmp15 * w49
+    _tmp49 = _tmp17 * w45
+    _tmp50 = mu2 * w71
+    _tmp51 = n1 * w66
+    _tmp52 = n2 * w63
+    _tmp53 = mu2 * mu2
+    _tmp54 = b0 * w76
+    _tmp55 = mu2 * n1
+    _tmp56 = b0 * w73
+    _tmp57 = mu2 * n2
+    _tmp58 = _tmp53 * w72
+    _tmp59 = _tmp53 * n1
+    _tmp60 = _tmp53 * n2
+    _tmp61 = _tmp59 * w77
+    _tmp62 = _tmp60 * w74
+    _tmp63 = _tmp59 * n2
+    _tmp64 = _tmp14 * _tmp53
+    _tmp65 = _tmp16 * _tmp53
+    _tmp66 = _tmp63 * w78
+    _tmp67 = _tmp64 * w79
+    _tmp68 = _tmp65 * w75
+    _tmp69 = mu2 * w91
+    _tmp70 = n1 * w86
+    _tmp71 = n2 * w83
+    _tmp72 = c0 * w96
+    _tmp73 = c0 * w93
+    _tmp74 = _tmp53 * w92
+    _tmp75 = _tmp59 * w97
+    _tmp76 = _tmp60 * w94
+    _tmp77 = _tmp63 * w98
+    _tmp78 = _tmp64 * w99
+    _tmp79 = _tmp65 * w95
+    _tmp80 = mu2 * w111
+    _tmp81 = mu2 * w101
+    _tmp82 = b0 * w116
+    _tmp83 = b0 * w113
+    _tmp84 = c0 * w106
+    _tmp85 = c0 * w103
+    _tmp86 = _tmp53 * w112
+    _tmp87 = _tmp53 * w102
+    _tmp88 = _tmp59 * w117
+    _tmp89 = _tmp60 * w114
+    _tmp90 = _tmp59 * w107
+    _tmp91 = _tmp60 * w104
+    _tmp92 = _tmp63 * w118
+    _tmp93 = _tmp63 * w108
+    _tmp94 = _tmp64 * w119
+    _tmp95 = _tmp65 * w115
+    _tmp96 = _tmp64 * w109
+    _tmp97 = _tmp65 * w105
+    _tmp98 = mu1 * w7
+    _tmp99 = b0 * mu1
+    _tmp100 = 2 * _tmp5
+    _tmp101 = b0 * w18
+    _tmp102 = _tmp100 * b0
+    _tmp103 = mu1 * w4
+    _tmp104 = _tmp5 * w8
+    _tmp105 = 2 * _tmp7
+    _tmp106 = _tmp105 * b0
+    _tmp107 = 2 * mu1
+    _tmp108 = 2 * _tmp99
+    _tmp109 = 2 * n1
+    _tmp110 = 2 * n2
+    _tmp111 = _tmp107 * _tmp14
+    _tmp112 = _tmp107 * _tmp16
+    _tmp113 = _tmp100 * n2
+    _tmp114 = _tmp108 * _tmp14
+    _tmp115 = _tmp108 * _tmp16
+    _tmp116 = mu1 * w27
+    _tmp117 = c0 * mu1
+    _tmp118 = c0 * w38
+    _tmp119 = _tmp100 * c0
+    _tmp120 = mu1 * w24
+    _tmp121 = _tmp5 * w28
+    _tmp122 = _tmp105 * c0
+    _tmp123 = _tmp107 * c0
+    _tmp124 = _tmp111 * c0
+    _tmp125 = _tmp112 * c0
+    _tmp126 = b0 * w58
+    _tmp127 = c0 * w48
+    _tmp128 = mu2 * w67
+    _tmp129 = b0 * mu2
+    _tmp130 = 2 * _tmp55
+    _tmp131 = b0 * w78
+    _tmp132 = _tmp130 * b0
+    _tmp133 = mu2 * w64
+    _tmp134 = _tmp55 * w68
+    _tmp135 = 2 * _tmp57
+    _tmp136 = _tmp131 * _tmp55
+    _tmp137 = _tmp135 * b0
+    _tmp138 = 2 * mu2
+    _tmp139 = 2 * _tmp129
+    _tmp140 = _tmp138 * _tmp14
+    _tmp141 = _tmp138 * _tmp16
+    _tmp142 = _tmp139 * _tmp14
+    _tmp143 = _tmp139 * _tmp16
+    _tmp144 = mu2 * w87
+    _tmp145 = c0 * mu2
+    _tmp146 = c0 * w98
+    _tmp147 = _tmp130 * c0
+    _tmp148 = mu2 * w84
+    _tmp149 = _tmp55 * w88
+    _tmp150 = _tmp146 * _tmp55
+    _tmp151 = _tmp135 * c0
+    _tmp152 = _tmp138 * c0
+    _tmp153 = _tmp140 * c0
+    _tmp154 = _tmp141 * c0
+    _tmp155 = b0 * w118
+    _tmp156 = c0 * w108
+    _tmp157 = _tmp155 * _tmp55
+    _tmp158 = _tmp156 * _tmp55
+    f[0] = (
+        _tmp0 * b0
+        + _tmp1 * mu1
+        + _tmp10 * w4
+        + _tmp11 * b0
+        + _tmp12 * b0
+        + _tmp13 * w8
+        + _tmp15 * w9
+        + _tmp17 * w5
+        + _tmp18 * b0
+        + _tmp19 * b0
+        + _tmp2 * mu1
+        + _tmp20 * b0
+        + _tmp3 * w2
+        + _tmp4 * _tmp5
+        + _tmp6 * _tmp7
+        + _tmp8 * b0
+        + _tmp9 * w7
+        + b0 * w10
+        + mu1 * w1
+        + w0
+    )
+    f[1] = (
+        _tmp10 * w24
+        + _tmp13 * w28
+        + _tmp15 * w29
+        + _tmp17 * w25
+        + _tmp21 * c0
+        + _tmp22 * mu1
+        + _tmp23 * mu1
+        + _tmp24 * _tmp5
+        + _tmp25 * _tmp7
+        + _tmp26 * c0
+        + _tmp27 * c0
+        + _tmp28 * c0
+        + _tmp29 * c0
+        + _tmp3 * w22
+        + _tmp30 * c0
+        + _tmp31 * c0
+        + _tmp9 * w27
+        + c0 * w30
+        + mu1 * w21
+        + w20
+    )
+    f[2] = (
+        _tmp32 * b0
+        + _tmp33 * c0
+        + _tmp34 * _tmp5
+        + _tmp35 * _tmp7
+        + _tmp36 * _tmp5
+        + _tmp37 * _tmp7
+        + _tmp38 * b0
+        + _tmp39 * c0
+        + _tmp40 * b0
+        + _tmp41 * b0
+        + _tmp42 * c0
+        + _tmp43 * c0
+        + _tmp44 * b0
+        + _tmp45 * c0
+        + _tmp46 * b0
+        + _tmp47 * b0
+        + _tmp48 * c0
+        + _tmp49 * c0
+        + b0 * w50
+        + c0 * w40
+    )
+    f[3] = (
+        _tmp50 * b0
+        + _tmp51 * mu2
+        + _tmp52 * mu2
+        + _tmp53 * w62
+        + _tmp54 * _tmp55
+        + _tmp56 * _tmp57
+        + _tmp58 * b0
+        + _tmp59 * w67
+        + _tmp60 * w64
+        + _tmp61 * b0
+        + _tmp62 * b0
+        + _tmp63 * w68
+        + _tmp64 * w69
+        + _tmp65 * w65
+        + _tmp66 * b0
+        + _tmp67 * b0
+        + _tmp68 * b0
+        + b0 * w70
+        + mu2 * w61
+        + w60
+    )
+    f[4] = (
+        _tmp53 * w82
+        + _tmp55 * _tmp72
+        + _tmp57 * _tmp73
+        + _tmp59 * w87
+        + _tmp60 * w84
+        + _tmp63 * w88
+        + _tmp64 * w89
+        + _tmp65 * w85
+        + _tmp69 * c0
+        + _tmp70 * mu2
+        + _tmp71 * mu2
+        + _tmp74 * c0
+        + _tmp75 * c0
+        + _tmp76 * c0
+        + _tmp77 * c0
+        + _tmp78 * c0
+        + _tmp79 * c0
+        + c0 * w90
+        + mu2 * w81
+        + w80
+    )
+    f[5] = (
+        _tmp55 * _tmp82
+        + _tmp55 * _tmp84
+        + _tmp57 * _tmp83
+        + _tmp57 * _tmp85
+        + _tmp80 * b0
+        + _tmp81 * c0
+        + _tmp86 * b0
+        + _tmp87 * c0
+        + _tmp88 * b0
+        + _tmp89 * b0
+        + _tmp90 * c0
+        + _tmp91 * c0
+        + _tmp92 * b0
+        + _tmp93 * c0
+        + _tmp94 * b0
+        + _tmp95 * b0
+        + _tmp96 * c0
+        + _tmp97 * c0
+        + b0 * w110
+        + c0 * w100
+    )
+    jac[0, 0] = (
+        _tmp0 + _tmp11 + _tmp12 + _tmp18 + _tmp19 + _tmp20 + _tmp5 * w16 + _tmp7 * w13 + _tmp8 + w10
+    )
+    jac[0, 1] = 0.0
+    jac[0, 2] = mu1 * (
+        _tmp100 * w9
+        + _tmp101 * _tmp7
+        + _tmp102 * w19
+        + _tmp4
+        + _tmp7 * w8
+        + _tmp98
+        + _tmp99 * w17
+        + w6
+    )
+    jac[0, 3] = mu1 * (
+        _tmp101 * _tmp5
+        + _tmp103
+        + _tmp104
+        + _tmp105 * w5
+        + _tmp106 * w15
+        + _tmp6
+        + _tmp99 * w14
+        + w3
+    )
+    jac[0, 4] = (
+        _tmp1
+        + _tmp101 * _tmp113
+        + _tmp102 * w17
+        + _tmp103 * _tmp110
+        + _tmp104 * _tmp110
+        + _tmp106 * w14
+        + _tmp107 * w2
+        + _tmp108 * w12
+        + _tmp109 * _tmp98
+        + _tmp111 * w9
+        + _tmp112 * w5
+        + _tmp114 * w19
+        + _tmp115 * w15
+        + _tmp2
+        + _tmp4 * n1
+        + _tmp6 * n2
+        + b0 * w11
+        + w1
+    )
+    jac[0, 5] = 0.0
+    jac[1, 0] = 0.0
+    jac[1, 1] = (
+        _tmp21
+        + _tmp26
+        + _tmp27
+        + _tmp28
+        + _tmp29
+        + _tmp30
+        + _tmp31
+        + _tmp5 * w36
+        + _tmp7 * w33
+        + w30
+    )
+    jac[1, 2] = mu1 * (
+        _tmp100 * w29
+        + _tmp116
+        + _tmp117 * w37
+        + _tmp118 * _tmp7
+        + _tmp119 * w39
+        + _tmp24
+        + _tmp7 * w28
+        + w26
+    )
+    jac[1, 3] = mu1 * (
+        _tmp105 * w25
+        + _tmp117 * w34
+        + _tmp118 * _tmp5
+        + _tmp120
+        + _tmp121
+        + _tmp122 * w35
+        + _tmp25
+        + w23
+    )
+    jac[1, 4] = (
+        _tmp107 * w22
+        + _tmp109 * _tmp116
+        + _tmp110 * _tmp120
+        + _tmp110 * _tmp121
+        + _tmp111 * w29
+        + _tmp112 * w25
+        + _tmp113 * _tmp118
+        + _tmp119 * w37
+        + _tmp122 * w34
+        + _tmp123 * w32
+        + _tmp124 * w39
+        + _tmp125 * w35
+        + _tmp22
+        + _tmp23
+        + _tmp24 * n1
+        + _tmp25 * n2
+        + c0 * w31
+        + w21
+    )
+    jac[1, 5] = 0.0
+    jac[2, 0] = (
+        _tmp32
+        + _tmp38
+        + _tmp40
+        + _tmp41
+        + _tmp44
+        + _tmp46
+        + _tmp47
+        + _tmp5 * w56
+        + _tmp7 * w53
+        + w50
+    )
+    jac[2, 1] = (
+        _tmp33
+        + _tmp39
+        + _tmp42
+        + _tmp43
+        + _tmp45
+        + _tmp48
+        + _tmp49
+        + _tmp5 * w46
+        + _tmp7 * w43
+        + w40
+    )
+    jac[2, 2] = mu1 * (
+        _tmp102 * w59
+        + _tmp117 * w47
+        + _tmp119 * w49
+        + _tmp126 * _tmp7
+        + _tmp127 * _tmp7
+        + _tmp34
+        + _tmp36
+        + _tmp99 * w57
+    )
+    jac[2, 3] = mu1 * (
+        _tmp106 * w55
+        + _tmp117 * w44
+        + _tmp122 * w45
+        + _tmp126 * _tmp5
+        + _tmp127 * _tmp5
+        + _tmp35
+        + _tmp37
+        + _tmp99 * w54
+    )
+    jac[2, 4] = (
+        _tmp102 * w57
+        + _tmp106 * w54
+        + _tmp108 * w52
+        + _tmp113 * _tmp126
+        + _tmp113 * _tmp127
+        + _tmp114 * w59
+        + _tmp115 * w55
+        + _tmp119 * w47
+        + _tmp122 * w44
+        + _tmp123 * w42
+        + _tmp124 * w49
+        + _tmp125 * w45
+        + _tmp34 * n1
+        + _tmp35 * n2
+        + _tmp36 * n1
+        + _tmp37 * n2
+        + b0 * w51
+        + c0 * w41
+    )
+    jac[2, 5] = 0.0
+    jac[3, 0] = (
+        _tmp50
+        + _tmp55 * w76
+        + _tmp57 * w73
+        + _tmp58
+        + _tmp61
+        + _tmp62
+        + _tmp66
+        + _tmp67
+        + _tmp68
+        + w70
+    )
+    jac[3, 1] = 0.0
+    jac[3, 2] = mu2 * (
+        _tmp128
+        + _tmp129 * w77
+        + _tmp130 * w69
+        + _tmp131 * _tmp57
+        + _tmp132 * w79
+        + _tmp54
+        + _tmp57 * w68
+        + w66
+    )
+    jac[3, 3] = mu2 * (
+        _tmp129 * w74 + _tmp133 + _tmp134 + _tmp135 * w65 + _tmp136 + _tmp137 * w75 + _tmp56 + w63
+    )
+    jac[3, 4] = 0.0
+    jac[3, 5] = (
+        _tmp109 * _tmp128
+        + _tmp110 * _tmp133
+        + _tmp110 * _tmp134
+        + _tmp110 * _tmp136
+        + _tmp132 * w77
+        + _tmp137 * w74
+        + _tmp138 * w62
+        + _tmp139 * w72
+        + _tmp140 * w69
+        + _tmp141 * w65
+        + _tmp142 * w79
+        + _tmp143 * w75
+        + _tmp51
+        + _tmp52
+        + _tmp54 * n1
+        + _tmp56 * n2
+        + b0 * w71
+        + w61
+    )
+    jac[4, 0] = 0.0
+    jac[4, 1] = (
+        _tmp55 * w96
+        + _tmp57 * w93
+        + _tmp69
+        + _tmp74
+        + _tmp75
+        + _tmp76
+        + _tmp77
+        + _tmp78
+        + _tmp79
+        + w90
+    )
+    jac[4, 2] = mu2 * (
+        _tmp130 * w89
+        + _tmp144
+        + _tmp145 * w97
+        + _tmp146 * _tmp57
+        + _tmp147 * w99
+        + _tmp57 * w88
+        + _tmp72
+        + w86
+    )
+    jac[4, 3] = mu2 * (
+        _tmp135 * w85 + _tmp145 * w94 + _tmp148 + _tmp149 + _tmp150 + _tmp151 * w95 + _tmp73 + w83
+    )
+    jac[4, 4] = 0.0
+    jac[4, 5] = (
+        _tmp109 * _tmp144
+        + _tmp110 * _tmp148
+        + _tmp110 * _tmp149
+        + _tmp110 * _tmp150
+        + _tmp138 * w82
+        + _tmp140 * w89
+        + _tmp141 * w85
+        + _tmp147 * w97
+        + _tmp151 * w94
+        + _tmp152 * w92
+        + _tmp153 * w99
+        + _tmp154 * w95
+        + _tmp70
+        + _tmp71
+        + _tmp72 * n1
+        + _tmp73 * n2
+        + c0 * w91
+        + w81
+    )
+    jac[5, 0] = (
+        _tmp55 * w116
+        + _tmp57 * w113
+        + _tmp80
+        + _tmp86
+        + _tmp88
+        + _tmp89
+        + _tmp92
+        + _tmp94
+        + _tmp95
+        + w110
+    )
+    jac[5, 1] = (
+        _tmp55 * w106
+        + _tmp57 * w103
+        + _tmp81
+        + _tmp87
+        + _tmp90
+        + _tmp91
+        + _tmp93
+        + _tmp96
+        + _tmp97
+        + w100
+    )
+    jac[5, 2] = mu2 * (
+        _tmp129 * w117
+        + _tmp132 * w119
+        + _tmp145 * w107
+        + _tmp147 * w109
+        + _tmp155 * _tmp57
+        + _tmp156 * _tmp57
+        + _tmp82
+        + _tmp84
+    )
+    jac[5, 3] = mu2 * (
+        _tmp129 * w114
+        + _tmp137 * w115
+        + _tmp145 * w104
+        + _tmp151 * w105
+        + _tmp157
+        + _tmp158
+        + _tmp83
+        + _tmp85
+    )
+    jac[5, 4] = 0.0
+    jac[5, 5] = (
+        _tmp110 * _tmp157
+        + _tmp110 * _tmp158
+        + _tmp132 * w117
+        + _tmp137 * w114
+        + _tmp139 * w112
+        + _tmp142 * w119
+        + _tmp143 * w115
+        + _tmp147 * w107
+        + _tmp151 * w104
+        + _tmp152 * w102
+        + _tmp153 * w109
+        + _tmp154 * w105
+        + _tmp82 * n1
+        + _tmp83 * n2
+        + _tmp84 * n1
+        + _tmp85 * n2
+        + b0 * w111
+        + c0 * w101
+    )
+
+
+@numba.njit(**_JIT)
+def residual_jacobian_t(
+    x: np.ndarray, w: np.ndarray, wt: np.ndarray, f: np.ndarray, jac: np.ndarray, ft: np.ndarray
+) -> None:
+    """F and F_x as ``residual_jacobian``, and F_t = (dW/dt) u(x) from dW/dt's entries wt.
+
+    Outputs written in place (every entry): f, jac, ft.
+    """
+    b0 = x[0]
+    c0 = x[1]
+    n1 = x[2]
+    n2 = x[3]
+    mu1 = x[4]
+    mu2 = x[5]
+    w0 = w[0]
+    w1 = w[1]
+    w2 = w[2]
+    w3 = w[3]
+    w4 = w[4]
+    w5 = w[5]
+    w6 = w[6]
+    w7 = w[7]
+    w8 = w[8]
+    w9 = w[9]
+    w10 = w[10]
+    w11 = w[11]
+    w12 = w[12]
+    w13 = w[13]
+    w14 = w[14]
+    w15 = w[15]
+    w16 = w[16]
+    w17 = w[17]
+    w18 = w[18]
+    w19 = w[19]
+    w20 = w[20]
+    w21 = w[21]
+    w22 = w[22]
+    w23 = w[23]
+    w24 = w[24]
+    w25 = w[25]
+    w26 = w[26]
+    w27 = w[27]
+    w28 = w[28]
+    w29 = w[29]
+    w30 = w[30]
+    w31 = w[31]
+    w32 = w[32]
+    w33 = w[33]
+    w34 = w[34]
+    w35 = w[35]
+    w36 = w[36]
+    w37 = w[37]
+    w38 = w[38]
+    w39 = w[39]
+    w40 = w[40]
+    w41 = w[41]
+    w42 = w[42]
+    w43 = w[43]
+    w44 = w[44]
+    w45 = w[45]
+    w46 = w[46]
+    w47 = w[47]
+    w48 = w[48]
+    w49 = w[49]
+    w50 = w[50]
+    w51 = w[51]
+    w52 = w[52]
+    w53 = w[53]
+    w54 = w[54]
+    w55 = w[55]
+    w56 = w[56]
+    w57 = w[57]
+    w58 = w[58]
+    w59 = w[59]
+    w60 = w[60]
+    w61 = w[61]
+    w62 = w[62]
+    w63 = w[63]
+    w64 = w[64]
+    w65 = w[65]
+    w66 = w[66]
+    w67 = w[67]
+    w68 = w[68]
+    w69 = w[69]
+    w70 = w[70]
+    w71 = w[71]
+    w72 = w[72]
+    w73 = w[73]
+    w74 = w[74]
+    w75 = w[75]
+    w76 = w[76]
+    w77 = w[77]
+    w78 = w[78]
+    w79 = w[79]
+    w80 = w[80]
+    w81 = w[81]
+    w82 = w[82]
+    w83 = w[83]
+    w84 = w[84]
+    w85 = w[85]
+    w86 = w[86]
+    w87 = w[87]
+    w88 = w[88]
+    w89 = w[89]
+    w90 = w[90]
+    w91 = w[91]
+    w92 = w[92]
+    w93 = w[93]
+    w94 = w[94]
+    w95 = w[95]
+    w96 = w[96]
+    w97 = w[97]
+    w98 = w[98]
+    w99 = w[99]
+    w100 = w[100]
+    w101 = w[101]
+    w102 = w[102]
+    w103 = w[103]
+    w104 = w[104]
+    w105 = w[105]
+    w106 = w[106]
+    w107 = w[107]
+    w108 = w[108]
+    w109 = w[109]
+    w110 = w[110]
+    w111 = w[111]
+    w112 = w[112]
+    w113 = w[113]
+    w114 = w[114]
+    w115 = w[115]
+    w116 = w[116]
+    w117 = w[117]
+    w118 = w[118]
+    w119 = w[119]
+    wt0 = wt[0]
+    wt1 = wt[1]
+    wt2 = wt[2]
+    wt3 = wt[3]
+    wt4 = wt[4]
+    wt5 = wt[5]
+    wt6 = wt[6]
+    wt7 = wt[7]
+    wt8 = wt[8]
+    wt9 = wt[9]
+    wt10 = wt[10]
+    wt11 = wt[11]
+    wt12 = wt[12]
+    wt13 = wt[13]
+    wt14 = wt[14]
+    wt15 = wt[15]
+    wt16 = wt[16]
+    wt17 = wt[17]
+    wt18 = wt[18]
+    wt19 = wt[19]
+    wt20 = wt[20]
+    wt21 = wt[21]
+    wt22 = wt[22]
+    wt23 = wt[23]
+    wt24 = wt[24]
+    wt25 = wt[25]
+    wt26 = wt[26]
+    wt27 = wt[27]
+    wt28 = wt[28]
+    wt29 = wt[29]
+    wt30 = wt[30]
+    wt31 = wt[31]
+    wt32 = wt[32]
+    wt33 = wt[33]
+    wt34 = wt[34]
+    wt35 = wt[35]
+    wt36 = wt[36]
+    wt37 = wt[37]
+    wt38 = wt[38]
+    wt39 = wt[39]
+    wt40 = wt[40]
+    wt41 = wt[41]
+    wt42 = wt[42]
+    wt43 = wt[43]
+    wt44 = wt[44]
+    wt45 = wt[45]
+    wt46 = wt[46]
+    wt47 = wt[47]
+    wt48 = wt[48]
+    wt49 = wt[49]
+    wt50 = wt[50]
+    wt51 = wt[51]
+    wt52 = wt[52]
+    wt53 = wt[53]
+    wt54 = wt[54]
+    wt55 = wt[55]
+    wt56 = wt[56]
+    wt57 = wt[57]
+    wt58 = wt[58]
+    wt59 = wt[59]
+    wt60 = wt[60]
+    wt61 = wt[61]
+    wt62 = wt[62]
+    wt63 = wt[63]
+    wt64 = wt[64]
+    wt65 = wt[65]
+    wt66 = wt[66]
+    wt67 = wt[67]
+    wt68 = wt[68]
+    wt69 = wt[69]
+    wt70 = wt[70]
+    wt71 = wt[71]
+    wt72 = wt[72]
+    wt73 = wt[73]
+    wt74 = wt[74]
+    wt75 = wt[75]
+    wt76 = wt[76]
+    wt77 = wt[77]
+    wt78 = wt[78]
+    wt79 = wt[79]
+    wt80 = wt[80]
+    wt81 = wt[81]
+    wt82 = wt[82]
+    wt83 = wt[83]
+    wt84 = wt[84]
+    wt85 = wt[85]
+    wt86 = wt[86]
+    wt87 = wt[87]
+    wt88 = wt[88]
+    wt89 = wt[89]
+    wt90 = wt[90]
+    wt91 = wt[91]
+    wt92 = wt[92]
+    wt93 = wt[93]
+    wt94 = wt[94]
+    wt95 = wt[95]
+    wt96 = wt[96]
+    wt97 = wt[97]
+    wt98 = wt[98]
+    wt99 = wt[99]
+    wt100 = wt[100]
+    wt101 = wt[101]
+    wt102 = wt[102]
+    wt103 = wt[103]
+    wt104 = wt[104]
+    wt105 = wt[105]
+    wt106 = wt[106]
+    wt107 = wt[107]
+    wt108 = wt[108]
+    wt109 = wt[109]
+    wt110 = wt[110]
+    wt111 = wt[111]
+    wt112 = wt[112]
+    wt113 = wt[113]
+    wt114 = wt[114]
+    wt115 = wt[115]
+    wt116 = wt[116]
+    wt117 = wt[117]
+    wt118 = wt[118]
+    wt119 = wt[119]
+    _tmp0 = mu1 * w11
+    _tmp1 = n1 * w6
+    _tmp2 = n2 * w3
+    _tmp3 = mu1 * mu1
+    _tmp4 = b0 * w16
+    _tmp5 = mu1 * n1
+    _tmp6 = b0 * w13
+    _tmp7 = mu1 * n2
+    _tmp8 = _tmp3 * w12
+    _tmp9 = _tmp3 * n1
+    _tmp10 = _tmp3 * n2
+    _tmp11 = _tmp9 * w17
+    _tmp12 = _tmp10 * w14
+    _tmp13 = _tmp9 * n2
+    _tmp14 = n1 * n1
+    _tmp15 = _tmp14 * _tmp3
+    _tmp16 = n2 * n2
+    _tmp17 = _tmp16 * _tmp3
+    _tmp18 = _tmp13 * w18
+    _tmp19 = _tmp15 * w19
+    _tmp20 = _tmp17 * w15
+    _tmp21 = mu1 * w31
+    _tmp22 = n1 * w26
+    _tmp23 = n2 * w23
+    _tmp24 = c0 * w36
+    _tmp25 = c0 * w33
+    _tmp26 = _tmp3 * w32
+    _tmp27 = _tmp9 * w37
+    _tmp28 = _tmp10 * w34
+    _tmp29 = _tmp13 * w38
+    _tmp30 = _tmp15 * w39
+    _tmp31 = _tmp17 * w35
+    _tmp32 = mu1 * w51
+    _tmp33 = mu1 * w41
+    _tmp34 = b0 * w56
+    _tmp35 = b0 * w53
+    _tmp36 = c0 * w46
+    _tmp37 = c0 * w43
+    _tmp38 = _tmp3 * w52
+    _tmp39 = _tmp3 * w42
+    _tmp40 = _tmp9 * w57
+    _tmp41 = _tmp10 * w54
+    _tmp42 = _tmp9 * w47
+    _tmp43 = _tmp10 * w44
+    _tmp44 = _tmp13 * w58
+    _tmp45 = _tmp13 * w48
+    _tmp46 = _tmp15 * w59
+    _tmp47 = _tmp17 * w55
+    _tmp48 = _tmp15 * w49
+    _tmp49 = _tmp17 * w45
+    _tmp50 = mu2 * w71
+    _tmp51 = n1 * w66
+    _tmp52 = n2 * w63
+    _tmp53 = mu2 * mu2
+    _tmp54 = b0 * w76
+    _tmp55 = mu2 * n1
+    _tmp56 = b0 * w73
+    _tmp57 = mu2 * n2
+    _tmp58 = _tmp53 * w72
+    _tmp59 = _tmp53 * n1
+    _tmp60 = _tmp53 * n2
+    _tmp61 = _tmp59 * w77
+    _tmp62 = _tmp60 * w74
+    _tmp63 = _tmp59 * n2
+    _tmp64 = _tmp14 * _tmp53
+    _tmp65 = _tmp16 * _tmp53
+    _tmp66 = _tmp63 * w78
+    _tmp67 = _tmp64 * w79
+    _tmp68 = _tmp65 * w75
+    _tmp69 = mu2 * w91
+    _tmp70 = n1 * w86
+    _tmp71 = n2 * w83
+    _tmp72 = c0 * w96
+    _tmp73 = c0 * w93
+    _tmp74 = _tmp53 * w92
+    _tmp75 = _tmp59 * w97
+    _tmp76 = _tmp60 * w94
+    _tmp77 = _tmp63 * w98
+    _tmp78 = _tmp64 * w99
+    _tmp79 = _tmp65 * w95
+    _tmp80 = mu2 * w111
+    _tmp81 = mu2 * w101
+    _tmp82 = b0 * w116
+    _tmp83 = b0 * w113
+    _tmp84 = c0 * w106
+    _tmp85 = c0 * w103
+    _tmp86 = _tmp53 * w112
+    _tmp87 = _tmp53 * w102
+    _tmp88 = _tmp59 * w117
+    _tmp89 = _tmp60 * w114
+    _tmp90 = _tmp59 * w107
+    _tmp91 = _tmp60 * w104
+    _tmp92 = _tmp63 * w118
+    _tmp93 = _tmp63 * w108
+    _tmp94 = _tmp64 * w119
+    _tmp95 = _tmp65 * w115
+    _tmp96 = _tmp64 * w109
+    _tmp97 = _tmp65 * w105
+    _tmp98 = mu1 * w7
+    _tmp99 = b0 * mu1
+    _tmp100 = 2 * _tmp5
+    _tmp101 = b0 * w18
+    _tmp102 = _tmp100 * b0
+    _tmp103 = mu1 * w4
+    _tmp104 = _tmp5 * w8
+    _tmp105 = 2 * _tmp7
+    _tmp106 = _tmp105 * b0
+    _tmp107 = 2 * mu1
+    _tmp108 = 2 * _tmp99
+    _tmp109 = 2 * n1
+    _tmp110 = 2 * n2
+    _tmp111 = _tmp107 * _tmp14
+    _tmp112 = _tmp107 * _tmp16
+    _tmp113 = _tmp100 * n2
+    _tmp114 = _tmp108 * _tmp14
+    _tmp115 = _tmp108 * _tmp16
+    _tmp116 = mu1 * w27
+    _tmp117 = c0 * mu1
+    _tmp118 = c0 * w38
+    _tmp119 = _tmp100 * c0
+    _tmp120 = mu1 * w24
+    _tmp121 = _tmp5 * w28
+    _tmp122 = _tmp105 * c0
+    _tmp123 = _tmp107 * c0
+    _tmp124 = _tmp111 * c0
+    _tmp125 = _tmp112 * c0
+    _tmp126 = b0 * w58
+    _tmp127 = c0 * w48
+    _tmp128 = mu2 * w67
+    _tmp129 = b0 * mu2
+    _tmp130 = 2 * _tmp55
+    _tmp131 = b0 * w78
+    _tmp132 = _tmp130 * b0
+    _tmp133 = mu2 * w64
+    _tmp134 = _tmp55 * w68
+    _tmp135 = 2 * _tmp57
+    _tmp136 = _tmp131 * _tmp55
+    _tmp137 = _tmp135 * b0
+    _tmp138 = 2 * mu2
+    _tmp139 = 2 * _tmp129
+    _tmp140 = _tmp138 * _tmp14
+    _tmp141 = _tmp138 * _tmp16
+    _tmp142 = _tmp139 * _tmp14
+    _tmp143 = _tmp139 * _tmp16
+    _tmp144 = mu2 * w87
+    _tmp145 = c0 * mu2
+    _tmp146 = c0 * w98
+    _tmp147 = _tmp130 * c0
+    _tmp148 = mu2 * w84
+    _tmp149 = _tmp55 * w88
+    _tmp150 = _tmp146 * _tmp55
+    _tmp151 = _tmp135 * c0
+    _tmp152 = _tmp138 * c0
+    _tmp153 = _tmp140 * c0
+    _tmp154 = _tmp141 * c0
+    _tmp155 = b0 * w118
+    _tmp156 = c0 * w108
+    _tmp157 = _tmp155 * _tmp55
+    _tmp158 = _tmp156 * _tmp55
+    _tmp159 = _tmp5 * b0
+    _tmp160 = _tmp7 * b0
+    _tmp161 = _tmp3 * b0
+    _tmp162 = _tmp9 * b0
+    _tmp163 = _tmp10 * b0
+    _tmp164 = _tmp13 * b0
+    _tmp165 = _tmp15 * b0
+    _tmp166 = _tmp17 * b0
+    _tmp167 = _tmp5 * c0
+    _tmp168 = _tmp7 * c0
+    _tmp169 = _tmp3 * c0
+    _tmp170 = _tmp9 * c0
+    _tmp171 = _tmp10 * c0
+    _tmp172 = _tmp13 * c0
+    _tmp173 = _tmp15 * c0
+    _tmp174 = _tmp17 * c0
+    _tmp175 = _tmp55 * b0
+    _tmp176 = _tmp57 * b0
+    _tmp177 = _tmp53 * b0
+    _tmp178 = _tmp59 * b0
+    _tmp179 = _tmp60 * b0
+    _tmp180 = _tmp63 * b0
+    _tmp181 = _tmp64 * b0
+    _tmp182 = _tmp65 * b0
+    _tmp183 = _tmp55 * c0
+    _tmp184 = _tmp57 * c0
+    _tmp185 = _tmp53 * c0
+    _tmp186 = _tmp59 * c0
+    _tmp187 = _tmp60 * c0
+    _tmp188 = _tmp63 * c0
+    _tmp189 = _tmp64 * c0
+    _tmp190 = _tmp65 * c0
+    f[0] = (
+        _tmp0 * b0
+        + _tmp1 * mu1
+        + _tmp10 * w4
+        + _tmp11 * b0
+        + _tmp12 * b0
+        + _tmp13 * w8
+        + _tmp15 * w9
+        + _tmp17 * w5
+        + _tmp18 * b0
+        + _tmp19 * b0
+        + _tmp2 * mu1
+        + _tmp20 * b0
+        + _tmp3 * w2
+        + _tmp4 * _tmp5
+        + _tmp6 * _tmp7
+        + _tmp8 * b0
+        + _tmp9 * w7
+        + b0 * w10
+        + mu1 * w1
+        + w0
+    )
+    f[1] = (
+        _tmp10 * w24
+        + _tmp13 * w28
+        + _tmp15 * w29
+        + _tmp17 * w25
+        + _tmp21 * c0
+        + _tmp22 * mu1
+        + _tmp23 * mu1
+        + _tmp24 * _tmp5
+        + _tmp25 * _tmp7
+        + _tmp26 * c0
+        + _tmp27 * c0
+        + _tmp28 * c0
+        + _tmp29 * c0
+        + _tmp3 * w22
+        + _tmp30 * c0
+        + _tmp31 * c0
+        + _tmp9 * w27
+        + c0 * w30
+        + mu1 * w21
+        + w20
+    )
+    f[2] = (
+        _tmp32 * b0
+        + _tmp33 * c0
+        + _tmp34 * _tmp5
+        + _tmp35 * _tmp7
+        + _tmp36 * _tmp5
+        + _tmp37 * _tmp7
+        + _tmp38 * b0
+        + _tmp39 * c0
+        + _tmp40 * b0
+        + _tmp41 * b0
+        + _tmp42 * c0
+        + _tmp43 * c0
+        + _tmp44 * b0
+        + _tmp45 * c0
+        + _tmp46 * b0
+        + _tmp47 * b0
+        + _tmp48 * c0
+        + _tmp49 * c0
+        + b0 * w50
+        + c0 * w40
+    )
+    f[3] = (
+        _tmp50 * b0
+        + _tmp51 * mu2
+        + _tmp52 * mu2
+        + _tmp53 * w62
+        + _tmp54 * _tmp55
+        + _tmp56 * _tmp57
+        + _tmp58 * b0
+        + _tmp59 * w67
+        + _tmp60 * w64
+        + _tmp61 * b0
+        + _tmp62 * b0
+        + _tmp63 * w68
+        + _tmp64 * w69
+        + _tmp65 * w65
+        + _tmp66 * b0
+        + _tmp67 * b0
+        + _tmp68 * b0
+        + b0 * w70
+        + mu2 * w61
+        + w60
+    )
+    f[4] = (
+        _tmp53 * w82
+        + _tmp55 * _tmp72
+        + _tmp57 * _tmp73
+        + _tmp59 * w87
+        + _tmp60 * w84
+        + _tmp63 * w88
+        + _tmp64 * w89
+        + _tmp65 * w85
+        + _tmp69 * c0
+        + _tmp70 * mu2
+        + _tmp71 * mu2
+        + _tmp74 * c0
+        + _tmp75 * c0
+        + _tmp76 * c0
+        + _tmp77 * c0
+        + _tmp78 * c0
+        + _tmp79 * c0
+        + c0 * w90
+        + mu2 * w81
+        + w80
+    )
+    f[5] = (
+        _tmp55 * _tmp82
+        + _tmp55 * _tmp84
+        + _tmp57 * _tmp83
+        + _tmp57 * _tmp85
+        + _tmp80 * b0
+        + _tmp81 * c0
+        + _tmp86 * b0
+        + _tmp87 * c0
+        + _tmp88 * b0
+        + _tmp89 * b0
+        + _tmp90 * c0
+        + _tmp91 * c0
+        + _tmp92 * b0
+        + _tmp93 * c0
+        + _tmp94 * b0
+        + _tmp95 * b0
+        + _tmp96 * c0
+        + _tmp97 * c0
+        + b0 * w110
+        + c0 * w100
+    )
+    jac[0, 0] = (
+        _tmp0 + _tmp11 + _tmp12 + _tmp18 + _tmp19 + _tmp20 + _tmp5 * w16 + _tmp7 * w13 + _tmp8 + w10
+    )
+    jac[0, 1] = 0.0
+    jac[0, 2] = mu1 * (
+        _tmp100 * w9
+        + _tmp101 * _tmp7
+        + _tmp102 * w19
+        + _tmp4
+        + _tmp7 * w8
+        + _tmp98
+        + _tmp99 * w17
+        + w6
+    )
+    jac[0, 3] = mu1 * (
+        _tmp101 * _tmp5
+        + _tmp103
+        + _tmp104
+        + _tmp105 * w5
+        + _tmp106 * w15
+        + _tmp6
+        + _tmp99 * w14
+        + w3
+    )
+    jac[0, 4] = (
+        _tmp1
+        + _tmp101 * _tmp113
+        + _tmp102 * w17
+        + _tmp103 * _tmp110
+        + _tmp104 * _tmp110
+        + _tmp106 * w14
+        + _tmp107 * w2
+        + _tmp108 * w12
+        + _tmp109 * _tmp98
+        + _tmp111 * w9
+        + _tmp112 * w5
+        + _tmp114 * w19
+        + _tmp115 * w15
+        + _tmp2
+        + _tmp4 * n1
+        + _tmp6 * n2
+        + b0 * w11
+        + w1
+    )
+    jac[0, 5] = 0.0
+    jac[1, 0] = 0.0
+    jac[1, 1] = (
+        _tmp21
+        + _tmp26
+        + _tmp27
+        + _tmp28
+        + _tmp29
+        + _tmp30
+        + _tmp31
+        + _tmp5 * w36
+        + _tmp7 * w33
+        + w30
+    )
+    jac[1, 2] = mu1 * (
+        _tmp100 * w29
+        + _tmp116
+        + _tmp117 * w37
+        + _tmp118 * _tmp7
+        + _tmp119 * w39
+        + _tmp24
+        + _tmp7 * w28
+        + w26
+    )
+    jac[1, 3] = mu1 * (
+        _tmp105 * w25
+        + _tmp117 * w34
+        + _tmp118 * _tmp5
+        + _tmp120
+        + _tmp121
+        + _tmp122 * w35
+        + _tmp25
+        + w23
+    )
+    jac[1, 4] = (
+        _tmp107 * w22
+        + _tmp109 * _tmp116
+        + _tmp110 * _tmp120
+        + _tmp110 * _tmp121
+        + _tmp111 * w29
+        + _tmp112 * w25
+        + _tmp113 * _tmp118
+        + _tmp119 * w37
+        + _tmp122 * w34
+        + _tmp123 * w32
+        + _tmp124 * w39
+        + _tmp125 * w35
+        + _tmp22
+        + _tmp23
+        + _tmp24 * n1
+        + _tmp25 * n2
+        + c0 * w31
+        + w21
+    )
+    jac[1, 5] = 0.0
+    jac[2, 0] = (
+        _tmp32
+        + _tmp38
+        + _tmp40
+        + _tmp41
+        + _tmp44
+        + _tmp46
+        + _tmp47
+        + _tmp5 * w56
+        + _tmp7 * w53
+        + w50
+    )
+    jac[2, 1] = (
+        _tmp33
+        + _tmp39
+        + _tmp42
+        + _tmp43
+        + _tmp45
+        + _tmp48
+        + _tmp49
+        + _tmp5 * w46
+        + _tmp7 * w43
+        + w40
+    )
+    jac[2, 2] = mu1 * (
+        _tmp102 * w59
+        + _tmp117 * w47
+        + _tmp119 * w49
+        + _tmp126 * _tmp7
+        + _tmp127 * _tmp7
+        + _tmp34
+        + _tmp36
+        + _tmp99 * w57
+    )
+    jac[2, 3] = mu1 * (
+        _tmp106 * w55
+        + _tmp117 * w44
+        + _tmp122 * w45
+        + _tmp126 * _tmp5
+        + _tmp127 * _tmp5
+        + _tmp35
+        + _tmp37
+        + _tmp99 * w54
+    )
+    jac[2, 4] = (
+        _tmp102 * w57
+        + _tmp106 * w54
+        + _tmp108 * w52
+        + _tmp113 * _tmp126
+        + _tmp113 * _tmp127
+        + _tmp114 * w59
+        + _tmp115 * w55
+        + _tmp119 * w47
+        + _tmp122 * w44
+        + _tmp123 * w42
+        + _tmp124 * w49
+        + _tmp125 * w45
+        + _tmp34 * n1
+        + _tmp35 * n2
+        + _tmp36 * n1
+        + _tmp37 * n2
+        + b0 * w51
+        + c0 * w41
+    )
+    jac[2, 5] = 0.0
+    jac[3, 0] = (
+        _tmp50
+        + _tmp55 * w76
+        + _tmp57 * w73
+        + _tmp58
+        + _tmp61
+        + _tmp62
+        + _tmp66
+        + _tmp67
+        + _tmp68
+        + w70
+    )
+    jac[3, 1] = 0.0
+    jac[3, 2] = mu2 * (
+        _tmp128
+        + _tmp129 * w77
+        + _tmp130 * w69
+        + _tmp131 * _tmp57
+        + _tmp132 * w79
+        + _tmp54
+        + _tmp57 * w68
+        + w66
+    )
+    jac[3, 3] = mu2 * (
+        _tmp129 * w74 + _tmp133 + _tmp134 + _tmp135 * w65 + _tmp136 + _tmp137 * w75 + _tmp56 + w63
+    )
+    jac[3, 4] = 0.0
+    jac[3, 5] = (
+        _tmp109 * _tmp128
+        + _tmp110 * _tmp133
+        + _tmp110 * _tmp134
+        + _tmp110 * _tmp136
+        + _tmp132 * w77
+        + _tmp137 * w74
+        + _tmp138 * w62
+        + _tmp139 * w72
+        + _tmp140 * w69
+        + _tmp141 * w65
+        + _tmp142 * w79
+        + _tmp143 * w75
+        + _tmp51
+        + _tmp52
+        + _tmp54 * n1
+        + _tmp56 * n2
+        + b0 * w71
+        + w61
+    )
+    jac[4, 0] = 0.0
+    jac[4, 1] = (
+        _tmp55 * w96
+        + _tmp57 * w93
+        + _tmp69
+        + _tmp74
+        + _tmp75
+        + _tmp76
+        + _tmp77
+        + _tmp78
+        + _tmp79
+        + w90
+    )
+    jac[4, 2] = mu2 * (
+        _tmp130 * w89
+        + _tmp144
+        + _tmp145 * w97
+        + _tmp146 * _tmp57
+        + _tmp147 * w99
+        + _tmp57 * w88
+        + _tmp72
+        + w86
+    )
+    jac[4, 3] = mu2 * (
+        _tmp135 * w85 + _tmp145 * w94 + _tmp148 + _tmp149 + _tmp150 + _tmp151 * w95 + _tmp73 + w83
+    )
+    jac[4, 4] = 0.0
+    jac[4, 5] = (
+        _tmp109 * _tmp144
+        + _tmp110 * _tmp148
+        + _tmp110 * _tmp149
+        + _tmp110 * _tmp150
+        + _tmp138 * w82
+        + _tmp140 * w89
+        + _tmp141 * w85
+        + _tmp147 * w97
+        + _tmp151 * w94
+        + _tmp152 * w92
+        + _tmp153 * w99
+        + _tmp154 * w95
+        + _tmp70
+        + _tmp71
+        + _tmp72 * n1
+        + _tmp73 * n2
+        + c0 * w91
+        + w81
+    )
+    jac[5, 0] = (
+        _tmp55 * w116
+        + _tmp57 * w113
+        + _tmp80
+        + _tmp86
+        + _tmp88
+        + _tmp89
+        + _tmp92
+        + _tmp94
+        + _tmp95
+        + w110
+    )
+    jac[5, 1] = (
+        _tmp55 * w106
+        + _tmp57 * w103
+        + _tmp81
+        + _tmp87
+        + _tmp90
+        + _tmp91
+        + _tmp93
+        + _tmp96
+        + _tmp97
+        + w100
+    )
+    jac[5, 2] = mu2 * (
+        _tmp129 * w117
+        + _tmp132 * w119
+        + _tmp145 * w107
+        + _tmp147 * w109
+        + _tmp155 * _tmp57
+        + _tmp156 * _tmp57
+        + _tmp82
+        + _tmp84
+    )
+    jac[5, 3] = mu2 * (
+        _tmp129 * w114
+        + _tmp137 * w115
+        + _tmp145 * w104
+        + _tmp151 * w105
+        + _tmp157
+        + _tmp158
+        + _tmp83
+        + _tmp85
+    )
+    jac[5, 4] = 0.0
+    jac[5, 5] = (
+        _tmp110 * _tmp157
+        + _tmp110 * _tmp158
+        + _tmp132 * w117
+        + _tmp137 * w114
+        + _tmp139 * w112
+        + _tmp142 * w119
+        + _tmp143 * w115
+        + _tmp147 * w107
+        + _tmp151 * w104
+        + _tmp152 * w102
+        + _tmp153 * w109
+        + _tmp154 * w105
+        + _tmp82 * n1
+        + _tmp83 * n2
+        + _tmp84 * n1
+        + _tmp85 * n2
+        + b0 * w111
+        + c0 * w101
+    )
+    ft[0] = (
+        _tmp10 * wt4
+        + _tmp13 * wt8
+        + _tmp15 * wt9
+        + _tmp159 * wt16
+        + _tmp160 * wt13
+        + _tmp161 * wt12
+        + _tmp162 * wt17
+        + _tmp163 * wt14
+        + _tmp164 * wt18
+        + _tmp165 * wt19
+        + _tmp166 * wt15
+        + _tmp17 * wt5
+        + _tmp3 * wt2
+        + _tmp5 * wt6
+        + _tmp7 * wt3
+        + _tmp9 * wt7
+        + _tmp99 * wt11
+        + b0 * wt10
+        + mu1 * wt1
+        + wt0
+    )
+    ft[1] = (
+        _tmp10 * wt24
+        + _tmp117 * wt31
+        + _tmp13 * wt28
+        + _tmp15 * wt29
+        + _tmp167 * wt36
+        + _tmp168 * wt33
+        + _tmp169 * wt32
+        + _tmp17 * wt25
+        + _tmp170 * wt37
+        + _tmp171 * wt34
+        + _tmp172 * wt38
+        + _tmp173 * wt39
+        + _tmp174 * wt35
+        + _tmp3 * wt22
+        + _tmp5 * wt26
+        + _tmp7 * wt23
+        + _tmp9 * wt27
+        + c0 * wt30
+        + mu1 * wt21
+        + wt20
+    )
+    ft[2] = (
+        _tmp117 * wt41
+        + _tmp159 * wt56
+        + _tmp160 * wt53
+        + _tmp161 * wt52
+        + _tmp162 * wt57
+        + _tmp163 * wt54
+        + _tmp164 * wt58
+        + _tmp165 * wt59
+        + _tmp166 * wt55
+        + _tmp167 * wt46
+        + _tmp168 * wt43
+        + _tmp169 * wt42
+        + _tmp170 * wt47
+        + _tmp171 * wt44
+        + _tmp172 * wt48
+        + _tmp173 * wt49
+        + _tmp174 * wt45
+        + _tmp99 * wt51
+        + b0 * wt50
+        + c0 * wt40
+    )
+    ft[3] = (
+        _tmp129 * wt71
+        + _tmp175 * wt76
+        + _tmp176 * wt73
+        + _tmp177 * wt72
+        + _tmp178 * wt77
+        + _tmp179 * wt74
+        + _tmp180 * wt78
+        + _tmp181 * wt79
+        + _tmp182 * wt75
+        + _tmp53 * wt62
+        + _tmp55 * wt66
+        + _tmp57 * wt63
+        + _tmp59 * wt67
+        + _tmp60 * wt64
+        + _tmp63 * wt68
+        + _tmp64 * wt69
+        + _tmp65 * wt65
+        + b0 * wt70
+        + mu2 * wt61
+        + wt60
+    )
+    ft[4] = (
+        _tmp145 * wt91
+        + _tmp183 * wt96
+        + _tmp184 * wt93
+        + _tmp185 * wt92
+        + _tmp186 * wt97
+        + _tmp187 * wt94
+        + _tmp188 * wt98
+        + _tmp189 * wt99
+        + _tmp190 * wt95
+        + _tmp53 * wt82
+        + _tmp55 * wt86
+        + _tmp57 * wt83
+        + _tmp59 * wt87
+        + _tmp60 * wt84
+        + _tmp63 * wt88
+        + _tmp64 * wt89
+        + _tmp65 * wt85
+        + c0 * wt90
+        + mu2 * wt81
+        + wt80
+    )
+    ft[5] = (
+        _tmp129 * wt111
+        + _tmp145 * wt101
+        + _tmp175 * wt116
+        + _tmp176 * wt113
+        + _tmp177 * wt112
+        + _tmp178 * wt117
+        + _tmp179 * wt114
+        + _tmp180 * wt118
+        + _tmp181 * wt119
+        + _tmp182 * wt115
+        + _tmp183 * wt106
+        + _tmp184 * wt103
+        + _tmp185 * wt102
+        + _tmp186 * wt107
+        + _tmp187 * wt104
+        + _tmp188 * wt108
+        + _tmp189 * wt109
+        + _tmp190 * wt105
+        + b0 * wt110
+        + c0 * wt100
+    )
+
+
+#: The linear solves' elimination plan ``solve_pair`` is written for: n, the number of pairs,
+#: (unknown, row, row) of each pair, the dense unknowns, the rows in no pair
+#: (``curverecon.solvers.homotopy.PolynomialSystem.elimination``).
+ELIMINATION = (6, 0, 4, 5, 0, 1, 2, 3, 0, 1, 2, 3, 4, 5)
+
+# Without "reassoc", as the tracker's own linear solve (the same arithmetic, in the same order).
+_JIT_SOLVE = {"cache": True, "nogil": True, "fastmath": {"contract", "arcp", "nsz"}}
+
+
+@numba.njit(**_JIT_SOLVE)
+def solve_one(a, b, out):  # type: ignore[no-untyped-def]
+    """out = a^-1 b (``out`` not ``b``): ``solve_pair`` for one right-hand side."""
+    m0_0 = a[0, 4]
+    m0_1 = a[0, 5]
+    m0_2 = a[0, 0]
+    m0_3 = a[0, 1]
+    m0_4 = a[0, 2]
+    m0_5 = a[0, 3]
+    g0 = b[0]
+    m1_0 = a[1, 4]
+    m1_1 = a[1, 5]
+    m1_2 = a[1, 0]
+    m1_3 = a[1, 1]
+    m1_4 = a[1, 2]
+    m1_5 = a[1, 3]
+    g1 = b[1]
+    m2_0 = a[2, 4]
+    m2_1 = a[2, 5]
+    m2_2 = a[2, 0]
+    m2_3 = a[2, 1]
+    m2_4 = a[2, 2]
+    m2_5 = a[2, 3]
+    g2 = b[2]
+    m3_0 = a[3, 4]
+    m3_1 = a[3, 5]
+    m3_2 = a[3, 0]
+    m3_3 = a[3, 1]
+    m3_4 = a[3, 2]
+    m3_5 = a[3, 3]
+    g3 = b[3]
+    m4_0 = a[4, 4]
+    m4_1 = a[4, 5]
+    m4_2 = a[4, 0]
+    m4_3 = a[4, 1]
+    m4_4 = a[4, 2]
+    m4_5 = a[4, 3]
+    g4 = b[4]
+    m5_0 = a[5, 4]
+    m5_1 = a[5, 5]
+    m5_2 = a[5, 0]
+    m5_3 = a[5, 1]
+    m5_4 = a[5, 2]
+    m5_5 = a[5, 3]
+    g5 = b[5]
+    best = abs(m0_0.real) + abs(m0_0.imag)
+    mag = abs(m1_0.real) + abs(m1_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m1_0, m1_1, m1_2, m1_3, m1_4, m1_5, g1 = (
+            m1_0,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            m1_5,
+            g1,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            m0_5,
+            g0,
+        )
+    mag = abs(m2_0.real) + abs(m2_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m2_0, m2_1, m2_2, m2_3, m2_4, m2_5, g2 = (
+            m2_0,
+            m2_1,
+            m2_2,
+            m2_3,
+            m2_4,
+            m2_5,
+            g2,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            m0_5,
+            g0,
+        )
+    mag = abs(m3_0.real) + abs(m3_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m3_0, m3_1, m3_2, m3_3, m3_4, m3_5, g3 = (
+            m3_0,
+            m3_1,
+            m3_2,
+            m3_3,
+            m3_4,
+            m3_5,
+            g3,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            m0_5,
+            g0,
+        )
+    mag = abs(m4_0.real) + abs(m4_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m4_0, m4_1, m4_2, m4_3, m4_4, m4_5, g4 = (
+            m4_0,
+            m4_1,
+            m4_2,
+            m4_3,
+            m4_4,
+            m4_5,
+            g4,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            m0_5,
+            g0,
+        )
+    mag = abs(m5_0.real) + abs(m5_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m5_0, m5_1, m5_2, m5_3, m5_4, m5_5, g5 = (
+            m5_0,
+            m5_1,
+            m5_2,
+            m5_3,
+            m5_4,
+            m5_5,
+            g5,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            m0_5,
+            g0,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m0_0.real * m0_0.real + m0_0.imag * m0_0.imag)
+    u0 = complex(m0_0.real * dd, -m0_0.imag * dd)
+    fac = m1_0 * u0
+    m1_1 = m1_1 - fac * m0_1
+    m1_2 = m1_2 - fac * m0_2
+    m1_3 = m1_3 - fac * m0_3
+    m1_4 = m1_4 - fac * m0_4
+    m1_5 = m1_5 - fac * m0_5
+    g1 = g1 - fac * g0
+    fac = m2_0 * u0
+    m2_1 = m2_1 - fac * m0_1
+    m2_2 = m2_2 - fac * m0_2
+    m2_3 = m2_3 - fac * m0_3
+    m2_4 = m2_4 - fac * m0_4
+    m2_5 = m2_5 - fac * m0_5
+    g2 = g2 - fac * g0
+    fac = m3_0 * u0
+    m3_1 = m3_1 - fac * m0_1
+    m3_2 = m3_2 - fac * m0_2
+    m3_3 = m3_3 - fac * m0_3
+    m3_4 = m3_4 - fac * m0_4
+    m3_5 = m3_5 - fac * m0_5
+    g3 = g3 - fac * g0
+    fac = m4_0 * u0
+    m4_1 = m4_1 - fac * m0_1
+    m4_2 = m4_2 - fac * m0_2
+    m4_3 = m4_3 - fac * m0_3
+    m4_4 = m4_4 - fac * m0_4
+    m4_5 = m4_5 - fac * m0_5
+    g4 = g4 - fac * g0
+    fac = m5_0 * u0
+    m5_1 = m5_1 - fac * m0_1
+    m5_2 = m5_2 - fac * m0_2
+    m5_3 = m5_3 - fac * m0_3
+    m5_4 = m5_4 - fac * m0_4
+    m5_5 = m5_5 - fac * m0_5
+    g5 = g5 - fac * g0
+    best = abs(m1_1.real) + abs(m1_1.imag)
+    mag = abs(m2_1.real) + abs(m2_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, m1_5, g1, m2_1, m2_2, m2_3, m2_4, m2_5, g2 = (
+            m2_1,
+            m2_2,
+            m2_3,
+            m2_4,
+            m2_5,
+            g2,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            m1_5,
+            g1,
+        )
+    mag = abs(m3_1.real) + abs(m3_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, m1_5, g1, m3_1, m3_2, m3_3, m3_4, m3_5, g3 = (
+            m3_1,
+            m3_2,
+            m3_3,
+            m3_4,
+            m3_5,
+            g3,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            m1_5,
+            g1,
+        )
+    mag = abs(m4_1.real) + abs(m4_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, m1_5, g1, m4_1, m4_2, m4_3, m4_4, m4_5, g4 = (
+            m4_1,
+            m4_2,
+            m4_3,
+            m4_4,
+            m4_5,
+            g4,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            m1_5,
+            g1,
+        )
+    mag = abs(m5_1.real) + abs(m5_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, m1_5, g1, m5_1, m5_2, m5_3, m5_4, m5_5, g5 = (
+            m5_1,
+            m5_2,
+            m5_3,
+            m5_4,
+            m5_5,
+            g5,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            m1_5,
+            g1,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m1_1.real * m1_1.real + m1_1.imag * m1_1.imag)
+    u1 = complex(m1_1.real * dd, -m1_1.imag * dd)
+    fac = m2_1 * u1
+    m2_2 = m2_2 - fac * m1_2
+    m2_3 = m2_3 - fac * m1_3
+    m2_4 = m2_4 - fac * m1_4
+    m2_5 = m2_5 - fac * m1_5
+    g2 = g2 - fac * g1
+    fac = m3_1 * u1
+    m3_2 = m3_2 - fac * m1_2
+    m3_3 = m3_3 - fac * m1_3
+    m3_4 = m3_4 - fac * m1_4
+    m3_5 = m3_5 - fac * m1_5
+    g3 = g3 - fac * g1
+    fac = m4_1 * u1
+    m4_2 = m4_2 - fac * m1_2
+    m4_3 = m4_3 - fac * m1_3
+    m4_4 = m4_4 - fac * m1_4
+    m4_5 = m4_5 - fac * m1_5
+    g4 = g4 - fac * g1
+    fac = m5_1 * u1
+    m5_2 = m5_2 - fac * m1_2
+    m5_3 = m5_3 - fac * m1_3
+    m5_4 = m5_4 - fac * m1_4
+    m5_5 = m5_5 - fac * m1_5
+    g5 = g5 - fac * g1
+    best = abs(m2_2.real) + abs(m2_2.imag)
+    mag = abs(m3_2.real) + abs(m3_2.imag)
+    if mag > best:
+        best = mag
+        m2_2, m2_3, m2_4, m2_5, g2, m3_2, m3_3, m3_4, m3_5, g3 = (
+            m3_2,
+            m3_3,
+            m3_4,
+            m3_5,
+            g3,
+            m2_2,
+            m2_3,
+            m2_4,
+            m2_5,
+            g2,
+        )
+    mag = abs(m4_2.real) + abs(m4_2.imag)
+    if mag > best:
+        best = mag
+        m2_2, m2_3, m2_4, m2_5, g2, m4_2, m4_3, m4_4, m4_5, g4 = (
+            m4_2,
+            m4_3,
+            m4_4,
+            m4_5,
+            g4,
+            m2_2,
+            m2_3,
+            m2_4,
+            m2_5,
+            g2,
+        )
+    mag = abs(m5_2.real) + abs(m5_2.imag)
+    if mag > best:
+        best = mag
+        m2_2, m2_3, m2_4, m2_5, g2, m5_2, m5_3, m5_4, m5_5, g5 = (
+            m5_2,
+            m5_3,
+            m5_4,
+            m5_5,
+            g5,
+            m2_2,
+            m2_3,
+            m2_4,
+            m2_5,
+            g2,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m2_2.real * m2_2.real + m2_2.imag * m2_2.imag)
+    u2 = complex(m2_2.real * dd, -m2_2.imag * dd)
+    fac = m3_2 * u2
+    m3_3 = m3_3 - fac * m2_3
+    m3_4 = m3_4 - fac * m2_4
+    m3_5 = m3_5 - fac * m2_5
+    g3 = g3 - fac * g2
+    fac = m4_2 * u2
+    m4_3 = m4_3 - fac * m2_3
+    m4_4 = m4_4 - fac * m2_4
+    m4_5 = m4_5 - fac * m2_5
+    g4 = g4 - fac * g2
+    fac = m5_2 * u2
+    m5_3 = m5_3 - fac * m2_3
+    m5_4 = m5_4 - fac * m2_4
+    m5_5 = m5_5 - fac * m2_5
+    g5 = g5 - fac * g2
+    best = abs(m3_3.real) + abs(m3_3.imag)
+    mag = abs(m4_3.real) + abs(m4_3.imag)
+    if mag > best:
+        best = mag
+        m3_3, m3_4, m3_5, g3, m4_3, m4_4, m4_5, g4 = m4_3, m4_4, m4_5, g4, m3_3, m3_4, m3_5, g3
+    mag = abs(m5_3.real) + abs(m5_3.imag)
+    if mag > best:
+        best = mag
+        m3_3, m3_4, m3_5, g3, m5_3, m5_4, m5_5, g5 = m5_3, m5_4, m5_5, g5, m3_3, m3_4, m3_5, g3
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m3_3.real * m3_3.real + m3_3.imag * m3_3.imag)
+    u3 = complex(m3_3.real * dd, -m3_3.imag * dd)
+    fac = m4_3 * u3
+    m4_4 = m4_4 - fac * m3_4
+    m4_5 = m4_5 - fac * m3_5
+    g4 = g4 - fac * g3
+    fac = m5_3 * u3
+    m5_4 = m5_4 - fac * m3_4
+    m5_5 = m5_5 - fac * m3_5
+    g5 = g5 - fac * g3
+    best = abs(m4_4.real) + abs(m4_4.imag)
+    mag = abs(m5_4.real) + abs(m5_4.imag)
+    if mag > best:
+        best = mag
+        m4_4, m4_5, g4, m5_4, m5_5, g5 = m5_4, m5_5, g5, m4_4, m4_5, g4
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m4_4.real * m4_4.real + m4_4.imag * m4_4.imag)
+    u4 = complex(m4_4.real * dd, -m4_4.imag * dd)
+    fac = m5_4 * u4
+    m5_5 = m5_5 - fac * m4_5
+    g5 = g5 - fac * g4
+    best = abs(m5_5.real) + abs(m5_5.imag)
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m5_5.real * m5_5.real + m5_5.imag * m5_5.imag)
+    u5 = complex(m5_5.real * dd, -m5_5.imag * dd)
+    x5 = (g5) * u5
+    x4 = (g4 - m4_5 * x5) * u4
+    x3 = (g3 - m3_4 * x4 - m3_5 * x5) * u3
+    x2 = (g2 - m2_3 * x3 - m2_4 * x4 - m2_5 * x5) * u2
+    x1 = (g1 - m1_2 * x2 - m1_3 * x3 - m1_4 * x4 - m1_5 * x5) * u1
+    x0 = (g0 - m0_1 * x1 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4 - m0_5 * x5) * u0
+    out[4] = x0
+    out[5] = x1
+    out[0] = x2
+    out[1] = x3
+    out[2] = x4
+    out[3] = x5
+    return True
+
+
+@numba.njit(**_JIT_SOLVE)
+def solve_pair(a, b, c, out, out2, m, r, r2, plan, two):  # type: ignore[no-untyped-def]
+    """out = a^-1 b and, if ``two``, out2 = a^-1 c (``out``, ``out2`` not ``b``, ``c``): the
+    arithmetic of ``curverecon.solvers.homotopy._solve_pair`` with ELIMINATION's loops
+    unrolled and every entry a local variable.  ``m``, ``r``, ``r2`` and ``plan`` are not read
+    (that function's signature).  False if a pivot is zero or not finite."""
+    if not two:
+        return solve_one(a, b, out)
+    m0_0 = a[0, 4]
+    m0_1 = a[0, 5]
+    m0_2 = a[0, 0]
+    m0_3 = a[0, 1]
+    m0_4 = a[0, 2]
+    m0_5 = a[0, 3]
+    g0 = b[0]
+    e0 = c[0]
+    m1_0 = a[1, 4]
+    m1_1 = a[1, 5]
+    m1_2 = a[1, 0]
+    m1_3 = a[1, 1]
+    m1_4 = a[1, 2]
+    m1_5 = a[1, 3]
+    g1 = b[1]
+    e1 = c[1]
+    m2_0 = a[2, 4]
+    m2_1 = a[2, 5]
+    m2_2 = a[2, 0]
+    m2_3 = a[2, 1]
+    m2_4 = a[2, 2]
+    m2_5 = a[2, 3]
+    g2 = b[2]
+    e2 = c[2]
+    m3_0 = a[3, 4]
+    m3_1 = a[3, 5]
+    m3_2 = a[3, 0]
+    m3_3 = a[3, 1]
+    m3_4 = a[3, 2]
+    m3_5 = a[3, 3]
+    g3 = b[3]
+    e3 = c[3]
+    m4_0 = a[4, 4]
+    m4_1 = a[4, 5]
+    m4_2 = a[4, 0]
+    m4_3 = a[4, 1]
+    m4_4 = a[4, 2]
+    m4_5 = a[4, 3]
+    g4 = b[4]
+    e4 = c[4]
+    m5_0 = a[5, 4]
+    m5_1 = a[5, 5]
+    m5_2 = a[5, 0]
+    m5_3 = a[5, 1]
+    m5_4 = a[5, 2]
+    m5_5 = a[5, 3]
+    g5 = b[5]
+    e5 = c[5]
+    best = abs(m0_0.real) + abs(m0_0.imag)
+    mag = abs(m1_0.real) + abs(m1_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m1_0, m1_1, m1_2, m1_3, m1_4, m1_5, g1, e1 = (
+            m1_0,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            m1_5,
+            g1,
+            e1,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            m0_5,
+            g0,
+            e0,
+        )
+    mag = abs(m2_0.real) + abs(m2_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m2_0, m2_1, m2_2, m2_3, m2_4, m2_5, g2, e2 = (
+            m2_0,
+            m2_1,
+            m2_2,
+            m2_3,
+            m2_4,
+            m2_5,
+            g2,
+            e2,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            m0_5,
+            g0,
+            e0,
+        )
+    mag = abs(m3_0.real) + abs(m3_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m3_0, m3_1, m3_2, m3_3, m3_4, m3_5, g3, e3 = (
+            m3_0,
+            m3_1,
+            m3_2,
+            m3_3,
+            m3_4,
+            m3_5,
+            g3,
+            e3,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            m0_5,
+            g0,
+            e0,
+        )
+    mag = abs(m4_0.real) + abs(m4_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m4_0, m4_1, m4_2, m4_3, m4_4, m4_5, g4, e4 = (
+            m4_0,
+            m4_1,
+            m4_2,
+            m4_3,
+            m4_4,
+            m4_5,
+            g4,
+            e4,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            m0_5,
+            g0,
+            e0,
+        )
+    mag = abs(m5_0.real) + abs(m5_0.imag)
+    if mag > best:
+        best = mag
+        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m5_0, m5_1, m5_2, m5_3, m5_4, m5_5, g5, e5 = (
+            m5_0,
+            m5_1,
+            m5_2,
+            m5_3,
+            m5_4,
+            m5_5,
+            g5,
+            e5,
+            m0_0,
+            m0_1,
+            m0_2,
+            m0_3,
+            m0_4,
+            m0_5,
+            g0,
+            e0,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m0_0.real * m0_0.real + m0_0.imag * m0_0.imag)
+    u0 = complex(m0_0.real * dd, -m0_0.imag * dd)
+    fac = m1_0 * u0
+    m1_1 = m1_1 - fac * m0_1
+    m1_2 = m1_2 - fac * m0_2
+    m1_3 = m1_3 - fac * m0_3
+    m1_4 = m1_4 - fac * m0_4
+    m1_5 = m1_5 - fac * m0_5
+    g1 = g1 - fac * g0
+    e1 = e1 - fac * e0
+    fac = m2_0 * u0
+    m2_1 = m2_1 - fac * m0_1
+    m2_2 = m2_2 - fac * m0_2
+    m2_3 = m2_3 - fac * m0_3
+    m2_4 = m2_4 - fac * m0_4
+    m2_5 = m2_5 - fac * m0_5
+    g2 = g2 - fac * g0
+    e2 = e2 - fac * e0
+    fac = m3_0 * u0
+    m3_1 = m3_1 - fac * m0_1
+    m3_2 = m3_2 - fac * m0_2
+    m3_3 = m3_3 - fac * m0_3
+    m3_4 = m3_4 - fac * m0_4
+    m3_5 = m3_5 - fac * m0_5
+    g3 = g3 - fac * g0
+    e3 = e3 - fac * e0
+    fac = m4_0 * u0
+    m4_1 = m4_1 - fac * m0_1
+    m4_2 = m4_2 - fac * m0_2
+    m4_3 = m4_3 - fac * m0_3
+    m4_4 = m4_4 - fac * m0_4
+    m4_5 = m4_5 - fac * m0_5
+    g4 = g4 - fac * g0
+    e4 = e4 - fac * e0
+    fac = m5_0 * u0
+    m5_1 = m5_1 - fac * m0_1
+    m5_2 = m5_2 - fac * m0_2
+    m5_3 = m5_3 - fac * m0_3
+    m5_4 = m5_4 - fac * m0_4
+    m5_5 = m5_5 - fac * m0_5
+    g5 = g5 - fac * g0
+    e5 = e5 - fac * e0
+    best = abs(m1_1.real) + abs(m1_1.imag)
+    mag = abs(m2_1.real) + abs(m2_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, m1_5, g1, e1, m2_1, m2_2, m2_3, m2_4, m2_5, g2, e2 = (
+            m2_1,
+            m2_2,
+            m2_3,
+            m2_4,
+            m2_5,
+            g2,
+            e2,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            m1_5,
+            g1,
+            e1,
+        )
+    mag = abs(m3_1.real) + abs(m3_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, m1_5, g1, e1, m3_1, m3_2, m3_3, m3_4, m3_5, g3, e3 = (
+            m3_1,
+            m3_2,
+            m3_3,
+            m3_4,
+            m3_5,
+            g3,
+            e3,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            m1_5,
+            g1,
+            e1,
+        )
+    mag = abs(m4_1.real) + abs(m4_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, m1_5, g1, e1, m4_1, m4_2, m4_3, m4_4, m4_5, g4, e4 = (
+            m4_1,
+            m4_2,
+            m4_3,
+            m4_4,
+            m4_5,
+            g4,
+            e4,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            m1_5,
+            g1,
+            e1,
+        )
+    mag = abs(m5_1.real) + abs(m5_1.imag)
+    if mag > best:
+        best = mag
+        m1_1, m1_2, m1_3, m1_4, m1_5, g1, e1, m5_1, m5_2, m5_3, m5_4, m5_5, g5, e5 = (
+            m5_1,
+            m5_2,
+            m5_3,
+            m5_4,
+            m5_5,
+            g5,
+            e5,
+            m1_1,
+            m1_2,
+            m1_3,
+            m1_4,
+            m1_5,
+            g1,
+            e1,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m1_1.real * m1_1.real + m1_1.imag * m1_1.imag)
+    u1 = complex(m1_1.real * dd, -m1_1.imag * dd)
+    fac = m2_1 * u1
+    m2_2 = m2_2 - fac * m1_2
+    m2_3 = m2_3 - fac * m1_3
+    m2_4 = m2_4 - fac * m1_4
+    m2_5 = m2_5 - fac * m1_5
+    g2 = g2 - fac * g1
+    e2 = e2 - fac * e1
+    fac = m3_1 * u1
+    m3_2 = m3_2 - fac * m1_2
+    m3_3 = m3_3 - fac * m1_3
+    m3_4 = m3_4 - fac * m1_4
+    m3_5 = m3_5 - fac * m1_5
+    g3 = g3 - fac * g1
+    e3 = e3 - fac * e1
+    fac = m4_1 * u1
+    m4_2 = m4_2 - fac * m1_2
+    m4_3 = m4_3 - fac * m1_3
+    m4_4 = m4_4 - fac * m1_4
+    m4_5 = m4_5 - fac * m1_5
+    g4 = g4 - fac * g1
+    e4 = e4 - fac * e1
+    fac = m5_1 * u1
+    m5_2 = m5_2 - fac * m1_2
+    m5_3 = m5_3 - fac * m1_3
+    m5_4 = m5_4 - fac * m1_4
+    m5_5 = m5_5 - fac * m1_5
+    g5 = g5 - fac * g1
+    e5 = e5 - fac * e1
+    best = abs(m2_2.real) + abs(m2_2.imag)
+    mag = abs(m3_2.real) + abs(m3_2.imag)
+    if mag > best:
+        best = mag
+        m2_2, m2_3, m2_4, m2_5, g2, e2, m3_2, m3_3, m3_4, m3_5, g3, e3 = (
+            m3_2,
+            m3_3,
+            m3_4,
+            m3_5,
+            g3,
+            e3,
+            m2_2,
+            m2_3,
+            m2_4,
+            m2_5,
+            g2,
+            e2,
+        )
+    mag = abs(m4_2.real) + abs(m4_2.imag)
+    if mag > best:
+        best = mag
+        m2_2, m2_3, m2_4, m2_5, g2, e2, m4_2, m4_3, m4_4, m4_5, g4, e4 = (
+            m4_2,
+            m4_3,
+            m4_4,
+            m4_5,
+            g4,
+            e4,
+            m2_2,
+            m2_3,
+            m2_4,
+            m2_5,
+            g2,
+            e2,
+        )
+    mag = abs(m5_2.real) + abs(m5_2.imag)
+    if mag > best:
+        best = mag
+        m2_2, m2_3, m2_4, m2_5, g2, e2, m5_2, m5_3, m5_4, m5_5, g5, e5 = (
+            m5_2,
+            m5_3,
+            m5_4,
+            m5_5,
+            g5,
+            e5,
+            m2_2,
+            m2_3,
+            m2_4,
+            m2_5,
+            g2,
+            e2,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m2_2.real * m2_2.real + m2_2.imag * m2_2.imag)
+    u2 = complex(m2_2.real * dd, -m2_2.imag * dd)
+    fac = m3_2 * u2
+    m3_3 = m3_3 - fac * m2_3
+    m3_4 = m3_4 - fac * m2_4
+    m3_5 = m3_5 - fac * m2_5
+    g3 = g3 - fac * g2
+    e3 = e3 - fac * e2
+    fac = m4_2 * u2
+    m4_3 = m4_3 - fac * m2_3
+    m4_4 = m4_4 - fac * m2_4
+    m4_5 = m4_5 - fac * m2_5
+    g4 = g4 - fac * g2
+    e4 = e4 - fac * e2
+    fac = m5_2 * u2
+    m5_3 = m5_3 - fac * m2_3
+    m5_4 = m5_4 - fac * m2_4
+    m5_5 = m5_5 - fac * m2_5
+    g5 = g5 - fac * g2
+    e5 = e5 - fac * e2
+    best = abs(m3_3.real) + abs(m3_3.imag)
+    mag = abs(m4_3.real) + abs(m4_3.imag)
+    if mag > best:
+        best = mag
+        m3_3, m3_4, m3_5, g3, e3, m4_3, m4_4, m4_5, g4, e4 = (
+            m4_3,
+            m4_4,
+            m4_5,
+            g4,
+            e4,
+            m3_3,
+            m3_4,
+            m3_5,
+            g3,
+            e3,
+        )
+    mag = abs(m5_3.real) + abs(m5_3.imag)
+    if mag > best:
+        best = mag
+        m3_3, m3_4, m3_5, g3, e3, m5_3, m5_4, m5_5, g5, e5 = (
+            m5_3,
+            m5_4,
+            m5_5,
+            g5,
+            e5,
+            m3_3,
+            m3_4,
+            m3_5,
+            g3,
+            e3,
+        )
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m3_3.real * m3_3.real + m3_3.imag * m3_3.imag)
+    u3 = complex(m3_3.real * dd, -m3_3.imag * dd)
+    fac = m4_3 * u3
+    m4_4 = m4_4 - fac * m3_4
+    m4_5 = m4_5 - fac * m3_5
+    g4 = g4 - fac * g3
+    e4 = e4 - fac * e3
+    fac = m5_3 * u3
+    m5_4 = m5_4 - fac * m3_4
+    m5_5 = m5_5 - fac * m3_5
+    g5 = g5 - fac * g3
+    e5 = e5 - fac * e3
+    best = abs(m4_4.real) + abs(m4_4.imag)
+    mag = abs(m5_4.real) + abs(m5_4.imag)
+    if mag > best:
+        best = mag
+        m4_4, m4_5, g4, e4, m5_4, m5_5, g5, e5 = m5_4, m5_5, g5, e5, m4_4, m4_5, g4, e4
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m4_4.real * m4_4.real + m4_4.imag * m4_4.imag)
+    u4 = complex(m4_4.real * dd, -m4_4.imag * dd)
+    fac = m5_4 * u4
+    m5_5 = m5_5 - fac * m4_5
+    g5 = g5 - fac * g4
+    e5 = e5 - fac * e4
+    best = abs(m5_5.real) + abs(m5_5.imag)
+    if best == 0.0 or not np.isfinite(best):
+        return False
+    dd = 1.0 / (m5_5.real * m5_5.real + m5_5.imag * m5_5.imag)
+    u5 = complex(m5_5.real * dd, -m5_5.imag * dd)
+    x5 = (g5) * u5
+    y5 = (e5) * u5
+    x4 = (g4 - m4_5 * x5) * u4
+    y4 = (e4 - m4_5 * y5) * u4
+    x3 = (g3 - m3_4 * x4 - m3_5 * x5) * u3
+    y3 = (e3 - m3_4 * y4 - m3_5 * y5) * u3
+    x2 = (g2 - m2_3 * x3 - m2_4 * x4 - m2_5 * x5) * u2
+    y2 = (e2 - m2_3 * y3 - m2_4 * y4 - m2_5 * y5) * u2
+    x1 = (g1 - m1_2 * x2 - m1_3 * x3 - m1_4 * x4 - m1_5 * x5) * u1
+    y1 = (e1 - m1_2 * y2 - m1_3 * y3 - m1_4 * y4 - m1_5 * y5) * u1
+    x0 = (g0 - m0_1 * x1 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4 - m0_5 * x5) * u0
+    y0 = (e0 - m0_1 * y1 - m0_2 * y2 - m0_3 * y3 - m0_4 * y4 - m0_5 * y5) * u0
+    out[4] = x0
+    out[5] = x1
+    out[0] = x2
+    out[1] = x3
+    out[2] = x4
+    out[3] = x5
+    out2[4] = y0
+    out2[5] = y1
+    out2[0] = y2
+    out2[1] = y3
+    out2[2] = y4
+    out2[3] = y5
+    return True
