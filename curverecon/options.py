@@ -795,9 +795,12 @@ class LabelOptions:
     plus the undecided frames' penalty, up to ``undecided_dchi2`` each; on 20-frame scenes
     the truth scored 0.7-2.4 a frame, wrong candidates 3-10)."""
     final_rounds: int = 2
-    """The best candidate refined again from its own shape and labels, while its score falls
-    (a frame labelled wrong at the first refinement's shape turns an outlier of the pipeline
-    and costs it an LO-RANSAC run)."""
+    """Every candidate refined again from its own shape and labels, while its score falls (a
+    frame labelled wrong at the first refinement's shape turns an outlier of the pipeline and
+    costs it an LO-RANSAC run; 20 frames, 1 px, bench seed: a candidate 0.06 from the truth
+    scored 65.8 after one refinement, 30.1 after three, where the truth scores 29.7; the best
+    candidate alone refined again: success 88.3 %, time ratio 1.94; every candidate: 90.0 %,
+    1.76)."""
     refine_iterations: int = 15
     """Maximum-likelihood iterations of each candidate before it is scored."""
     grid_frames_factor: int = 2

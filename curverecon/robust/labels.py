@@ -196,15 +196,15 @@ def label_search(
     enough = o.plausible_score * obs.n_frames if obs.curves is None else -np.inf
     for shape in shapes:
         found = _refined(obs, shape, point_sigma, tangent_sigma, o)
+        for _ in range(o.final_rounds):  # refined again from its own labels and shape
+            again = _refined(obs, found.shape, point_sigma, tangent_sigma, o)
+            if not again.cost < found.cost:
+                break
+            found = again
         if best is None or found.cost < best.cost:
             best = found
         if best.cost <= enough:
             break  # a fit as close as the noise allows: the next candidates cannot do much better
-    for _ in range(o.final_rounds):  # refined again from its own labels and shape
-        again = _refined(obs, best.shape, point_sigma, tangent_sigma, o)
-        if not again.cost < best.cost:
-            break
-        best = again
     if best.exchanged[0]:  # the same fit named from frame 0: alpha and beta exchanged
         shape, _ = normalise(best.shape[[0, 2, 1, 3]], np.zeros((1, 5)))
         best = LabelSearch(shape, ~best.exchanged, best.cost)
