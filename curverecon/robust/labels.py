@@ -53,7 +53,7 @@ from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise, rotations, translations
 from curverecon.model.reconstruction import Alternative, Reconstruction
 from curverecon.options import LabelOptions, ReconstructOptions
-from curverecon.refine.ml import refine
+from curverecon.refine.ml import RefineResult, refine
 from curverecon.robust.frame_samples import fixed_shape_fit
 from curverecon.robust.search import (
     GridSpec,
@@ -73,6 +73,11 @@ class LabelSearch:
     shape: np.ndarray
     exchanged: np.ndarray
     cost: float
+    settled: bool = False
+    """The refinement converged and left every frame's labelling as it started: refining
+    again from this shape and labelling would change nothing."""
+    fit: RefineResult | None = None
+    """Every frame's fit at ``shape`` held fixed, as labelled then exchanged (2N frames)."""
 
 
 def exchange(obs: Observations, mask: np.ndarray) -> Observations:
@@ -197,7 +202,9 @@ def label_search(
     for shape in shapes:
         found = _refined(obs, shape, point_sigma, tangent_sigma, o)
         for _ in range(o.final_rounds):  # refined again from its own labels and shape
-            again = _refined(obs, found.shape, point_sigma, tangent_sigma, o)
+            if found.settled:
+                break
+            again = _refined(obs, found.shape, point_sigma, tangent_sigma, o, found.fit)
             if not again.cost < found.cost:
                 break
             found = again
@@ -212,13 +219,20 @@ def label_search(
 
 
 def _refined(
-    obs: Observations, shape: np.ndarray, point_sigma: float, tangent_sigma: float, o: LabelOptions
+    obs: Observations,
+    shape: np.ndarray,
+    point_sigma: float,
+    tangent_sigma: float,
+    o: LabelOptions,
+    fit: RefineResult | None = None,
 ) -> LabelSearch:
     """A polished shape refined by maximum likelihood, every frame in its better labelling at
     the start (frames past ``o.truncate_chi2`` in both weighted down), labelled again at the
-    refined shape and scored by its truncated chi2."""
+    refined shape and scored by its truncated chi2.  ``fit``: the frames' fit at ``shape``
+    in both labellings where known (``LabelSearch.fit``)."""
     n = obs.n_frames
-    fit = fixed_shape_fit(_both(obs), shape, point_sigma, tangent_sigma)
+    if fit is None:
+        fit = fixed_shape_fit(_both(obs), shape, point_sigma, tangent_sigma)
     same, other = fit.frame_chi2[:n], fit.frame_chi2[n:]
     ex = other < same
     poses = np.where(ex[:, None], fit.poses[n:], fit.poses[:n])
@@ -234,14 +248,17 @@ def _refined(
             covariance=False,
             frame_weights=weights,
         )
-    if np.all(np.isfinite(ref.shape)):
+    finite = bool(np.all(np.isfinite(ref.shape)))
+    if finite:
         shape, _ = normalise(ref.shape, ref.poses)
-    same, other = frame_labels(obs, shape, point_sigma, tangent_sigma)
+    fit = fixed_shape_fit(_both(obs), shape, point_sigma, tangent_sigma)
+    same, other = fit.frame_chi2[:n], fit.frame_chi2[n:]
     cost = float(np.sum(np.minimum(np.minimum(same, other), o.truncate_chi2)))
     # a shape that fits most frames in either labelling (alpha and beta near 0 seen along the
     # chord: the shape barely determined) fits by the labels' freedom, not by the data
     cost += float(np.sum(np.maximum(o.undecided_dchi2 - np.abs(other - same), 0.0)))
-    return LabelSearch(shape, other < same, cost)
+    settled = finite and ref.converged and np.array_equal(other < same, ex)
+    return LabelSearch(shape, other < same, cost, bool(settled), fit)
 
 
 def frame_labels(
