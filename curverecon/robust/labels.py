@@ -199,23 +199,44 @@ def label_search(
     # 18-29 that the polylines could not repair; with the polyline placement, 8 misses among
     # 48 scenes with the stop, 7 without; the candidates' refinements take about 5 ms each)
     enough = o.plausible_score * obs.n_frames if obs.curves is None else -np.inf
+    # without polylines every candidate is refined again from its own labels (with polylines,
+    # whose figures were measured so, the best one only)
+    rounds = o.final_rounds if obs.curves is None else 0
     for shape in shapes:
         found = _refined(obs, shape, point_sigma, tangent_sigma, o)
-        for _ in range(o.final_rounds):  # refined again from its own labels and shape
-            if found.settled:
-                break
-            again = _refined(obs, found.shape, point_sigma, tangent_sigma, o, found.fit)
-            if not again.cost < found.cost:
-                break
-            found = again
+        found = _again(obs, found, point_sigma, tangent_sigma, o, rounds)
         if best is None or found.cost < best.cost:
             best = found
         if best.cost <= enough:
             break  # a fit as close as the noise allows: the next candidates cannot do much better
+    if obs.curves is not None:
+        best = _again(obs, best, point_sigma, tangent_sigma, o, o.final_rounds, settle=False)
     if best.exchanged[0]:  # the same fit named from frame 0: alpha and beta exchanged
         shape, _ = normalise(best.shape[[0, 2, 1, 3]], np.zeros((1, 5)))
         best = LabelSearch(shape, ~best.exchanged, best.cost)
     return best
+
+
+def _again(
+    obs: Observations,
+    found: LabelSearch,
+    point_sigma: float,
+    tangent_sigma: float,
+    o: LabelOptions,
+    rounds: int,
+    settle: bool = True,
+) -> LabelSearch:
+    """``found`` refined again from its own shape and labels (:func:`_refined`) up to
+    ``rounds`` times, while its score falls; with ``settle``, not once its refinement has
+    settled (``LabelSearch.settled``)."""
+    for _ in range(rounds):
+        if settle and found.settled:
+            break
+        again = _refined(obs, found.shape, point_sigma, tangent_sigma, o, found.fit)
+        if not again.cost < found.cost:
+            break
+        found = again
+    return found
 
 
 def _refined(
