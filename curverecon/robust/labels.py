@@ -15,8 +15,10 @@ pipeline consistently labelled frames:
    (:func:`_refined`) and scored by their truncated chi2 with the shape held fixed
    (``robust.frame_samples.fixed_shape_fit``) in the better labelling per frame, plus a penalty
    for every frame that fits both about equally (a shape fitting most frames either way, alpha
-   and beta near 0 seen along the chord, fits by the labels' freedom, not by the data); the
-   best is refined again from its own labels.  That cost is symmetric under the exchange of
+   and beta near 0 seen along the chord, fits by the labels' freedom, not by the data); without
+   polylines each is refined again from its own labels, and where none scores as the noise
+   allows, the minima of a finer grid are scored too; with polylines the best is refined again
+   from its own labels.  That cost is symmetric under the exchange of
    alpha and beta with every frame's labels, so frame 0 is held unexchanged: the answer names
    A and B as in frame 0;
 2. with polylines (``curve.labels``): section 4's curve on every frame's pose at the label
@@ -53,7 +55,7 @@ from curverecon.model.observations import Observations
 from curverecon.model.pose import normalise, rotations, translations
 from curverecon.model.reconstruction import Alternative, Reconstruction
 from curverecon.options import LabelOptions, ReconstructOptions
-from curverecon.refine.ml import refine
+from curverecon.refine.ml import RefineResult, refine
 from curverecon.robust.frame_samples import fixed_shape_fit
 from curverecon.robust.search import (
     GridSpec,
@@ -73,6 +75,11 @@ class LabelSearch:
     shape: np.ndarray
     exchanged: np.ndarray
     cost: float
+    settled: bool = False
+    """The refinement converged and left every frame's labelling as it started: refining
+    again from this shape and labelling would change nothing."""
+    fit: RefineResult | None = None
+    """Every frame's fit at ``shape`` held fixed, as labelled then exchanged (2N frames)."""
 
 
 def exchange(obs: Observations, mask: np.ndarray) -> Observations:
@@ -169,9 +176,35 @@ def label_search(
     (module docstring, steps 1-2); frame 0 unexchanged."""
     o = o or LabelOptions()
     spec = GridSpec.for_frames(o.grid_frames_factor * obs.n_frames)
+    size = (spec.n_gamma, spec.n_alpha, spec.n_beta, spec.n_phi)
+    finer = GridSpec(*(int(v) for v in np.maximum(o.curve_grid, size)))
+    shapes = _candidate_shapes(obs, finer if obs.curves is not None else spec, o, [])
+    # with polylines every candidate is scored: where the noise is below the stated sigma a
+    # wrong labelling's refined shape can score below the plausible level and stop the scoring
+    # (held-out curve scenes of seed 7, 0.5 px, 16 frames: the stop at 40 kept labellings at
+    # 18-29 that the polylines could not repair; with the polyline placement, 8 misses among
+    # 48 scenes with the stop, 7 without; the candidates' refinements take about 5 ms each)
+    enough = o.plausible_score * obs.n_frames if obs.curves is None else -np.inf
+    best = _best_candidate(obs, shapes, None, point_sigma, tangent_sigma, o, enough)
+    if obs.curves is None and best.cost > enough:
+        # no candidate fits as the noise allows: the truth's basin may lie between the
+        # coarse grid's points; the finer grid's minima are scored too
+        more = _candidate_shapes(obs, finer, o, shapes)
+        best = _best_candidate(obs, more, best, point_sigma, tangent_sigma, o, enough)
     if obs.curves is not None:
-        size = (spec.n_gamma, spec.n_alpha, spec.n_beta, spec.n_phi)
-        spec = GridSpec(*(int(v) for v in np.maximum(o.curve_grid, size)))
+        best = _again(obs, best, point_sigma, tangent_sigma, o, o.final_rounds, settle=False)
+    if best.exchanged[0]:  # the same fit named from frame 0: alpha and beta exchanged
+        shape, _ = normalise(best.shape[[0, 2, 1, 3]], np.zeros((1, 5)))
+        best = LabelSearch(shape, ~best.exchanged, best.cost)
+    return best
+
+
+def _candidate_shapes(
+    obs: Observations, spec: GridSpec, o: LabelOptions, known: list[np.ndarray]
+) -> list[np.ndarray]:
+    """Up to ``o.candidates`` distinct polished shapes (normalised) from the best minima of
+    :func:`_grid_costs` on ``spec``, in the order of their pose-free cost, none within
+    ``o.distinct`` of a shape in ``known``."""
     trunc = math.sin(math.radians(spec.truncate_deg)) ** 2
     x = _grid_minima(obs, spec, o.starts)
     steps = 0.5 * np.radians(
@@ -183,42 +216,75 @@ def label_search(
     for k in np.argsort(f):
         shape = np.array([np.max(obs.cp) / math.cos(x[k, 0]), *x[k, 1:]])
         shape, _ = normalise(shape, np.zeros((1, 5)))
-        if all(shape_distance(shape, s) >= o.distinct for s in shapes):
+        if all(shape_distance(shape, s) >= o.distinct for s in [*known, *shapes]):
             shapes.append(shape)
         if len(shapes) == o.candidates:
             break
-    best = None
-    # with polylines every candidate is scored: where the noise is below the stated sigma a
-    # wrong labelling's refined shape can score below the plausible level and stop the scoring
-    # (held-out curve scenes of seed 7, 0.5 px, 16 frames: the stop at 40 kept labellings at
-    # 18-29 that the polylines could not repair; with the polyline placement, 8 misses among
-    # 48 scenes with the stop, 7 without; the candidates' refinements take about 5 ms each)
-    enough = o.plausible_score * obs.n_frames if obs.curves is None else -np.inf
+    return shapes
+
+
+def _best_candidate(
+    obs: Observations,
+    shapes: list[np.ndarray],
+    best: LabelSearch | None,
+    point_sigma: float,
+    tangent_sigma: float,
+    o: LabelOptions,
+    enough: float,
+) -> LabelSearch:
+    """The best of ``best`` and ``shapes`` refined (:func:`_refined`; without polylines each
+    refined again from its own labels, :func:`_again`), scored in order until one scores at
+    most ``enough``."""
+    rounds = o.final_rounds if obs.curves is None else 0
     for shape in shapes:
+        if best is not None and best.cost <= enough:
+            break  # a fit as close as the noise allows: the next candidates cannot do much better
         found = _refined(obs, shape, point_sigma, tangent_sigma, o)
+        found = _again(obs, found, point_sigma, tangent_sigma, o, rounds)
         if best is None or found.cost < best.cost:
             best = found
-        if best.cost <= enough:
-            break  # a fit as close as the noise allows: the next candidates cannot do much better
-    for _ in range(o.final_rounds):  # refined again from its own labels and shape
-        again = _refined(obs, best.shape, point_sigma, tangent_sigma, o)
-        if not again.cost < best.cost:
-            break
-        best = again
-    if best.exchanged[0]:  # the same fit named from frame 0: alpha and beta exchanged
-        shape, _ = normalise(best.shape[[0, 2, 1, 3]], np.zeros((1, 5)))
-        best = LabelSearch(shape, ~best.exchanged, best.cost)
+    if best is None:
+        raise CurveReconError("the label search found no candidate shape")
     return best
 
 
+def _again(
+    obs: Observations,
+    found: LabelSearch,
+    point_sigma: float,
+    tangent_sigma: float,
+    o: LabelOptions,
+    rounds: int,
+    settle: bool = True,
+) -> LabelSearch:
+    """``found`` refined again from its own shape and labels (:func:`_refined`) up to
+    ``rounds`` times, while its score falls; with ``settle``, not once its refinement has
+    settled (``LabelSearch.settled``)."""
+    for _ in range(rounds):
+        if settle and found.settled:
+            break
+        again = _refined(obs, found.shape, point_sigma, tangent_sigma, o, found.fit)
+        if not again.cost < found.cost:
+            break
+        found = again
+    return found
+
+
 def _refined(
-    obs: Observations, shape: np.ndarray, point_sigma: float, tangent_sigma: float, o: LabelOptions
+    obs: Observations,
+    shape: np.ndarray,
+    point_sigma: float,
+    tangent_sigma: float,
+    o: LabelOptions,
+    fit: RefineResult | None = None,
 ) -> LabelSearch:
     """A polished shape refined by maximum likelihood, every frame in its better labelling at
     the start (frames past ``o.truncate_chi2`` in both weighted down), labelled again at the
-    refined shape and scored by its truncated chi2."""
+    refined shape and scored by its truncated chi2.  ``fit``: the frames' fit at ``shape``
+    in both labellings where known (``LabelSearch.fit``)."""
     n = obs.n_frames
-    fit = fixed_shape_fit(_both(obs), shape, point_sigma, tangent_sigma)
+    if fit is None:
+        fit = fixed_shape_fit(_both(obs), shape, point_sigma, tangent_sigma)
     same, other = fit.frame_chi2[:n], fit.frame_chi2[n:]
     ex = other < same
     poses = np.where(ex[:, None], fit.poses[n:], fit.poses[:n])
@@ -234,14 +300,17 @@ def _refined(
             covariance=False,
             frame_weights=weights,
         )
-    if np.all(np.isfinite(ref.shape)):
+    finite = bool(np.all(np.isfinite(ref.shape)))
+    if finite:
         shape, _ = normalise(ref.shape, ref.poses)
-    same, other = frame_labels(obs, shape, point_sigma, tangent_sigma)
+    fit = fixed_shape_fit(_both(obs), shape, point_sigma, tangent_sigma)
+    same, other = fit.frame_chi2[:n], fit.frame_chi2[n:]
     cost = float(np.sum(np.minimum(np.minimum(same, other), o.truncate_chi2)))
     # a shape that fits most frames in either labelling (alpha and beta near 0 seen along the
     # chord: the shape barely determined) fits by the labels' freedom, not by the data
     cost += float(np.sum(np.maximum(o.undecided_dchi2 - np.abs(other - same), 0.0)))
-    return LabelSearch(shape, other < same, cost)
+    settled = finite and ref.converged and np.array_equal(other < same, ex)
+    return LabelSearch(shape, other < same, cost, bool(settled), fit)
 
 
 def frame_labels(
