@@ -13,13 +13,15 @@ left is the turn of the curve about its chord, swept over ``TURNS`` angles for b
 placement at once, no local fit: a local pose fit from the end points' pose, 20 evaluations a
 frame, took 0.18 s per 16 frames and was the labelling stage's largest cost after the pipeline
 runs).  The misfit is the RMS of the polyline's samples' distances to the projected curve and of
-the projected curve's samples' distances to the polyline, at the best placement.
+the projected curve's samples' distances to the polyline, at the best placement
+(``curve.labels_kernel``).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from curverecon.curve.labels_kernel import placement_mean_squares
 from curverecon.curve.polyline import resample
 from curverecon.model.observations import Observations
 from curverecon.model.pose import rotations, translations
@@ -81,14 +83,6 @@ def _align(v: np.ndarray, u: np.ndarray) -> np.ndarray:
     return np.eye(3) + k + k @ k * ((1.0 - c) / (s * s))
 
 
-def _nearest(points: np.ndarray, curves: np.ndarray) -> np.ndarray:
-    """(K, P) distance of each of ``points`` ((P, 2), or (K, P, 2) one set per curve) to the
-    nearest sample of each of ``curves`` (K, Q, 2)."""
-    p = points[..., 0] + 1j * points[..., 1]
-    q = curves[..., 0] + 1j * curves[..., 1]
-    return np.min(np.abs(p[..., :, None] - q[:, None, :]), axis=2)
-
-
 def placed_rms(body: np.ndarray, polyline: np.ndarray) -> float:
     """RMS (px) of the curve ``body`` (A first; any rigid placement) at its best placement on
     ``polyline`` with its A on the polyline's first point and its B on the last (module
@@ -101,12 +95,18 @@ def placed_rms(body: np.ndarray, polyline: np.ndarray) -> float:
     image_chord = polyline[-1] - polyline[0]
     step = 2.0 * np.pi / TURNS
 
+    origin = np.ascontiguousarray(polyline[0], dtype=float)
+
     def mean_squares(rots: np.ndarray, stride: int) -> np.ndarray:
-        proj = np.einsum("kij,mj->kmi", rots[:, :2], rel[::stride]) + polyline[0]  # (K, M, 2)
-        there = _nearest(poly[::stride], proj)  # polyline samples to each placed curve
-        back = _nearest(proj[:, :: max(6 // stride, 1)], dense[None])  # curves to the polyline
-        ms = np.concatenate([there, back], axis=1)
-        return np.mean(ms * ms, axis=1)
+        # polyline samples to each placed curve, and the curve's samples to the polyline
+        return placement_mean_squares(
+            np.ascontiguousarray(rots),
+            np.ascontiguousarray(rel[::stride]),
+            origin,
+            np.ascontiguousarray(poly[::stride]),
+            dense,
+            max(6 // stride, 1),
+        )
 
     coarse = np.arange(TURNS) * step
     ms = mean_squares(_turns(rel[-1], image_chord, coarse), 3)  # every third sample

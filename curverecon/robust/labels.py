@@ -256,6 +256,8 @@ def frame_labels(
 
 Runner = Callable[[Observations, ReconstructOptions], Reconstruction]
 
+_ANY_TANGENTS = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+
 
 def reconstruct_any_labels(
     obs: Observations,
@@ -354,7 +356,11 @@ def _quick_curve(
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
     fit = fixed_shape_fit(obs, shape, ps, ts)
     try:
-        res = section4.reconstruct_curve(obs.curves, rotations(fit.poses), translations(fit.poses))
+        # only the points are used: any tangents spare the coplanarity check's end tangents
+        # estimated from every polyline (half of section 4's time here)
+        res = section4.reconstruct_curve(
+            obs.curves, rotations(fit.poses), translations(fit.poses), tangents=_ANY_TANGENTS
+        )
         return Reconstruction(
             shape, fit.poses, None, np.ones(obs.n_frames, bool), curve3d=res.points
         )
