@@ -277,9 +277,11 @@ def reconstruct_any_labels(
         # frame 0 tried against the others unless its end points decide it clearly
         weak = obs.tangents_from_curve or not obs.ends_given
         swap = weak or abs(other[0] - same[0]) < o.polyline_dchi2
-        consistent, exchanged = _polyline_start(
+        consistent, exchanged, fit = _polyline_start(
             consistent, exchanged, found.shape, opts, run, o, swap
         )
+        if fit > o.unsettled_fit * section4.polyline_sigma(consistent.curves):
+            consistent, exchanged = _settled(consistent, exchanged, opts, run, o)
     rec = run(consistent, opts)
     for _ in range(o.max_rounds):
         flip, decided, _ = _label_flips(rec, consistent, ps, ts, o)
@@ -314,7 +316,7 @@ def _polyline_start(
     run: Runner,
     o: LabelOptions,
     try_swap: bool = True,
-) -> tuple[Observations, np.ndarray]:
+) -> tuple[Observations, np.ndarray, float]:
     """The label search's labelling, or (``try_swap``) the same with frame 0 exchanged against
     the others, whichever section 4's curve fits the polylines closer (mean over frames of the
     closer direction's RMS), then every frame relabelled where its polyline clearly says so
@@ -322,7 +324,9 @@ def _polyline_start(
     wrong one sets it against every other frame.  The curve is placed on the poses that fit
     ``shape`` (the label search's, held fixed; with frame 0 exchanged against the others the
     same shape with alpha and beta exchanged) (:func:`_quick_curve`), or where section 4
-    fails there, comes from the pipeline without the bundle."""
+    fails there, comes from the pipeline without the bundle.  Returns the frames relabelled,
+    their labelling, and the kept curve's fit to the polylines (px; inf where no curve was
+    placed)."""
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
     others = np.arange(obs.n_frames) > 0
     best = None
@@ -336,9 +340,33 @@ def _polyline_start(
         if best is None or score < best[0]:
             best = (score, cand, exchanged ^ (others & swap), flip)
     if best is None:
+        return obs, exchanged, np.inf
+    score, cand, exchanged, flip = best
+    return exchange(cand, flip), exchanged ^ flip, score
+
+
+def _settled(
+    obs: Observations, exchanged: np.ndarray, opts: ReconstructOptions, run: Runner, o: LabelOptions
+) -> tuple[Observations, np.ndarray]:
+    """Where the quick curve fits the polylines poorly (frames still labelled wrong): the
+    pipeline's end-point answer with section 4's curve (no bundle, no four-frame samples:
+    0.1-0.2 s, the frames labelled wrong its outliers) and every frame relabelled where its
+    polyline clearly says so.  A first full run on frames labelled wrong costs 1.3-1.8 s (the
+    curve bundle restarts from every frame where some frame does not fit, and LO-RANSAC)."""
+    ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
+    quick = replace(
+        opts,
+        curve=replace(opts.curve, bundle=False),
+        frame_samples=replace(opts.frame_samples, enabled=False),
+    )
+    try:
+        rec = run(obs, quick)
+    except CurveReconError:
         return obs, exchanged
-    _, cand, exchanged, flip = best
-    return exchange(cand, flip), exchanged ^ flip
+    if rec.curve3d is None:
+        return obs, exchanged
+    flip, _, _ = _label_flips(rec, obs, ps, ts, o, every_frame=True)
+    return exchange(obs, flip), exchanged ^ flip
 
 
 def _renamed(shape: np.ndarray) -> np.ndarray:
