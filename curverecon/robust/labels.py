@@ -23,7 +23,9 @@ pipeline consistently labelled frames:
    search's shape (:func:`_quick_curve`) is fitted to every polyline in either direction;
    where one direction fits clearly closer it decides that frame, and frame 0 is tried against
    all the others (its end points alone often leave its labelling open), the labelling whose
-   curve fits the polylines closer kept;
+   curve fits the polylines closer kept; where even that curve fits the polylines poorly
+   (``LabelOptions.unsettled_fit``), the labels are judged again at the pipeline's end-point
+   answer with section 4's curve (:func:`_settled`) before the first full run;
 3. the ordinary pipeline on the relabelled frames (A and B, tangent_A and tangent_B swapped,
    the polyline reversed); at its answer every frame's labelling is checked again (chi2 in
    either labelling at the answer's shape; with polylines the answer's curve fitted to them),
