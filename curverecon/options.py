@@ -837,6 +837,13 @@ class LabelOptions:
     polyline_ratio: float = 0.6
     """A polyline decides a frame's labelling where one direction's fit RMS is below this
     fraction of the other's."""
+    unsettled_fit: float = 2.0
+    """With polylines, where the quick curve fits the polylines (mean over frames of the closer
+    direction's RMS) worse than this many times their noise, the labels are judged again at
+    the pipeline's end-point answer before its first full run (held-out curve scenes of seed
+    7, 0.5 px polylines: 1.4-3.4 px in the six scenes whose first full run met frames labelled
+    wrong, 1.6-5.3 s against 0.2-0.5 s consistent, at most 1.2 px in the other 42; time
+    ratio 1.89 against 4.70, docs/accuracy.md)."""
 
 
 @dataclass

@@ -32,6 +32,7 @@ KERNEL_MODULES = (
     "curverecon.refine.pose_kernel",
     "curverecon.curve.section4_kernel",
     "curverecon.curve.bundle_kernel",
+    "curverecon.curve.labels_kernel",
     "curverecon.generated.measurement_kernel",
     "curverecon.generated.minimal_unsquared_kernel",
 )
@@ -84,8 +85,11 @@ def not_compiled() -> list[str]:
 
 def run_scenes() -> None:
     """Reconstruct small scenes that reach every kernel: polylines (section 4, the curve bundle,
-    the pose iteration), outlier frames (the minimal solver inside LO-RANSAC), and the minimal
-    solver called directly on four frames."""
+    the pose iteration; with the labels unknown, the polylines' placements), outlier frames
+    (the minimal solver inside LO-RANSAC), and the minimal solver called directly on four
+    frames."""
+    from dataclasses import replace
+
     import numpy as np
 
     from curverecon.pipeline import reconstruct
@@ -95,6 +99,8 @@ def run_scenes() -> None:
     with np.errstate(all="ignore"):
         curve = make_scene(np.random.default_rng(1), 12, 0.5, 0.5, with_curve=True)
         reconstruct(curve.observations)
+        # frames in any order: the polylines' placements (curve.labels_kernel)
+        reconstruct(replace(curve.observations, ends_identified=False))
         outliers = make_scene(np.random.default_rng(2), 16, 0.5, 0.5, outlier_fraction=0.25)
         reconstruct(outliers.observations)
         solve(make_scene(np.random.default_rng(3), 4).observations)

@@ -13,13 +13,17 @@ left is the turn of the curve about its chord, swept over ``TURNS`` angles for b
 placement at once, no local fit: a local pose fit from the end points' pose, 20 evaluations a
 frame, took 0.18 s per 16 frames and was the labelling stage's largest cost after the pipeline
 runs).  The misfit is the RMS of the polyline's samples' distances to the projected curve and of
-the projected curve's samples' distances to the polyline, at the best placement.
+the projected curve's samples' distances to the polyline, at the best placement
+(``curve.labels_kernel``).
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from curverecon.curve.labels_kernel import placement_mean_squares
 from curverecon.curve.polyline import resample
 from curverecon.model.observations import Observations
 from curverecon.model.pose import rotations, translations
@@ -50,43 +54,44 @@ def _turns(
     """(len(signs) len(angles), 3, 3) rotations taking the 3-D ``chord`` to a vector
     projecting onto ``image_chord`` (its depth of each sign in ``signs``; zero where the image
     chord is the longer), each turned about that vector by each of ``angles`` (radians)."""
-    length = float(np.linalg.norm(chord))
-    w = np.asarray(image_chord, float)
-    depth = np.sqrt(max(length * length - float(w @ w), 0.0))
+    cx, cy, cz = (float(x) for x in chord)
+    length = math.sqrt(cx * cx + cy * cy + cz * cz)
+    wx, wy = float(image_chord[0]), float(image_chord[1])
+    depth = math.sqrt(max(length * length - wx * wx - wy * wy, 0.0))
+    scale = 1.0 / max(length, 1e-12)
+    v = (cx * scale, cy * scale, cz * scale)
+    s, c = np.sin(angles)[:, None, None], np.cos(angles)[:, None, None]
     rots = []
-    v = chord / max(length, 1e-12)
     for sign in signs:
-        u = np.array([w[0], w[1], sign * depth])
-        u = u / max(float(np.linalg.norm(u)), 1e-12)
-        r0 = _align(v, u)
-        k = np.array([[0.0, -u[2], u[1]], [u[2], 0.0, -u[0]], [-u[1], u[0], 0.0]])
-        s, c = np.sin(angles)[:, None, None], np.cos(angles)[:, None, None]
+        u = np.array([wx, wy, sign * depth])
+        u = u / max(math.sqrt(float(u @ u)), 1e-12)
+        r0 = _align(v, (float(u[0]), float(u[1]), float(u[2])))
+        k = _skew(u)
         turn = np.eye(3) + s * k + (1.0 - c) * (k @ k)  # Rodrigues about u
         rots.append(turn @ r0)
     return np.concatenate(rots)
 
 
-def _align(v: np.ndarray, u: np.ndarray) -> np.ndarray:
-    """The smallest rotation taking unit vector ``v`` to unit vector ``u``."""
-    axis = np.cross(v, u)
-    s, c = float(np.linalg.norm(axis)), float(v @ u)
+def _skew(a) -> np.ndarray:  # type: ignore[no-untyped-def]
+    """The matrix of the cross product with the 3-vector ``a`` (a x .)."""
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def _align(v: tuple, u: tuple) -> np.ndarray:
+    """The smallest rotation taking unit vector ``v`` to unit vector ``u`` (3-tuples)."""
+    axis = (v[1] * u[2] - v[2] * u[1], v[2] * u[0] - v[0] * u[2], v[0] * u[1] - v[1] * u[0])
+    s = math.sqrt(axis[0] ** 2 + axis[1] ** 2 + axis[2] ** 2)
+    c = v[0] * u[0] + v[1] * u[1] + v[2] * u[2]
     if s < 1e-12:
         if c > 0:
             return np.eye(3)
-        p = np.eye(3)[int(np.argmin(np.abs(v)))]  # half a turn about an axis normal to v
-        n = np.cross(v, p)
+        vv = np.array(v)
+        p = np.eye(3)[int(np.argmin(np.abs(vv)))]  # half a turn about an axis normal to v
+        n = np.cross(vv, p)
         n /= np.linalg.norm(n)
         return 2.0 * np.outer(n, n) - np.eye(3)
-    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    k = _skew(axis)
     return np.eye(3) + k + k @ k * ((1.0 - c) / (s * s))
-
-
-def _nearest(points: np.ndarray, curves: np.ndarray) -> np.ndarray:
-    """(K, P) distance of each of ``points`` ((P, 2), or (K, P, 2) one set per curve) to the
-    nearest sample of each of ``curves`` (K, Q, 2)."""
-    p = points[..., 0] + 1j * points[..., 1]
-    q = curves[..., 0] + 1j * curves[..., 1]
-    return np.min(np.abs(p[..., :, None] - q[:, None, :]), axis=2)
 
 
 def placed_rms(body: np.ndarray, polyline: np.ndarray) -> float:
@@ -101,12 +106,18 @@ def placed_rms(body: np.ndarray, polyline: np.ndarray) -> float:
     image_chord = polyline[-1] - polyline[0]
     step = 2.0 * np.pi / TURNS
 
+    origin = np.ascontiguousarray(polyline[0], dtype=float)
+
     def mean_squares(rots: np.ndarray, stride: int) -> np.ndarray:
-        proj = np.einsum("kij,mj->kmi", rots[:, :2], rel[::stride]) + polyline[0]  # (K, M, 2)
-        there = _nearest(poly[::stride], proj)  # polyline samples to each placed curve
-        back = _nearest(proj[:, :: max(6 // stride, 1)], dense[None])  # curves to the polyline
-        ms = np.concatenate([there, back], axis=1)
-        return np.mean(ms * ms, axis=1)
+        # polyline samples to each placed curve, and the curve's samples to the polyline
+        return placement_mean_squares(
+            np.ascontiguousarray(rots),
+            np.ascontiguousarray(rel[::stride]),
+            origin,
+            np.ascontiguousarray(poly[::stride]),
+            dense,
+            max(6 // stride, 1),
+        )
 
     coarse = np.arange(TURNS) * step
     ms = mean_squares(_turns(rel[-1], image_chord, coarse), 3)  # every third sample

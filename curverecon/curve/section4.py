@@ -167,6 +167,12 @@ def _robust_sigma(polys: list[np.ndarray]) -> float:
     return max(float(np.median(est)), 0.3)
 
 
+def polyline_sigma(polylines: Sequence[np.ndarray]) -> float:
+    """The polylines' pixel noise as section 4 weighs them (median of every polyline's
+    ``polyline.noise_level``, at least 0.3 px)."""
+    return _robust_sigma([np.asarray(p, float) for p in polylines])
+
+
 #: ``polyline.noise_level`` by content (the branch search reconstructs the same polylines
 #: dozens of times, and the curve bundle measures them again in every run)
 _NOISE: dict[tuple, float] = {}

@@ -25,7 +25,9 @@ pipeline consistently labelled frames:
    search's shape (:func:`_quick_curve`) is fitted to every polyline in either direction;
    where one direction fits clearly closer it decides that frame, and frame 0 is tried against
    all the others (its end points alone often leave its labelling open), the labelling whose
-   curve fits the polylines closer kept;
+   curve fits the polylines closer kept; where even that curve fits the polylines poorly
+   (``LabelOptions.unsettled_fit``), the labels are judged again at the pipeline's end-point
+   answer with section 4's curve (:func:`_settled`) before the first full run;
 3. the ordinary pipeline on the relabelled frames (A and B, tangent_A and tangent_B swapped,
    the polyline reversed); at its answer every frame's labelling is checked again (chi2 in
    either labelling at the answer's shape; with polylines the answer's curve fitted to them),
@@ -325,6 +327,8 @@ def frame_labels(
 
 Runner = Callable[[Observations, ReconstructOptions], Reconstruction]
 
+_ANY_TANGENTS = (np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+
 
 def reconstruct_any_labels(
     obs: Observations,
@@ -344,9 +348,11 @@ def reconstruct_any_labels(
         # frame 0 tried against the others unless its end points decide it clearly
         weak = obs.tangents_from_curve or not obs.ends_given
         swap = weak or abs(other[0] - same[0]) < o.polyline_dchi2
-        consistent, exchanged = _polyline_start(
+        consistent, exchanged, fit = _polyline_start(
             consistent, exchanged, found.shape, opts, run, o, swap
         )
+        if fit > o.unsettled_fit * section4.polyline_sigma(consistent.curves):
+            consistent, exchanged = _settled(consistent, exchanged, opts, run, o)
     rec = run(consistent, opts)
     for _ in range(o.max_rounds):
         flip, decided, _ = _label_flips(rec, consistent, ps, ts, o)
@@ -381,7 +387,7 @@ def _polyline_start(
     run: Runner,
     o: LabelOptions,
     try_swap: bool = True,
-) -> tuple[Observations, np.ndarray]:
+) -> tuple[Observations, np.ndarray, float]:
     """The label search's labelling, or (``try_swap``) the same with frame 0 exchanged against
     the others, whichever section 4's curve fits the polylines closer (mean over frames of the
     closer direction's RMS), then every frame relabelled where its polyline clearly says so
@@ -389,7 +395,9 @@ def _polyline_start(
     wrong one sets it against every other frame.  The curve is placed on the poses that fit
     ``shape`` (the label search's, held fixed; with frame 0 exchanged against the others the
     same shape with alpha and beta exchanged) (:func:`_quick_curve`), or where section 4
-    fails there, comes from the pipeline without the bundle."""
+    fails there, comes from the pipeline without the bundle.  Returns the frames relabelled,
+    their labelling, and the kept curve's fit to the polylines (px; inf where no curve was
+    placed)."""
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
     others = np.arange(obs.n_frames) > 0
     best = None
@@ -403,9 +411,33 @@ def _polyline_start(
         if best is None or score < best[0]:
             best = (score, cand, exchanged ^ (others & swap), flip)
     if best is None:
+        return obs, exchanged, np.inf
+    score, cand, exchanged, flip = best
+    return exchange(cand, flip), exchanged ^ flip, score
+
+
+def _settled(
+    obs: Observations, exchanged: np.ndarray, opts: ReconstructOptions, run: Runner, o: LabelOptions
+) -> tuple[Observations, np.ndarray]:
+    """Where the quick curve fits the polylines poorly (frames still labelled wrong): the
+    pipeline's end-point answer with section 4's curve (no bundle, no four-frame samples:
+    0.1-0.2 s, the frames labelled wrong its outliers) and every frame relabelled where its
+    polyline clearly says so.  A first full run on frames labelled wrong costs 1.3-1.8 s (the
+    curve bundle restarts from every frame where some frame does not fit, and LO-RANSAC)."""
+    ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
+    quick = replace(
+        opts,
+        curve=replace(opts.curve, bundle=False),
+        frame_samples=replace(opts.frame_samples, enabled=False),
+    )
+    try:
+        rec = run(obs, quick)
+    except CurveReconError:
         return obs, exchanged
-    _, cand, exchanged, flip = best
-    return exchange(cand, flip), exchanged ^ flip
+    if rec.curve3d is None:
+        return obs, exchanged
+    flip, _, _ = _label_flips(rec, obs, ps, ts, o, every_frame=True)
+    return exchange(obs, flip), exchanged ^ flip
 
 
 def _renamed(shape: np.ndarray) -> np.ndarray:
@@ -423,7 +455,11 @@ def _quick_curve(
     ps, ts = float(opts.point_sigma), math.radians(opts.tangent_sigma_deg)
     fit = fixed_shape_fit(obs, shape, ps, ts)
     try:
-        res = section4.reconstruct_curve(obs.curves, rotations(fit.poses), translations(fit.poses))
+        # only the points are used: any tangents spare the coplanarity check's end tangents
+        # estimated from every polyline (half of section 4's time here)
+        res = section4.reconstruct_curve(
+            obs.curves, rotations(fit.poses), translations(fit.poses), tangents=_ANY_TANGENTS
+        )
         return Reconstruction(
             shape, fit.poses, None, np.ones(obs.n_frames, bool), curve3d=res.points
         )
