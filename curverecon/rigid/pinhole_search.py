@@ -41,6 +41,8 @@ POLISH_ITERATIONS = 200
 """Nelder-Mead iterations per polished cell (the maximum likelihood polishes further)."""
 CAP_PX = 30.0
 """A frame's misfit is capped at this many pixels (an outlier frame, or no valid root)."""
+NEWTON_STEPS = 2
+"""Newton steps on each root of the quartic after the companion matrix's eigenvalues."""
 MIN_DEPTH = 0.05
 """Depths below this (relative to A's) are not tried."""
 
@@ -87,11 +89,23 @@ def p3p(rays: np.ndarray, body: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     with np.errstate(all="ignore"):
         roots = np.linalg.eigvals(np.nan_to_num(comp))
         v = roots.real
+        c4 = quart[..., None, :]  # (..., 1, 5) against the roots (..., 4)
+        for _ in range(NEWTON_STEPS):
+            val = (((c4[..., 4] * v + c4[..., 3]) * v + c4[..., 2]) * v + c4[..., 1]) * v
+            val = val + c4[..., 0]
+            der = ((4.0 * c4[..., 4] * v + 3.0 * c4[..., 3]) * v + 2.0 * c4[..., 2]) * v
+            der = der + c4[..., 1]
+            step = val / der
+            v = np.where(np.isfinite(step), v - step, v)
         pv = p[..., None, 0] + p[..., None, 1] * v + p[..., None, 2] * v * v
         qv = q[..., None, 0] + q[..., None, 1] * v
         u = pv / qv
         sa = np.sqrt(c2[..., None] / (1.0 + u * u - 2.0 * u * cg[..., None]))
-        s = np.stack([sa, u * sa, v * sa], axis=-1)  # (..., 4, 3)
+        s = _refine_distances(
+            np.stack([sa, u * sa, v * sa], axis=-1),  # (..., 4, 3)
+            np.stack([ca, cb, cg], axis=-1)[..., None, :],
+            np.stack([a2, b2, c2], axis=-1)[..., None, :],
+        )
         pts = s[..., None] * j[..., None, :, :]
         err = np.stack(
             [
@@ -107,6 +121,41 @@ def p3p(rays: np.ndarray, body: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             & (np.abs(roots.imag) <= 1e-6 * (1.0 + np.abs(v)))
         )
     return pts, valid
+
+
+def _refine_distances(s: np.ndarray, cos: np.ndarray, sides2: np.ndarray) -> np.ndarray:
+    """Newton steps on the three cosine-law equations in the distances s (..., 3) (A, B, C;
+    cos and sides2 (..., 3) opposite A, B, C): the quartic's roots lose digits when the rays
+    are nearly parallel (a distant object)."""
+    ca, cb, cg = (cos[..., i] for i in range(3))
+    for _ in range(NEWTON_STEPS):
+        s1, s2, s3 = (s[..., i] for i in range(3))
+        f = (
+            np.stack(
+                [
+                    s2 * s2 + s3 * s3 - 2.0 * s2 * s3 * ca,
+                    s1 * s1 + s3 * s3 - 2.0 * s1 * s3 * cb,
+                    s1 * s1 + s2 * s2 - 2.0 * s1 * s2 * cg,
+                ],
+                axis=-1,
+            )
+            - sides2
+        )
+        zero = np.zeros_like(s1)
+        jac = 2.0 * np.stack(
+            [
+                np.stack([zero, s2 - s3 * ca, s3 - s2 * ca], axis=-1),
+                np.stack([s1 - s3 * cb, zero, s3 - s1 * cb], axis=-1),
+                np.stack([s1 - s2 * cg, s2 - s1 * cg, zero], axis=-1),
+            ],
+            axis=-2,
+        )
+        ok = np.isfinite(f).all(-1) & np.isfinite(jac).all((-1, -2))
+        ok &= np.abs(np.linalg.det(np.where(ok[..., None, None], jac, np.eye(3)))) > 1e-300
+        safe = np.where(ok[..., None, None], jac, np.eye(3))
+        step = np.linalg.solve(safe, np.where(ok[..., None], f, 0.0)[..., None])[..., 0]
+        s = s - step
+    return s
 
 
 def _others(x0: np.ndarray) -> np.ndarray:
