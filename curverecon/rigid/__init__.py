@@ -24,6 +24,8 @@ The perspective and stereo rows (``Layout.projection``) share the parametrisatio
 - ``pinhole_starts.py``: starts from triangulation (stereo), the all-frame closed form
   (rotation-free), the fixed axis's minimal solver, and weak perspective (the orthographic row
   on normalised coordinates); every frame's depth reversal tried in the consensus fit;
+- ``pinhole_search.py``: the free row with four points: a search over frame 0's depths, each
+  frame posed by P3P;
 - ``pinhole_ransac.py``: LO-RANSAC over the rotation-free row's two-frame samples;
 - ``pinhole_answer.py``: frame poses, points with depth, the contract's units, the curve stage
   on the poses where this build has it.

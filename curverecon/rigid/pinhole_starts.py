@@ -245,6 +245,10 @@ def pinhole_starts(layout: Layout, data: RigidData) -> list[RigidState]:
     elif layout.motion == "fixed-axis" and len(layout.points) == 3:
         n = data.n_frames
         out += _best(layout, data, _solver_states(layout, data, np.array([0, n // 3, 2 * n // 3])))
+    elif layout.motion == "free" and len(layout.points) >= 4:
+        from curverecon.rigid.pinhole_search import search_starts
+
+        out += search_starts(layout, data)
     return out + weak_perspective(layout, data)
 
 
