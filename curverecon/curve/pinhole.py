@@ -8,9 +8,9 @@ Two entry points:
   through them, then the curve bundle with the poses held.
 - :func:`reconstruct_perspective_curve`: the ordinary camera beyond the Section 2 table (free
   motion, A and B, a polyline in every frame): the paper's orthographic pipeline on the frames
-  in normalised coordinates (weak perspective) as the start, its curve and its mirror image
-  each refined by the pinhole curve bundle (every frame's rotation R_f, its 3-D translation T_f
-  and the curve), the better kept.
+  in normalised coordinates (weak perspective) as the start, its curve and its mirror image,
+  every frame's pose searched against each and refined with the curve by the pinhole curve
+  bundle (every frame's rotation R_f, its 3-D translation T_f and the curve), the better kept.
 
 Conventions (curverecon.solvers.camera): camera coordinates x right, y down, z along the optical
 axis; pixels (u, v) = f (x / z, y / z) + (cx, cy).  Frame f's coordinates X_f = R_f X_0 + T_f
@@ -28,7 +28,7 @@ Units of :func:`reconstruct_perspective_curve`: A's depth in frame 0 is 1, or |A
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -82,7 +82,7 @@ def _project(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pixels (..., 2) of camera points y (..., 3), d pixel / d y (..., 2, 3) and d pixel /
     d z_ref (..., 2).  The divisor is d = kappa z + (1 - kappa) z_ref: the pinhole at kappa 1,
-    weak perspective at the depth z_ref (...,) at kappa 0 (the bundle's continuation)."""
+    weak perspective at the depth z_ref (...,) at kappa 0 (the orthographic limit)."""
     f = float(camera.focal_px)
     z = y[..., 2] if kappa == 1.0 else kappa * y[..., 2] + (1.0 - kappa) * z_ref
     if np.any(z <= 0):
@@ -689,20 +689,6 @@ def _translations(camera: Camera, rot, a3, b3, a_px, b_px) -> np.ndarray:
     return out
 
 
-REFIT_RMS_SIGMA = 3.0
-"""After the bundle, frames whose polyline stays more than this many sigma (RMS) from the
-projected curve are searched again (:func:`pose_search`) and the bundle rerun."""
-
-REFIT_ROUNDS = 3
-
-CONTINUATION = (0.0, 0.25, 0.5, 0.75, 1.0)
-"""The perspective strengths (``_project``'s kappa) of the second way from the start to the
-pinhole: the bundle under weak perspective (kappa 0, one depth per frame), then stronger steps.
-The first way jumps to the pinhole at once; the lower final cost is kept.  bench/persp_curve.py,
-8 scenes at a fifth of the distance in depth: each way alone reached the truth's minimum in 5
-and 2 of them (the jump missed scenes 4, 7, the continuation scenes 1-5, 7)."""
-
-
 def _free(n_frames: int) -> np.ndarray:
     """The free parameters: all but A's depth (the unit) and frame 0's pose (the reference)."""
     free = np.ones(3 * CONTROL_POINTS + 6 * n_frames, bool)
@@ -727,30 +713,9 @@ def _start_state(data: _Data, curve0: np.ndarray, rel: np.ndarray):
     return ctrl, rot, tra
 
 
-def _continued(data: _Data, state, kappas, rounds: int) -> PinholeFit:
-    """The bundle through the perspective strengths ``kappas`` from ``state``, then up to
-    ``rounds`` times the frames that still fit badly searched against the fitted curve and the
-    bundle rerun (at the pinhole)."""
-    free = _free(len(state[1]))
-    fit = None
-    for kappa in kappas:
-        fit = bundle(replace(data, kappa=kappa), *state, free)
-        state = (fit.control, fit.rot, fit.trans)
-    for _ in range(rounds):
-        bad = [f for f in np.flatnonzero(fit.rms > REFIT_RMS_SIGMA * data.sigma) if f > 0]
-        if not bad:
-            break
-        rot, tra, changed = pose_search(data, fit.control, fit.rot, fit.trans, bad)
-        if not changed:
-            break
-        new = bundle(data, fit.control, rot, tra, free)
-        if not new.cost < fit.cost:
-            break
-        fit = new
-    return fit
-
-
 SWEEP_ROUNDS = 4
+"""Most rounds of :func:`_swept` (search every frame's pose, bundle); it stops earlier when no
+frame's rotation moves by more than ``MOVED_DEG`` or the cost does not drop."""
 
 
 def _swept(data: _Data, fit: PinholeFit, rounds: int = SWEEP_ROUNDS) -> PinholeFit:
@@ -786,12 +751,13 @@ _MIRROR = np.diag([1.0, 1.0, -1.0])
 
 def mirrored_state(data: _Data, ctrl, rot):
     """The depth-reversed state: the curve mirrored about A's depth plane, every relative
-    rotation conjugated by that mirror, translations from the rays again (the weak-perspective
-    answer's other image, of equal cost at kappa 0)."""
-    m = np.diag([1.0, 1.0, -1.0])
+    rotation conjugated by that mirror, translations from the rays again (the other depth
+    order, of equal cost under weak perspective)."""
     a = ctrl[0]
     curve = Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 200)) @ ctrl
-    return _start_state(data, a + (curve - a) @ m, np.einsum("ij,fjk,kl->fil", m, rot, m))
+    return _start_state(
+        data, a + (curve - a) @ _MIRROR, np.einsum("ij,fjk,kl->fil", _MIRROR, rot, _MIRROR)
+    )
 
 
 def reconstruct_perspective_curve(obs, options=None):
@@ -799,11 +765,13 @@ def reconstruct_perspective_curve(obs, options=None):
     camera, A and B (tangents optional) and a polyline of the curve in every frame.
 
     The start is the paper's pipeline on the frames in normalised coordinates (weak
-    perspective: pixels to rays), its curve placed at A's depth 1; the curve bundle fits every
-    frame's rotation, its 3-D translation and the curve under weak perspective (one depth per
-    frame), then through stronger perspective to the pinhole (``CONTINUATION``), from that fit
-    and from its mirror image (the depth order weak perspective leaves open), the lower cost
-    kept.
+    perspective: pixels to rays), its curve placed at A's depth 1, and its mirror image (the
+    depth order weak perspective leaves open).  From each: every frame's pose, frame 0's too,
+    searched against the start's curve (:func:`pose_search`, a regauge when frame 0's moves),
+    the pinhole curve bundle (every frame's rotation, 3-D translation and the curve), then the
+    search and the bundle again while the cost drops (:func:`_swept`); the lower cost kept,
+    and its mirror image refitted (:func:`mirrored_state`): the cost gap between the two depth
+    orders is ``curve_bundle["mirror_dchi2"]``, the lower one the answer.
 
     Args:
         obs: ``RigidObservations`` with projection "perspective", motion "free", curves.
@@ -823,24 +791,27 @@ def reconstruct_perspective_curve(obs, options=None):
     camera = obs.configuration.camera
     curve0, rel = _orthographic_start(obs, opts)
     data = _prepare(camera, obs.curves, obs.point("A"), obs.point("B"), opts.point_sigma, 1.0)
-    fits = []  # (cost, orientation: 0 the start's depth order, 1 its mirror image, fit)
+    fits = []
     mirror = (
         curve0[0] + (curve0 - curve0[0]) * [1.0, 1.0, -1.0],
         np.einsum("ij,fjk,kl->fil", _MIRROR, rel, _MIRROR),
     )
-    for side, (curve, rots) in enumerate(((curve0, rel), mirror)):
+    for curve, rots in ((curve0, rel), mirror):
         try:
             state = _searched(data, _start_state(data, curve, rots))
-            fit = _swept(data, bundle(data, *state, _free(data.n)))
+            fits.append(_swept(data, bundle(data, *state, _free(data.n))))
         except CurveReconError:
             continue
-        fits.append((fit.cost, side, fit))
     if not fits:
         raise _error("perspective curve: the pinhole bundle found no curve in front of the camera")
-    fits.sort(key=lambda item: item[0])
-    best_cost, best_side, best = fits[0]
-    others = [cost for cost, side, _ in fits if side != best_side]
-    gap = min(others) - best_cost if others else np.inf
+    best = min(fits, key=lambda fit: fit.cost)
+    try:  # the other depth order: the best fit's mirror image refitted
+        other = bundle(data, *mirrored_state(data, best.control, best.rot), _free(data.n))
+        gap = other.cost - best.cost
+    except CurveReconError:
+        other, gap = None, np.inf
+    if gap < 0:
+        best, gap = other, -gap
     return _answer(obs, best, gap, data)
 
 
