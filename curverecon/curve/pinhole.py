@@ -288,8 +288,9 @@ def bundle(
 
 
 SEARCH_ROTATIONS = 600
-"""Rotations tried per frame by :func:`pose_search` (a fixed random set, about 25 degrees
-apart), each with the translation that puts A and B on their rays; the best few refined."""
+"""Rotations tried per frame by :func:`pose_search` (a fixed random set; a frame's true rotation
+can lie 30 degrees from the nearest), each with the translation that puts A and B on their
+rays; the best ``SEARCH_REFINED`` refined."""
 
 
 def _rotation_grid() -> np.ndarray:
@@ -302,8 +303,8 @@ SEARCH_REFINED = 48
 """The lowest-cost rotations of the grid that :func:`pose_search` refines together (a few
 Levenberg-Marquardt steps each, :func:`_batch_refine`) before the best four are refined to the
 end: a grid rotation can lie 30 degrees from the frame's true one, whose cost then ranks among
-the first few dozen (bench/persp_curve.py scene 0, frame 19: 29th-46th, above four wrong
-branches)."""
+the first few dozen (bench/persp_curve.py scene 0, frame 19, against a fitted curve: the five
+nearest the truth ranked 29th-74th, below four on wrong branches)."""
 
 
 def _frame_costs(data: _Data, basis: Basis, ctrl, rot, tra, f: int):
@@ -390,8 +391,9 @@ def _refine_pose(data: _Data, basis: Basis, ctrl, rot, tra, f: int, iterations: 
 def pose_search(data: _Data, ctrl, rot, tra, frames) -> tuple[np.ndarray, np.ndarray, int]:
     """Every frame of ``frames`` searched for its pose against the curve held: the rotations
     of :func:`_rotation_grid` and the current one, each with the translation putting A and B
-    on their rays, the best four refined; the lowest cost kept.  Returns (rot, tra, number of
-    frames whose pose changed)."""
+    on their rays, the best ``SEARCH_REFINED`` refined side by side (:func:`_batch_refine`),
+    the best four of those to the end; the lowest cost kept.  Returns (rot, tra, number of
+    frames whose rotation moved by more than ``MOVED_DEG``)."""
     basis = Basis(len(ctrl))
     rot, tra = rot.copy(), tra.copy()
     grid = _rotation_grid()
