@@ -134,16 +134,18 @@ class _Data:
         return len(self.samples)
 
 
-def _feet(data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray) -> np.ndarray:
+def _feet(
+    data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray, coarse: bool = False
+) -> np.ndarray:
     """(F, S) curve parameters u of the points of the projected curves nearest to the
     polyline samples of ``frames`` (F,) under poses ``rot`` (F, 3, 3), ``tra`` (F, 3)."""
     q = data.samples[frames]
     kap = data.kappa
     z_ref = (rot @ ctrl[0] + tra)[:, 2]
     # a fine grid so that where the projected curve passes near itself the nearest grid point
-    # lies on the right strand (the pose search's dozens and hundreds of candidates take a
-    # coarser one)
-    grid = np.linspace(0.0, 1.0, (48 if len(frames) <= 32 else 12) * basis.k)
+    # lies on the right strand (the pose search's batches of candidates, ``coarse``, and more
+    # than 64 frames take a coarser one)
+    grid = np.linspace(0.0, 1.0, (12 if coarse or len(frames) > 64 else 48) * basis.k)
     p, _, _ = _project(data.camera, np.einsum("fij,gj->fgi", rot, basis.values(grid) @ ctrl)
                        + tra[:, None], kap, z_ref[:, None])  # fmt: skip
     d2 = ((q[:, :, None, :] - p[:, None]) ** 2).sum(-1)
@@ -160,13 +162,16 @@ def _feet(data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray) -> np.n
     return u
 
 
-def _frame_rows(data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray | None = None):
+def _frame_rows(
+    data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray | None = None, coarse=False
+):
     """Residuals and Jacobian blocks of ``frames`` (default: all) under poses ``rot``
     (F, 3, 3), ``tra`` (F, 3): r (F, S+4), d r / d ctrl (F, S+4, K, 3), d r / d(w, T)
-    (F, S+4, 6) (w: a rotation increment, R <- exp([w]x) R)."""
+    (F, S+4, 6) (w: a rotation increment, R <- exp([w]x) R); ``coarse``: the feet from a
+    coarser grid (:func:`_feet`)."""
     frames = np.arange(data.n) if frames is None else np.asarray(frames)
     q, a_px, b_px = data.samples[frames], data.a_px[frames], data.b_px[frames]
-    u = _feet(data, basis, ctrl, rot, tra, frames)
+    u = _feet(data, basis, ctrl, rot, tra, frames, coarse)
     nf, ns = u.shape
     nb = basis.values(u.ravel()).reshape(nf, ns, basis.k)
     rx = np.einsum("fij,fsj->fsi", rot, nb @ ctrl)
@@ -311,7 +316,7 @@ def _frame_costs(data: _Data, basis: Basis, ctrl, rot, tra, f: int):
     """Frame f's residuals (n, S+4), pose Jacobians (n, S+4, 6) and costs (n,) under n poses;
     a pose that puts the curve behind the camera costs inf (its rows zero)."""
     try:
-        r, _, dp = _frame_rows(data, basis, ctrl, rot, tra, np.full(len(rot), f))
+        r, _, dp = _frame_rows(data, basis, ctrl, rot, tra, np.full(len(rot), f), True)
         return r, dp, np.sum(r**2, axis=1)
     except CurveReconError:
         pass
@@ -324,7 +329,7 @@ def _frame_costs(data: _Data, basis: Basis, ctrl, rot, tra, f: int):
     for i in range(len(rot)):
         try:
             ri, _, dpi = _frame_rows(
-                data, basis, ctrl, rot[i : i + 1], tra[i : i + 1], np.array([f])
+                data, basis, ctrl, rot[i : i + 1], tra[i : i + 1], np.array([f]), True
             )
         except CurveReconError:
             continue
