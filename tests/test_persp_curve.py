@@ -203,3 +203,58 @@ def test_library_refuses_other_motion_and_missing_polylines():
     bare = RigidObservations(obs.configuration, obs.times, obs.points, None, None)
     with pytest.raises(CurveReconError, match="needs a polyline of the curve"):
         pinhole.reconstruct_perspective_curve(bare, None)
+
+
+def _scene_data(scene):
+    obs = scene.obs
+    return pinhole._prepare(obs.configuration.camera, obs.curves, obs.point("A"),
+                            obs.point("B"), scene.sigma, 1.0)  # fmt: skip
+
+
+def test_pose_search_finds_a_frame_started_on_another_rotation_branch():
+    """A frame's pose started 110-160 degrees from the truth (the curve the truth's spline):
+    the search over rotations, the translation from A and B, finds the true pose."""
+    sc = make_scene(0, n_frames=6, sigma=0.5, ratio=5.0)
+    data = _scene_data(sc)
+    ctrl = pinhole.fit_spline(sc.curve0, pinhole.CONTROL_POINTS)
+    rng = np.random.default_rng(11)
+    for f in (2, 4):
+        axis = rng.normal(size=3)
+        wrong = Rotation.from_rotvec(
+            np.radians(rng.uniform(110, 160)) * axis / np.linalg.norm(axis)
+        )
+        rot, tra = sc.rot.copy(), sc.trans.copy()
+        rot[f] = wrong.as_matrix() @ sc.rot[f]
+        tra[f] = pinhole._translations(data.camera, rot[f : f + 1], ctrl[0], ctrl[-1],
+                                       data.a_px[f : f + 1], data.b_px[f : f + 1])[0]  # fmt: skip
+        found, found_t, changed = pinhole.pose_search(data, ctrl, rot, tra, [f])
+        assert changed == 1
+        assert pinhole._angle_deg(found[f], sc.rot[f]) < 3.0
+        assert np.linalg.norm(found_t[f] - sc.trans[f]) < 0.03 * np.linalg.norm(sc.trans[f])
+
+
+def test_a_curve_placed_wrongly_in_frame_0_is_regauged_to_the_truth():
+    """The curve rotated 120 degrees about its middle in frame 0, every other frame's pose
+    composed so that it still sees the true curve (only frame 0 misfits): the search of every
+    frame's pose, frame 0's too, regauges the state and the bundle returns the true curve."""
+    sc = make_scene(1, n_frames=8, sigma=0.5, ratio=5.0)
+    data = _scene_data(sc)
+    turn = Rotation.from_rotvec(np.radians(120.0) * np.array([0.3, 1.0, 0.2]) / 1.063).as_matrix()
+    mid = sc.curve0.mean(axis=0)
+    moved = (sc.curve0 - mid) @ turn.T + mid  # X' = turn (X - mid) + mid
+    rot = sc.rot @ turn.T
+    tra = sc.trans - np.einsum("fij,j->fi", rot, mid - turn @ mid)
+    unit = moved[0, 2]
+    ctrl = pinhole.fit_spline(moved / unit, pinhole.CONTROL_POINTS)
+    rot[0], tra = np.eye(3), tra / unit
+    tra[0] = 0.0
+    # the construction: every frame but 0 sees the true curve
+    for f in range(1, 8):
+        seen = (moved / unit) @ rot[f].T + tra[f]
+        assert np.allclose(seen, (sc.curve0 @ sc.rot[f].T + sc.trans[f]) / unit)
+    assert curve_error(moved / unit, sc.curve0) > 0.1
+    state = pinhole._searched(data, (ctrl, rot, tra))
+    fit = pinhole.bundle(data, *state, pinhole._free(8))
+    curve, _, _ = pinhole.curve_points_and_std(fit)
+    assert curve_error(curve, sc.curve0) < 0.01, curve_error(curve, sc.curve0)
+    assert abs(fit.control[0, 2] - 1.0) < 1e-12

@@ -8,9 +8,9 @@ Two entry points:
   through them, then the curve bundle with the poses held.
 - :func:`reconstruct_perspective_curve`: the ordinary camera beyond the Section 2 table (free
   motion, A and B, a polyline in every frame): the paper's orthographic pipeline on the frames
-  in normalised coordinates (weak perspective) as the start, its curve and its mirror image
-  each refined by the pinhole curve bundle (every frame's rotation R_f, its 3-D translation T_f
-  and the curve), the better kept.
+  in normalised coordinates (weak perspective) as the start, its curve and its mirror image,
+  every frame's pose searched against each and refined with the curve by the pinhole curve
+  bundle (every frame's rotation R_f, its 3-D translation T_f and the curve), the better kept.
 
 Conventions (curverecon.solvers.camera): camera coordinates x right, y down, z along the optical
 axis; pixels (u, v) = f (x / z, y / z) + (cx, cy).  Frame f's coordinates X_f = R_f X_0 + T_f
@@ -28,7 +28,7 @@ Units of :func:`reconstruct_perspective_curve`: A's depth in frame 0 is 1, or |A
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -82,7 +82,7 @@ def _project(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Pixels (..., 2) of camera points y (..., 3), d pixel / d y (..., 2, 3) and d pixel /
     d z_ref (..., 2).  The divisor is d = kappa z + (1 - kappa) z_ref: the pinhole at kappa 1,
-    weak perspective at the depth z_ref (...,) at kappa 0 (the bundle's continuation)."""
+    weak perspective at the depth z_ref (...,) at kappa 0 (the orthographic limit)."""
     f = float(camera.focal_px)
     z = y[..., 2] if kappa == 1.0 else kappa * y[..., 2] + (1.0 - kappa) * z_ref
     if np.any(z <= 0):
@@ -134,15 +134,18 @@ class _Data:
         return len(self.samples)
 
 
-def _feet(data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray) -> np.ndarray:
+def _feet(
+    data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray, coarse: bool = False
+) -> np.ndarray:
     """(F, S) curve parameters u of the points of the projected curves nearest to the
     polyline samples of ``frames`` (F,) under poses ``rot`` (F, 3, 3), ``tra`` (F, 3)."""
     q = data.samples[frames]
     kap = data.kappa
     z_ref = (rot @ ctrl[0] + tra)[:, 2]
     # a fine grid so that where the projected curve passes near itself the nearest grid point
-    # lies on the right strand (the pose search's hundreds of candidates take a coarser one)
-    grid = np.linspace(0.0, 1.0, (48 if len(frames) <= 64 else 12) * basis.k)
+    # lies on the right strand (the pose search's batches of candidates, ``coarse``, and more
+    # than 64 frames take a coarser one)
+    grid = np.linspace(0.0, 1.0, (12 if coarse or len(frames) > 64 else 48) * basis.k)
     p, _, _ = _project(data.camera, np.einsum("fij,gj->fgi", rot, basis.values(grid) @ ctrl)
                        + tra[:, None], kap, z_ref[:, None])  # fmt: skip
     d2 = ((q[:, :, None, :] - p[:, None]) ** 2).sum(-1)
@@ -159,13 +162,16 @@ def _feet(data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray) -> np.n
     return u
 
 
-def _frame_rows(data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray | None = None):
+def _frame_rows(
+    data: _Data, basis: Basis, ctrl, rot, tra, frames: np.ndarray | None = None, coarse=False
+):
     """Residuals and Jacobian blocks of ``frames`` (default: all) under poses ``rot``
     (F, 3, 3), ``tra`` (F, 3): r (F, S+4), d r / d ctrl (F, S+4, K, 3), d r / d(w, T)
-    (F, S+4, 6) (w: a rotation increment, R <- exp([w]x) R)."""
+    (F, S+4, 6) (w: a rotation increment, R <- exp([w]x) R); ``coarse``: the feet from a
+    coarser grid (:func:`_feet`)."""
     frames = np.arange(data.n) if frames is None else np.asarray(frames)
     q, a_px, b_px = data.samples[frames], data.a_px[frames], data.b_px[frames]
-    u = _feet(data, basis, ctrl, rot, tra, frames)
+    u = _feet(data, basis, ctrl, rot, tra, frames, coarse)
     nf, ns = u.shape
     nb = basis.values(u.ravel()).reshape(nf, ns, basis.k)
     rx = np.einsum("fij,fsj->fsi", rot, nb @ ctrl)
@@ -287,14 +293,74 @@ def bundle(
 
 
 SEARCH_ROTATIONS = 600
-"""Rotations tried per frame by :func:`pose_search` (a fixed random set, about 25 degrees
-apart), each with the translation that puts A and B on their rays; the best few refined."""
+"""Rotations tried per frame by :func:`pose_search` (a fixed random set; a frame's true rotation
+can lie 30 degrees from the nearest), each with the translation that puts A and B on their
+rays; the best ``SEARCH_REFINED`` refined."""
 
 
 def _rotation_grid() -> np.ndarray:
     from scipy.spatial.transform import Rotation
 
     return Rotation.random(SEARCH_ROTATIONS, random_state=20261128).as_matrix()
+
+
+SEARCH_REFINED = 48
+"""The lowest-cost rotations of the grid that :func:`pose_search` refines together (a few
+Levenberg-Marquardt steps each, :func:`_batch_refine`) before the best four are refined to the
+end: a grid rotation can lie 30 degrees from the frame's true one, whose cost then ranks among
+the first few dozen (bench/persp_curve.py scene 0, frame 19, against a fitted curve: the five
+nearest the truth ranked 29th-74th, below four on wrong branches)."""
+
+
+def _frame_costs(data: _Data, basis: Basis, ctrl, rot, tra, f: int):
+    """Frame f's residuals (n, S+4), pose Jacobians (n, S+4, 6) and costs (n,) under n poses;
+    a pose that puts the curve behind the camera costs inf (its rows zero)."""
+    try:
+        r, _, dp = _frame_rows(data, basis, ctrl, rot, tra, np.full(len(rot), f), True)
+        return r, dp, np.sum(r**2, axis=1)
+    except CurveReconError:
+        pass
+    rows = SAMPLES_PER_FRAME + 4
+    r, dp, cost = (
+        np.zeros((len(rot), rows)),
+        np.zeros((len(rot), rows, 6)),
+        np.full(len(rot), np.inf),
+    )
+    for i in range(len(rot)):
+        try:
+            ri, _, dpi = _frame_rows(
+                data, basis, ctrl, rot[i : i + 1], tra[i : i + 1], np.array([f]), True
+            )
+        except CurveReconError:
+            continue
+        r[i], dp[i], cost[i] = ri[0], dpi[0], float(np.sum(ri**2))
+    return r, dp, cost
+
+
+def _batch_refine(data: _Data, basis: Basis, ctrl, rot, tra, f: int, iterations: int = 6):
+    """n poses of frame f refined side by side, the curve held (Levenberg-Marquardt per pose,
+    ``iterations`` steps): (rot (n, 3, 3), tra (n, 3), cost (n,))."""
+    rot, tra = rot.copy(), tra.copy()
+    r, dp, cost = _frame_costs(data, basis, ctrl, rot, tra, f)
+    lam = np.full(len(rot), 1e-3)
+    for _ in range(iterations):
+        h = np.einsum("nsi,nsj->nij", dp, dp)
+        g = np.einsum("nsi,ns->ni", dp, r)
+        damp = lam[:, None] * np.maximum(np.einsum("nii->ni", h), 1e-12)
+        dx = np.linalg.solve(h + damp[:, :, None] * np.eye(6), -g[..., None])[..., 0]
+        new_rot = np.stack([_rotation(d[:3]) @ m for d, m in zip(dx, rot, strict=True)])
+        new_tra = tra + dx[:, 3:]
+        r_new, dp_new, c_new = _frame_costs(data, basis, ctrl, new_rot, new_tra, f)
+        ok = c_new < cost
+        rot[ok], tra[ok], r[ok], dp[ok], cost[ok] = (
+            new_rot[ok],
+            new_tra[ok],
+            r_new[ok],
+            dp_new[ok],
+            c_new[ok],
+        )
+        lam = np.where(ok, np.maximum(lam / 10.0, 1e-9), lam * 10.0)
+    return rot, tra, cost
 
 
 def _refine_pose(data: _Data, basis: Basis, ctrl, rot, tra, f: int, iterations: int = 15):
@@ -330,8 +396,9 @@ def _refine_pose(data: _Data, basis: Basis, ctrl, rot, tra, f: int, iterations: 
 def pose_search(data: _Data, ctrl, rot, tra, frames) -> tuple[np.ndarray, np.ndarray, int]:
     """Every frame of ``frames`` searched for its pose against the curve held: the rotations
     of :func:`_rotation_grid` and the current one, each with the translation putting A and B
-    on their rays, the best four refined; the lowest cost kept.  Returns (rot, tra, number of
-    frames whose pose changed)."""
+    on their rays, the best ``SEARCH_REFINED`` refined side by side (:func:`_batch_refine`),
+    the best four of those to the end; the lowest cost kept.  Returns (rot, tra, number of
+    frames whose rotation moved by more than ``MOVED_DEG``)."""
     basis = Basis(len(ctrl))
     rot, tra = rot.copy(), tra.copy()
     grid = _rotation_grid()
@@ -359,19 +426,45 @@ def pose_search(data: _Data, ctrl, rot, tra, frames) -> tuple[np.ndarray, np.nda
                 except CurveReconError:
                     continue
         best = (rot[f], tra[f], cost[0])
-        for i in np.argsort(cost)[:4]:
-            if not np.isfinite(cost[i]):
+        top = [i for i in np.argsort(cost)[:SEARCH_REFINED] if np.isfinite(cost[i])]
+        b_rot, b_tra, b_cost = _batch_refine(data, basis, ctrl, cands[top], ts[top], f)
+        for i in np.argsort(b_cost)[:4]:
+            if not np.isfinite(b_cost[i]):
                 continue
             try:
-                cand = _refine_pose(data, basis, ctrl, cands[i], ts[i], f)
+                cand = _refine_pose(data, basis, ctrl, b_rot[i], b_tra[i], f)
             except CurveReconError:
                 continue
             if cand[2] < best[2] * (1.0 - 1e-9):
                 best = cand
-        if best[2] < cost[0] and not np.allclose(best[0], rot[f]):
+        if best[2] < cost[0] and _angle_deg(best[0], rot[f]) > MOVED_DEG:
             changed += 1
         rot[f], tra[f] = best[0], best[1]
     return rot, tra, changed
+
+
+MOVED_DEG = 5.0
+"""A searched pose counts as changed (:func:`pose_search`) when its rotation moved by more than
+this: a refinement in the same basin is left to the bundle."""
+
+
+def _angle_deg(r1: np.ndarray, r2: np.ndarray) -> float:
+    """The rotation angle (degrees) between two rotations."""
+    return float(np.degrees(np.arccos(np.clip((np.trace(r1.T @ r2) - 1.0) / 2.0, -1.0, 1.0))))
+
+
+def regauged(ctrl, rot, tra, r0: np.ndarray, t0: np.ndarray):
+    """The state re-expressed in frame 0's new pose (r0, t0) (the curve seen at r0 X + t0 in
+    frame 0, X its current frame-0 coordinates): every other frame's pose composed with its
+    inverse, frame 0's pose the identity, lengths rescaled so that A's depth is 1 again."""
+    new_ctrl = ctrl @ r0.T + t0
+    new_rot = rot @ r0.T
+    new_tra = tra - np.einsum("fij,j->fi", new_rot, t0)
+    new_rot[0], new_tra[0] = np.eye(3), 0.0
+    unit = float(new_ctrl[0, 2])
+    if not unit > 0:
+        raise _error("pinhole curve: a regauged frame 0 puts A behind the camera")
+    return new_ctrl / unit, new_rot, new_tra / unit
 
 
 def _frame_rms(data: _Data, basis: Basis, ctrl, rot, tra) -> np.ndarray:
@@ -603,20 +696,6 @@ def _translations(camera: Camera, rot, a3, b3, a_px, b_px) -> np.ndarray:
     return out
 
 
-REFIT_RMS_SIGMA = 3.0
-"""After the bundle, frames whose polyline stays more than this many sigma (RMS) from the
-projected curve are searched again (:func:`pose_search`) and the bundle rerun."""
-
-REFIT_ROUNDS = 3
-
-CONTINUATION = (0.0, 0.25, 0.5, 0.75, 1.0)
-"""The perspective strengths (``_project``'s kappa) of the second way from the start to the
-pinhole: the bundle under weak perspective (kappa 0, one depth per frame), then stronger steps.
-The first way jumps to the pinhole at once; the lower final cost is kept.  bench/persp_curve.py,
-8 scenes at a fifth of the distance in depth: each way alone reached the truth's minimum in 5
-and 2 of them (the jump missed scenes 4, 7, the continuation scenes 1-5, 7)."""
-
-
 def _free(n_frames: int) -> np.ndarray:
     """The free parameters: all but A's depth (the unit) and frame 0's pose (the reference)."""
     free = np.ones(3 * CONTROL_POINTS + 6 * n_frames, bool)
@@ -641,27 +720,37 @@ def _start_state(data: _Data, curve0: np.ndarray, rel: np.ndarray):
     return ctrl, rot, tra
 
 
-def _continued(data: _Data, state, kappas, rounds: int) -> PinholeFit:
-    """The bundle through the perspective strengths ``kappas`` from ``state``, then up to
-    ``rounds`` times the frames that still fit badly searched against the fitted curve and the
-    bundle rerun (at the pinhole)."""
-    free = _free(len(state[1]))
-    fit = None
-    for kappa in kappas:
-        fit = bundle(replace(data, kappa=kappa), *state, free)
-        state = (fit.control, fit.rot, fit.trans)
+SWEEP_ROUNDS = 4
+"""Most rounds of :func:`_swept` (search every frame's pose, bundle); it stops earlier when no
+frame's rotation moves by more than ``MOVED_DEG`` or the cost does not drop."""
+
+
+def _swept(data: _Data, fit: PinholeFit, rounds: int = SWEEP_ROUNDS) -> PinholeFit:
+    """Every frame's pose, frame 0's too, searched against the fitted curve
+    (:func:`pose_search`; a regauge when frame 0's moves) and the bundle rerun, while that
+    lowers the cost: a frame whose start put it on another rotation branch shapes the curve
+    less than the other frames, which find its pose."""
+    free = _free(data.n)
     for _ in range(rounds):
-        bad = [f for f in np.flatnonzero(fit.rms > REFIT_RMS_SIGMA * data.sigma) if f > 0]
-        if not bad:
+        state = _searched(data, (fit.control, fit.rot, fit.trans))
+        if all(_angle_deg(a, b) <= MOVED_DEG for a, b in zip(state[1], fit.rot, strict=True)):
             break
-        rot, tra, changed = pose_search(data, fit.control, fit.rot, fit.trans, bad)
-        if not changed:
-            break
-        new = bundle(data, fit.control, rot, tra, free)
+        new = bundle(data, *state, free)
         if not new.cost < fit.cost:
             break
         fit = new
     return fit
+
+
+def _searched(data: _Data, state):
+    """Every frame's pose, frame 0's too, searched against the state's curve
+    (:func:`pose_search`), the state regauged when frame 0's moved."""
+    ctrl, rot, tra = state
+    rot, tra, _ = pose_search(data, ctrl, rot, tra, range(data.n))
+    if _angle_deg(rot[0], np.eye(3)) > MOVED_DEG:
+        ctrl, rot, tra = regauged(ctrl, rot, tra, rot[0], tra[0])
+    rot[0], tra[0] = np.eye(3), 0.0
+    return ctrl, rot, tra
 
 
 _MIRROR = np.diag([1.0, 1.0, -1.0])
@@ -669,12 +758,13 @@ _MIRROR = np.diag([1.0, 1.0, -1.0])
 
 def mirrored_state(data: _Data, ctrl, rot):
     """The depth-reversed state: the curve mirrored about A's depth plane, every relative
-    rotation conjugated by that mirror, translations from the rays again (the weak-perspective
-    answer's other image, of equal cost at kappa 0)."""
-    m = np.diag([1.0, 1.0, -1.0])
+    rotation conjugated by that mirror, translations from the rays again (the other depth
+    order, of equal cost under weak perspective)."""
     a = ctrl[0]
     curve = Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 200)) @ ctrl
-    return _start_state(data, a + (curve - a) @ m, np.einsum("ij,fjk,kl->fil", m, rot, m))
+    return _start_state(
+        data, a + (curve - a) @ _MIRROR, np.einsum("ij,fjk,kl->fil", _MIRROR, rot, _MIRROR)
+    )
 
 
 def reconstruct_perspective_curve(obs, options=None):
@@ -682,11 +772,13 @@ def reconstruct_perspective_curve(obs, options=None):
     camera, A and B (tangents optional) and a polyline of the curve in every frame.
 
     The start is the paper's pipeline on the frames in normalised coordinates (weak
-    perspective: pixels to rays), its curve placed at A's depth 1; the curve bundle fits every
-    frame's rotation, its 3-D translation and the curve under weak perspective (one depth per
-    frame), then through stronger perspective to the pinhole (``CONTINUATION``), from that fit
-    and from its mirror image (the depth order weak perspective leaves open), the lower cost
-    kept.
+    perspective: pixels to rays), its curve placed at A's depth 1, and its mirror image (the
+    depth order weak perspective leaves open).  From each: every frame's pose, frame 0's too,
+    searched against the start's curve (:func:`pose_search`, a regauge when frame 0's moves),
+    the pinhole curve bundle (every frame's rotation, 3-D translation and the curve), then the
+    search and the bundle again while the cost drops (:func:`_swept`); the lower cost kept,
+    and its mirror image refitted (:func:`mirrored_state`): the cost gap between the two depth
+    orders is ``curve_bundle["mirror_dchi2"]``, the lower one the answer.
 
     Args:
         obs: ``RigidObservations`` with projection "perspective", motion "free", curves.
@@ -706,40 +798,27 @@ def reconstruct_perspective_curve(obs, options=None):
     camera = obs.configuration.camera
     curve0, rel = _orthographic_start(obs, opts)
     data = _prepare(camera, obs.curves, obs.point("A"), obs.point("B"), opts.point_sigma, 1.0)
-    fits = []  # (cost, orientation: 0 the start's depth order, 1 its mirror image, fit)
-    starts = [
-        (0, (curve0, rel)),
-        (
-            1,
-            (
-                curve0[0] + (curve0 - curve0[0]) * [1.0, 1.0, -1.0],
-                np.einsum("ij,fjk,kl->fil", _MIRROR, rel, _MIRROR),
-            ),
-        ),
-    ]
-    for side, (curve, rots) in starts:  # straight to the pinhole
+    fits = []
+    mirror = (
+        curve0[0] + (curve0 - curve0[0]) * [1.0, 1.0, -1.0],
+        np.einsum("ij,fjk,kl->fil", _MIRROR, rel, _MIRROR),
+    )
+    for curve, rots in ((curve0, rel), mirror):
         try:
-            fit = _continued(data, _start_state(data, curve, rots), CONTINUATION[-1:], REFIT_ROUNDS)
+            state = _searched(data, _start_state(data, curve, rots))
+            fits.append(_swept(data, bundle(data, *state, _free(data.n))))
         except CurveReconError:
             continue
-        fits.append((fit.cost, side, fit))
-    try:  # through weak perspective
-        weak = _continued(data, _start_state(data, curve0, rel), CONTINUATION[:1], 0)
-        for side, state in ((0, (weak.control, weak.rot, weak.trans)),
-                            (1, mirrored_state(data, weak.control, weak.rot))):  # fmt: skip
-            try:
-                fit = _continued(data, state, CONTINUATION[1:], REFIT_ROUNDS)
-            except CurveReconError:
-                continue
-            fits.append((fit.cost, side, fit))
-    except CurveReconError:
-        pass
     if not fits:
         raise _error("perspective curve: the pinhole bundle found no curve in front of the camera")
-    fits.sort(key=lambda item: item[0])
-    best_cost, best_side, best = fits[0]
-    others = [cost for cost, side, _ in fits if side != best_side]
-    gap = min(others) - best_cost if others else np.inf
+    best = min(fits, key=lambda fit: fit.cost)
+    try:  # the other depth order: the best fit's mirror image refitted
+        other = bundle(data, *mirrored_state(data, best.control, best.rot), _free(data.n))
+        gap = other.cost - best.cost
+    except CurveReconError:
+        other, gap = None, np.inf
+    if gap < 0:
+        best, gap = other, -gap
     return _answer(obs, best, gap, data)
 
 
