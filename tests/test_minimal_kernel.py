@@ -378,3 +378,17 @@ def test_poses_of_many_shapes_equal_the_poses_of_each() -> None:
         make_scene(np.random.default_rng(0), 4).observations, np.zeros((0, 4))
     )
     assert empty[0].shape == (0, 4, 5) and empty[1].shape == (0, 4)
+
+
+def test_deflated_newton_gives_up_at_a_singular_end_point() -> None:
+    """An end point whose Jacobian is singular is no regular root: None, not an exception."""
+    from curverecon.solvers import homotopy
+
+    class Flat:
+        def evaluate(self, x, q):
+            return np.ones(2, complex), np.zeros((2, 2), complex)
+
+    x = np.array([1.0 + 0j, 2.0 + 0j])
+    roots = np.array([[0.0 + 0j, 0.0 + 0j]])
+    a = np.array([1.0 + 0.5j, -0.3 + 1j])
+    assert homotopy._deflated_newton(Flat(), None, x, roots, a, iterations=0) is None

@@ -1558,7 +1558,10 @@ def _deflated_newton(
         if np.linalg.norm(step) <= 1e-13 * (1 + np.linalg.norm(x)):
             return x
     f, jac = system.evaluate(x, q)
-    ok = np.linalg.norm(np.linalg.solve(jac, f)) <= 1e-9 * (1 + np.linalg.norm(x))
+    try:
+        ok = np.linalg.norm(np.linalg.solve(jac, f)) <= 1e-9 * (1 + np.linalg.norm(x))
+    except np.linalg.LinAlgError:  # a singular end point is no regular root
+        return None
     return x if ok else None
 
 
