@@ -75,29 +75,10 @@ def _spread_triple(rng: np.random.Generator, pool: np.ndarray) -> np.ndarray:
     return np.array([rng.choice(part) for part in np.array_split(pool, 3)])
 
 
-def _axis_states(layout: Layout, data: RigidData, frames: np.ndarray) -> list[RigidState]:
-    """Every real solution of the fixed-axis solver on three ``frames`` extended to every frame
-    (``rigid.pinhole_starts.extend_axis``)."""
-    from curverecon.rigid.pinhole_starts import extend_axis
-    from curverecon.solvers import persp_fixed_axis_3pt as solver
-
-    try:
-        sol = solver.solve(data.points[frames], data.times[frames], data.camera)
-    except (CurveReconError, np.linalg.LinAlgError, ValueError):
-        return []
-    out = []
-    for s in range(sol.n_solutions):
-        p3 = sol.points3[s]
-        axis = np.asarray(sol.motion[s]["axis"], float)
-        got = extend_axis(layout, data, p3[0, 1:] - p3[0, :1], axis, int(frames[0]))
-        if got is not None:
-            out.append(got)
-    return out
-
-
 def axis_samples(layout: Layout, data: RigidData, threshold: float, initial: list, polish):
     """(fit over every frame, its consensus frames) of the fixed-axis row (module docstring);
     None when nothing converged."""
+    from curverecon.rigid.pinhole_starts import solver_states
     from curverecon.solvers import persp_fixed_axis_3pt as solver
 
     n = data.n_frames
@@ -116,7 +97,8 @@ def axis_samples(layout: Layout, data: RigidData, threshold: float, initial: lis
     rng = np.random.default_rng(0)
     for _ in range(AXIS_SAMPLES):
         triple = _spread_triple(rng, pool)
-        models = [Hypothesis(st) for st in _axis_states(layout, data, triple)]
+        states = solver_states(layout, data, triple)
+        models = [Hypothesis(st) for st in states]
         improved = False
         for h in sorted(models, key=lambda h: est.score_model(h)[0])[:AXIS_POLISHED]:
             got = polish(layout, data, h.state, threshold)

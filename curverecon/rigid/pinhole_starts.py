@@ -241,10 +241,10 @@ def pinhole_starts(layout: Layout, data: RigidData) -> list[RigidState]:
         return [] if p3 is None else [state_from_points3(layout, data, p3)]
     out = []
     if layout.motion == "fixed-axis" and data.n_frames == 3:
-        out += _solver_states(layout, data, np.arange(3))
+        out += solver_states(layout, data, np.arange(3))
     elif layout.motion == "fixed-axis" and len(layout.points) == 3:
         n = data.n_frames
-        out += _best(layout, data, _solver_states(layout, data, np.array([0, n // 3, 2 * n // 3])))
+        out += _best(layout, data, solver_states(layout, data, np.array([0, n // 3, 2 * n // 3])))
     elif layout.motion == "free" and len(layout.points) >= 4:
         from curverecon.rigid.pinhole_search import search_starts
 
@@ -314,7 +314,7 @@ def extend_axis(
     return rescale(state, 1.0 / state.translations[0, 2])
 
 
-def _solver_states(layout: Layout, data: RigidData, frames: np.ndarray) -> list[RigidState]:
+def solver_states(layout: Layout, data: RigidData, frames: np.ndarray) -> list[RigidState]:
     """Every real solution of the fixed-axis three-point solver on three frames as a state over
     every frame (:func:`extend_axis` where the frames are not all of them)."""
     from curverecon.solvers import persp_fixed_axis_3pt as solver
