@@ -35,6 +35,10 @@ KERNEL_MODULES = (
     "curverecon.curve.labels_kernel",
     "curverecon.generated.measurement_kernel",
     "curverecon.generated.minimal_unsquared_kernel",
+    "curverecon.solvers.persp_uniform_rotation",
+    "curverecon.solvers.persp_fixed_axis_3pt",
+    "curverecon.generated.persp_uniform_rotation_kernel",
+    "curverecon.generated.persp_fixed_axis_kernel",
 )
 """Every module of the package that defines numba kernels."""
 
@@ -104,6 +108,30 @@ def run_scenes() -> None:
         outliers = make_scene(np.random.default_rng(2), 16, 0.5, 0.5, outlier_fraction=0.25)
         reconstruct(outliers.observations)
         solve(make_scene(np.random.default_rng(3), 4).observations)
+        perspective_solves()
+
+
+def perspective_solves() -> None:
+    """The two perspective minimal solvers tracked on their generated kernels: uniform rotation
+    (five equally spaced frames of A, B) and a fixed axis (three frames of A, B, C), each on a
+    body two units before an 800 px camera turning about a random axis."""
+    import numpy as np
+
+    from curverecon.rigid.model import rodrigues
+    from curverecon.solvers import persp_fixed_axis_3pt, persp_uniform_rotation
+    from curverecon.solvers.camera import Camera
+
+    camera = Camera(800.0, (320.0, 240.0))
+    rng = np.random.default_rng(4)
+    axis = rng.normal(size=3)
+    axis /= np.linalg.norm(axis)
+    for solver, angles in (
+        (persp_uniform_rotation, 0.4 * np.arange(5)),
+        (persp_fixed_axis_3pt, np.array([0.0, 0.7, -1.1])),
+    ):
+        body = rng.normal(size=(len(solver.POINTS), 3)) * 0.3
+        x3 = np.array([body @ rodrigues(a * axis).T + [0.0, 0.0, 2.0] for a in angles])
+        solver.solve(camera.project(x3), np.arange(len(angles), dtype=float), camera)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
