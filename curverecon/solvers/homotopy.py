@@ -594,6 +594,11 @@ def _solve_pair(a, b, c, out, out2, m, r, r2, plan, two):
     return True
 
 
+loop_solve_pair = _solve_pair
+"""The tracker's own loop solve (``_solve_pair``), for a solver whose generated kernels carry
+no written-out solve (``track_generated``'s ``solve_pair`` argument)."""
+
+
 @numba.njit(**_JIT)
 def _hermite_weights(th, npts, tt, wts, z, col):
     """Weights of the Hermite interpolant of ``npts`` points at ``tt``: the polynomial of degree

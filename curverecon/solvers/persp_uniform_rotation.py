@@ -56,7 +56,7 @@ def _track_kernels(q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end):
     k = kernel_module
     homotopy.track_generated(
         k.coefficients, k.coefficients_t, k.coefficient_rates, k.residual_jacobian,
-        k.residual_jacobian_t, homotopy._solve_pair, k.N_COEFFICIENTS,
+        k.residual_jacobian_t, homotopy.loop_solve_pair, k.N_COEFFICIENTS,
         q0, q1, d, x_start, opts, plan, x_end, status, steps, t_end,
     )  # fmt: skip
 
