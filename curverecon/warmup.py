@@ -42,6 +42,16 @@ KERNEL_MODULES = (
 )
 """Every module of the package that defines numba kernels."""
 
+PERSPECTIVE_MODULES = (
+    "curverecon.solvers.persp_uniform_rotation",
+    "curverecon.solvers.persp_fixed_axis_3pt",
+    "curverecon.generated.persp_uniform_rotation_kernel",
+    "curverecon.generated.persp_fixed_axis_kernel",
+)
+"""The perspective minimal solvers' kernels: compiled only with ``--perspective`` (about 50
+CPU-seconds more, which would double the warm-up of ``make demo``; without it a perspective
+uniform-rotation or fixed-axis reconstruction compiles them on first use)."""
+
 TABLE_TRACKER = frozenset(
     f"curverecon.solvers.homotopy.{name}"
     for name in (
@@ -74,7 +84,7 @@ def cached_kernels() -> dict[str, Any]:
     return found
 
 
-def not_compiled() -> list[str]:
+def not_compiled(perspective: bool = False) -> list[str]:
     """The cached kernels with no machine code in numba's on-disk cache for their current source.
 
     A kernel called only from other kernels gets no signature in a process that loads its
@@ -83,8 +93,15 @@ def not_compiled() -> list[str]:
     return sorted(
         name
         for name, d in cached_kernels().items()
-        if name not in TABLE_TRACKER and not d._cache._cache_file._load_index()
+        if _warmed(name, perspective) and not d._cache._cache_file._load_index()
     )
+
+
+def _warmed(name: str, perspective: bool) -> bool:
+    """Whether the warm-up compiles kernel ``module.name`` (with ``--perspective`` or not)."""
+    if name in TABLE_TRACKER:
+        return False
+    return perspective or not name.startswith(tuple(m + "." for m in PERSPECTIVE_MODULES))
 
 
 def run_scenes() -> None:
@@ -108,7 +125,6 @@ def run_scenes() -> None:
         outliers = make_scene(np.random.default_rng(2), 16, 0.5, 0.5, outlier_fraction=0.25)
         reconstruct(outliers.observations)
         solve(make_scene(np.random.default_rng(3), 4).observations)
-        perspective_solves()
 
 
 def perspective_solves() -> None:
@@ -142,12 +158,19 @@ def main(argv: Sequence[str] | None = None) -> int:
         prog="python -m curverecon.warmup",
         description="Compile every numba kernel of curverecon into numba's on-disk cache.",
     )
-    parser.parse_args(argv)
+    parser.add_argument(
+        "--perspective",
+        action="store_true",
+        help="also the perspective minimal solvers' kernels (about 50 CPU-seconds more)",
+    )
+    args = parser.parse_args(argv)
     start = time.perf_counter()
     run_scenes()
+    if args.perspective:
+        perspective_solves()
     seconds = time.perf_counter() - start
-    kernels, missing = cached_kernels(), not_compiled()
-    ready = len(kernels) - len(missing) - len(TABLE_TRACKER & set(kernels))
+    kernels, missing = cached_kernels(), not_compiled(args.perspective)
+    ready = sum(_warmed(name, args.perspective) for name in kernels) - len(missing)
     print(f"curverecon warm-up: {ready} compiled kernels in numba's cache ({seconds:.1f} s)")
     if missing:
         print(f"curverecon warm-up: warning: not reached: {', '.join(missing)}", file=sys.stderr)

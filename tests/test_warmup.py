@@ -33,3 +33,9 @@ def test_the_warmup_reaches_every_kernel_of_the_pipeline(capsys):
     captured = capsys.readouterr()
     assert "compiled kernels in numba's cache" in captured.out
     assert captured.err == ""
+
+
+def test_the_perspective_warmup_reaches_the_perspective_solvers(capsys):
+    assert warmup.main(["--perspective"]) == 0
+    assert warmup.not_compiled(perspective=True) == []
+    assert capsys.readouterr().err == ""
