@@ -78,6 +78,18 @@ def _force_field(points3: np.ndarray, rot: np.ndarray, times: np.ndarray, obs: n
     return -sol[:3], sol[3:].reshape(3, 2)
 
 
+def set_motion(layout: Layout, times: np.ndarray, rotations: np.ndarray, state: RigidState) -> None:
+    """``state``'s axis and rate (uniform rotation) or angles (fixed axis, frame 0's angle 0)
+    from the rotations relative to frame 0 (N, 3, 3); other motions leave it as it is."""
+    if layout.motion in ("uniform-rotation", "fixed-axis"):
+        n, ang = axis_and_angles(rotations)
+        state.axis = axis_angles(n)
+        if layout.motion == "uniform-rotation":
+            state.rate = fit_rate(times, ang)
+        else:
+            state.angles = ang - ang[0]
+
+
 def state_from_geometry(
     layout: Layout,
     data: RigidData,
@@ -92,13 +104,7 @@ def state_from_geometry(
     state = RigidState(body=rel[1:].copy())
     if layout.tangents:
         state.directions = tangent_directions(data, rot)
-    if layout.motion in ("uniform-rotation", "fixed-axis"):
-        n, ang = axis_and_angles(rot)
-        state.axis = axis_angles(n)
-        if layout.motion == "uniform-rotation":
-            state.rate = fit_rate(data.times, ang)
-        else:
-            state.angles = ang - ang[0]
+    set_motion(layout, data.times, rot, state)
     if layout.free_rotations:
         state.rotations = rot.copy()
     if layout.centred:

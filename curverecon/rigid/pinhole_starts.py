@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from curverecon.errors import CurveReconError
-from curverecon.rigid.geometry import axis_and_angles, fit_rate
+from curverecon.rigid.geometry import set_motion
 from curverecon.rigid.measurements import RigidData
 from curverecon.rigid.model import (
     Layout,
@@ -114,13 +114,7 @@ def state_from_points3(
     state = RigidState(body=rel[1:].copy())
     if layout.tangents:
         state.directions = tangent_planes(layout, data, p3, rots)
-    if layout.motion in ("uniform-rotation", "fixed-axis"):
-        n, ang = axis_and_angles(rots)
-        state.axis = axis_angles(n)
-        if layout.motion == "uniform-rotation":
-            state.rate = fit_rate(data.times, ang)
-        else:
-            state.angles = ang - ang[0]
+    set_motion(layout, data.times, rots, state)
     if layout.free_rotations:
         state.rotations = np.einsum("fij,kj->fik", rots, rots[0])
     if not layout.centred:
