@@ -74,10 +74,11 @@ def _add_reconstruct(rec: argparse.ArgumentParser) -> None:
     )
     rec.add_argument(
         "--motion",
-        choices=list(MOTIONS),
+        choices=[*MOTIONS[:-1], "rotation-free", MOTIONS[-1]],
         help='the motion model, overriding the document\'s "motion" (free: any rotation per '
         "frame; uniform-rotation, fixed-axis: about one axis; force-field: the mass centre on a "
-        "parabola; auto: every model the points allow, chosen by model selection)",
+        "parabola; rotation-free: translation only, perspective or stereo; auto: every model "
+        "the points allow, chosen by model selection)",
     )
     rec.add_argument("--plot", help="also draw the reconstruction to this PNG file")
     rec.add_argument(
@@ -137,7 +138,8 @@ def _add_simulate(sim: argparse.ArgumentParser) -> None:
     sim.add_argument(
         "--points",
         default="AB",
-        help='with --motion: the traceable points, "AB" or "ABC" (C a marked point on the curve)',
+        help='with --motion: the traceable points, "AB", "ABC" or "ABCD" (C, D marked points '
+        "on the curve; perspective free motion needs ABCD, or AB with --with-curve)",
     )
     sim.add_argument(
         "--tangents",
@@ -481,8 +483,10 @@ COMMANDS: dict[str, _Command] = {
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="curverecon",
-        description="Recover a rigid smooth 3-D curve from orthographic images in which only two "
-        "points A, B and the tangents there are traced (after M. A. Klopotek, section 3).",
+        description="Recover a rigid smooth 3-D curve from images in which only two points A, "
+        "B (and the tangents there, or the curve's polyline) are traced (after M. A. Klopotek): "
+        'orthographic frames, or a calibrated pinhole camera ("camera": focal_px, '
+        'principal_point) or stereo pair ("cameras", X1 = R X0 + t); docs/file-formats.md.',
     )
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
     for name, command in COMMANDS.items():

@@ -287,3 +287,26 @@ def test_one_frame_stereo_from_the_command(tmp_path, capsys):
     np.testing.assert_allclose(
         rec["frames"][0]["points3"]["A"], tru["frames"][0]["points3"]["A"], rtol=0.02
     )
+
+
+def test_motion_rotation_free_from_the_command(tmp_path, capsys):
+    """``--motion rotation-free`` (a translating body, the document saying "free"): the answer is
+    the construction in units of A's depth in frame 0, noise-free to 1e-6."""
+    rng = np.random.default_rng(5)
+    body = rng.normal(size=(2, 3)) * 0.5 + [0.0, 0.0, 6.0]
+    shifts = [np.zeros(3), np.array([0.8, -0.3, 1.5])]
+    doc = perspective_doc(frames=2)
+    for frame, shift in zip(doc["frames"], shifts, strict=True):
+        px = _project(body + shift)
+        frame.update(A=px[0], B=px[1])
+        del frame["points"]
+    inp, out = tmp_path / "in.json", tmp_path / "out.json"
+    inp.write_text(json.dumps(doc))
+    assert main(["reconstruct", str(inp), "-o", str(out), "--motion", "rotation-free"]) == 0
+    rec = json.loads(out.read_text())
+    assert rec["configuration"]["motion"] == "rotation-free"
+    unit = body[0, 2]
+    for frame, shift in zip(rec["frames"], shifts, strict=True):
+        got = np.array([frame["points3"]["A"], frame["points3"]["B"]])
+        np.testing.assert_allclose(got, (body + shift) / unit, atol=1e-6)
+    assert rec["c"] == pytest.approx(np.linalg.norm(body[1] - body[0]) / unit, abs=1e-6)
