@@ -412,12 +412,14 @@ def _image_frame(ax, camera, data: list) -> None:
     ax.plot([0, w, w, 0, 0], [0, 0, h, h, 0], ls="--", lw=0.6, color="0.7")
     pts = np.concatenate([np.asarray(d, float).reshape(-1, 2) for d in data])
     pts = pts[np.all(np.isfinite(pts), axis=1)]
-    if len(pts):
-        lo, hi = pts.min(axis=0), pts.max(axis=0)
-        pad = 0.08 * float(np.max(hi - lo)) + 1.0
-        ax.set_xlim(lo[0] - pad, hi[0] + pad)
-        ax.set_ylim(hi[1] + pad, lo[1] - pad)
-    ax.set_aspect("equal", adjustable="datalim")
+    if len(pts):  # a square view about what is drawn: equal axes without matplotlib's warning
+        mid = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+        half = 0.54 * float(np.max(pts.max(axis=0) - pts.min(axis=0))) + 1.0
+        ax.set_xlim(mid[0] - half, mid[0] + half)
+        ax.set_ylim(mid[1] + half, mid[1] - half)
+    else:
+        ax.invert_yaxis()
+    ax.set_aspect("equal", adjustable="box")
 
 
 def _image_panel(ax, obs, f, view, label, drawn) -> None:
