@@ -171,14 +171,30 @@ def observations_from_dict(data: Any) -> Observations | RigidObservations:
     if not isinstance(motion, str) or motion not in MOTIONS:
         raise CurveReconError(f"unknown motion {json.dumps(motion)} (choose {', '.join(MOTIONS)})")
     times = _times(frames)
+    _require_projection_keys(data, projection)
     if projection == "stereo":
         return _stereo_observations(data, frames, motion, times)
+    for i, frame in enumerate(frames):
+        if "views" in frame:
+            raise CurveReconError(
+                f'frame {i}: "views" (two cameras) belong to projection "stereo" with "cameras"; '
+                f'this document\'s projection is "{projection}"'
+            )
     names = _further_points(frames)
     if projection == "orthographic" and motion == "free" and not names:
         if "motion" in data and frames and not _any_tangents_or_curve(frames):
             raise CurveReconError(motion_determined("free", 2, False) or "")
         return _paper_observations(data, frames)
     return _rigid_observations(data, frames, motion, times, names)
+
+
+def _require_projection_keys(data: dict, projection: str) -> None:
+    """Refuse ``"camera"`` or ``"cameras"`` under another projection (the usual slip: no
+    ``"projection"`` key, so the document reads as orthographic and the camera is unused)."""
+    for key, own in (("camera", "perspective"), ("cameras", "stereo")):
+        if key in data and projection != own:
+            hint = f'; add "projection": "{own}"' if "projection" not in data else ""
+            raise CurveReconError(f'"{key}" given with projection "{projection}"{hint}')
 
 
 def _paper_observations(data: dict, frames: list) -> Observations:

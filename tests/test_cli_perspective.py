@@ -310,3 +310,22 @@ def test_motion_rotation_free_from_the_command(tmp_path, capsys):
         got = np.array([frame["points3"]["A"], frame["points3"]["B"]])
         np.testing.assert_allclose(got, (body + shift) / unit, atol=1e-6)
     assert rec["c"] == pytest.approx(np.linalg.norm(body[1] - body[0]) / unit, abs=1e-6)
+
+
+def test_camera_without_projection_names_the_missing_key(tmp_path, capsys):
+    """A document with a camera but no "projection" would read as orthographic, the camera
+    unused (without "motion", as the paper's own setting asking for tangents): refused."""
+    doc = perspective_doc()
+    del doc["projection"], doc["motion"]
+    _refused(doc, '"camera" given with projection "orthographic"; add "projection": '
+             '"perspective"', tmp_path, capsys)  # fmt: skip
+    doc = stereo_doc()
+    del doc["projection"]
+    _refused(doc, 'add "projection": "stereo"', tmp_path, capsys)
+
+
+def test_views_under_one_camera_are_refused(tmp_path, capsys):
+    doc = stereo_doc()
+    doc["projection"] = "perspective"
+    doc["camera"] = doc.pop("cameras")[0]
+    _refused(doc, 'frame 0: "views" (two cameras) belong to projection "stereo"', tmp_path, capsys)
