@@ -358,6 +358,7 @@ def _simulate_camera(args: argparse.Namespace, chord: tuple[float, float]) -> in
 
     if not (math.isfinite(args.distance) and args.distance > 0):
         raise CurveReconError("--distance must be a positive number")
+    _require_camera_row(args)
     doc, truth = simulate_camera_configuration(
         args.projection,
         args.motion,
@@ -379,6 +380,27 @@ def _simulate_camera(args: argparse.Namespace, chord: tuple[float, float]) -> in
     if args.truth:
         write_json(args.truth, truth)
     return 0
+
+
+def _require_camera_row(args: argparse.Namespace) -> None:
+    """Refuse a camera scene that ``reconstruct`` would refuse for its points (as the
+    orthographic rows are refused); warn when it has fewer frames than the row needs.  The
+    ordinary camera (perspective, free motion, ``--with-curve``) is the curve bundle's."""
+    from curverecon.model.configuration import min_frames, motion_determined
+
+    n, tangents = len(set(args.points)), bool(args.tangents)
+    if args.projection == "perspective" and args.motion == "free" and args.with_curve:
+        return
+    reason = motion_determined(args.motion, n, tangents, args.projection)
+    if reason is not None:
+        fix = "--points ABCD or --with-curve" if args.motion == "free" else "--points ABC"
+        raise CurveReconError(f"{reason} (simulate: {fix})")
+    need = min_frames(args.motion, n, args.projection, tangents)
+    if args.frames < need:
+        _warn(
+            f"{args.frames} frame(s): reconstruct needs at least {need} for motion "
+            f"{args.motion} with points {', '.join(args.points)} under {args.projection}"
+        )
 
 
 def _check_family(family: str, images: bool) -> None:

@@ -329,3 +329,28 @@ def test_views_under_one_camera_are_refused(tmp_path, capsys):
     doc["projection"] = "perspective"
     doc["camera"] = doc.pop("cameras")[0]
     _refused(doc, 'frame 0: "views" (two cameras) belong to projection "stereo"', tmp_path, capsys)
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--motion", "free"], "--points ABCD or --with-curve"),
+        (["--motion", "free", "--points", "ABC"], "four points (A, B, C, D)"),
+        (["--motion", "fixed-axis"], "a third point (C) (simulate: --points ABC)"),
+    ],
+)
+def test_simulate_refuses_a_camera_scene_reconstruct_would_refuse(args, message, tmp_path, capsys):
+    out = tmp_path / "s.json"
+    assert main(["simulate", *args, "--projection", "perspective", "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0] and not out.exists(), err
+
+
+def test_simulate_warns_of_too_few_frames(tmp_path, capsys):
+    out = tmp_path / "s.json"
+    args = ["--motion", "uniform-rotation", "--projection", "perspective", "--frames", "4"]
+    assert main(["simulate", *args, "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "reconstruct needs at least 5" in err and out.exists()
+    assert main(["reconstruct", str(out), "-o", str(tmp_path / "r.json"), "--quiet"]) == 2
+    assert "needs at least 5" in capsys.readouterr().err
