@@ -69,7 +69,11 @@ def read_json(path: str | Path) -> Any:
             f"malformed JSON in {path}: {exc.msg} (line {exc.lineno} column {exc.colno})"
         ) from exc
     if seen:  # only then walk the document: a large file is not walked twice
-        where = _first_non_finite(data)
+        try:
+            where = _first_non_finite(data)
+        except RecursionError:
+            where = "a deeply nested value"
+        where = where if len(where) <= 80 else where[:77] + "..."
         raise CurveReconError(f"non-finite number {seen[0]} in JSON at {where} ({path})")
     return data
 
