@@ -388,8 +388,9 @@ def _stereo_observations(
             or len(pair) != 2
             or not all(isinstance(v, dict) for v in pair)
         ):
+            top = ' (a stereo frame has no "A" of its own)' if "A" in frame else ""
             raise CurveReconError(
-                f'frame {i}: "views" must be a list of two objects (camera 0, camera 1)'
+                f'frame {i}: "views" must be a list of two objects (camera 0, camera 1){top}'
             )
         views[0].append(pair[0])
         views[1].append(pair[1])

@@ -354,3 +354,11 @@ def test_simulate_warns_of_too_few_frames(tmp_path, capsys):
     assert "reconstruct needs at least 5" in err and out.exists()
     assert main(["reconstruct", str(out), "-o", str(tmp_path / "r.json"), "--quiet"]) == 2
     assert "needs at least 5" in capsys.readouterr().err
+
+
+def test_stereo_frame_written_as_one_view_says_so(tmp_path, capsys):
+    doc = stereo_doc()
+    for frame in doc["frames"]:
+        frame.update(frame.pop("views")[0])
+    _refused(doc, 'frame 0: "views" must be a list of two objects (camera 0, camera 1) (a '
+             'stereo frame has no "A" of its own)', tmp_path, capsys)  # fmt: skip
