@@ -74,10 +74,11 @@ def _add_reconstruct(rec: argparse.ArgumentParser) -> None:
     )
     rec.add_argument(
         "--motion",
-        choices=list(MOTIONS),
+        choices=[*MOTIONS[:-1], "rotation-free", MOTIONS[-1]],
         help='the motion model, overriding the document\'s "motion" (free: any rotation per '
         "frame; uniform-rotation, fixed-axis: about one axis; force-field: the mass centre on a "
-        "parabola; auto: every model the points allow, chosen by model selection)",
+        "parabola; rotation-free: translation only, perspective or stereo; auto: every model "
+        "the points allow, chosen by model selection)",
     )
     rec.add_argument("--plot", help="also draw the reconstruction to this PNG file")
     rec.add_argument(
@@ -137,7 +138,8 @@ def _add_simulate(sim: argparse.ArgumentParser) -> None:
     sim.add_argument(
         "--points",
         default="AB",
-        help='with --motion: the traceable points, "AB" or "ABC" (C a marked point on the curve)',
+        help='with --motion: the traceable points, "AB", "ABC" or "ABCD" (C, D marked points '
+        "on the curve; perspective free motion needs ABCD, or AB with --with-curve)",
     )
     sim.add_argument(
         "--tangents",
@@ -356,6 +358,7 @@ def _simulate_camera(args: argparse.Namespace, chord: tuple[float, float]) -> in
 
     if not (math.isfinite(args.distance) and args.distance > 0):
         raise CurveReconError("--distance must be a positive number")
+    _require_camera_row(args)
     doc, truth = simulate_camera_configuration(
         args.projection,
         args.motion,
@@ -377,6 +380,27 @@ def _simulate_camera(args: argparse.Namespace, chord: tuple[float, float]) -> in
     if args.truth:
         write_json(args.truth, truth)
     return 0
+
+
+def _require_camera_row(args: argparse.Namespace) -> None:
+    """Refuse a camera scene that ``reconstruct`` would refuse for its points (as the
+    orthographic rows are refused); warn when it has fewer frames than the row needs.  The
+    ordinary camera (perspective, free motion, ``--with-curve``) is the curve bundle's."""
+    from curverecon.model.configuration import min_frames, motion_determined
+
+    n, tangents = len(set(args.points)), bool(args.tangents)
+    if args.projection == "perspective" and args.motion == "free" and args.with_curve:
+        return
+    reason = motion_determined(args.motion, n, tangents, args.projection)
+    if reason is not None:
+        fix = "--points ABCD or --with-curve" if args.motion == "free" else "--points ABC"
+        raise CurveReconError(f"{reason} (simulate: {fix})")
+    need = min_frames(args.motion, n, args.projection, tangents)
+    if args.frames < need:
+        _warn(
+            f"{args.frames} frame(s): reconstruct needs at least {need} for motion "
+            f"{args.motion} with points {', '.join(args.points)} under {args.projection}"
+        )
 
 
 def _check_family(family: str, images: bool) -> None:
@@ -481,8 +505,10 @@ COMMANDS: dict[str, _Command] = {
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="curverecon",
-        description="Recover a rigid smooth 3-D curve from orthographic images in which only two "
-        "points A, B and the tangents there are traced (after M. A. Klopotek, section 3).",
+        description="Recover a rigid smooth 3-D curve from images in which only two points A, "
+        "B (and the tangents there, or the curve's polyline) are traced (after M. A. Klopotek): "
+        'orthographic frames, or a calibrated pinhole camera ("camera": focal_px, '
+        'principal_point) or stereo pair ("cameras", X1 = R X0 + t); docs/file-formats.md.',
     )
     sub = parser.add_subparsers(dest="command", parser_class=_Parser)
     for name, command in COMMANDS.items():

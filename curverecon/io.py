@@ -38,26 +38,44 @@ RECONSTRUCTION_FORMAT = "curverecon.reconstruction/1"
 TRUTH_FORMAT = "curverecon.truth/1"
 
 
-def _reject_constant(name: str) -> float:
-    raise CurveReconError(f"non-finite number {name} in JSON")
+def _first_non_finite(x: Any, where: str = "") -> str | None:
+    """The path (``frames[3].A[0]``) of the first NaN or infinite number in parsed JSON, or None."""
+    if isinstance(x, float) and not math.isfinite(x):
+        return where or "top level"
+    items = x.items() if isinstance(x, dict) else enumerate(x) if isinstance(x, list) else ()
+    for k, v in items:
+        found = _first_non_finite(v, f"{where}.{k}" if isinstance(k, str) else f"{where}[{k}]")
+        if found is not None:
+            return found.lstrip(".")
+    return None
 
 
 def read_json(path: str | Path) -> Any:
-    """Parse a JSON file; NaN / Infinity literals and unreadable files are errors."""
+    """Parse a JSON file; NaN / Infinity literals (named with their place, e.g.
+    ``frames[3].A[0]``) and unreadable files are errors."""
     try:
         text = Path(path).read_text(encoding="utf-8")
     except OSError as exc:
         raise CurveReconError(f"cannot read {path}: {exc.strerror or exc}") from exc
     except UnicodeDecodeError as exc:
         raise CurveReconError(f"{path} is not UTF-8 text") from exc
+    seen: list[str] = []
     try:
-        return json.loads(text, parse_constant=_reject_constant)
+        data = json.loads(text, parse_constant=lambda name: seen.append(name) or float(name))
     except RecursionError as exc:  # the decoder recurses once per nesting level
         raise CurveReconError(f"JSON in {path} is nested too deeply") from exc
     except json.JSONDecodeError as exc:
         raise CurveReconError(
             f"malformed JSON in {path}: {exc.msg} (line {exc.lineno} column {exc.colno})"
         ) from exc
+    if seen:  # only then walk the document: a large file is not walked twice
+        try:
+            where = _first_non_finite(data)
+        except RecursionError:
+            where = "a deeply nested value"
+        where = where if len(where) <= 80 else where[:77] + "..."
+        raise CurveReconError(f"non-finite number {seen[0]} in JSON at {where} ({path})")
+    return data
 
 
 def write_json(path: str | Path, data: Any) -> None:
@@ -157,14 +175,30 @@ def observations_from_dict(data: Any) -> Observations | RigidObservations:
     if not isinstance(motion, str) or motion not in MOTIONS:
         raise CurveReconError(f"unknown motion {json.dumps(motion)} (choose {', '.join(MOTIONS)})")
     times = _times(frames)
+    _require_projection_keys(data, projection)
     if projection == "stereo":
         return _stereo_observations(data, frames, motion, times)
+    for i, frame in enumerate(frames):
+        if "views" in frame:
+            raise CurveReconError(
+                f'frame {i}: "views" (two cameras) belong to projection "stereo" with "cameras"; '
+                f'this document\'s projection is "{projection}"'
+            )
     names = _further_points(frames)
     if projection == "orthographic" and motion == "free" and not names:
         if "motion" in data and frames and not _any_tangents_or_curve(frames):
             raise CurveReconError(motion_determined("free", 2, False) or "")
         return _paper_observations(data, frames)
     return _rigid_observations(data, frames, motion, times, names)
+
+
+def _require_projection_keys(data: dict, projection: str) -> None:
+    """Refuse ``"camera"`` or ``"cameras"`` under another projection (the usual slip: no
+    ``"projection"`` key, so the document reads as orthographic and the camera is unused)."""
+    for key, own in (("camera", "perspective"), ("cameras", "stereo")):
+        if key in data and projection != own:
+            hint = f'; add "projection": "{own}"' if "projection" not in data else ""
+            raise CurveReconError(f'"{key}" given with projection "{projection}"{hint}')
 
 
 def _paper_observations(data: dict, frames: list) -> Observations:
@@ -313,7 +347,7 @@ def _assemble(
     """The observations of camera 0's view ``first`` (and stereo camera 1's ``second``)."""
     cfg = _configuration(data, motion, ("A", "B", *names), first.tangents is not None)
     n = len(first.points)
-    warnings = list(first.warnings)
+    warnings = _camera_key_warnings(data) + list(first.warnings)
     view1 = None
     if second is not None:
         warnings += [f"camera 1: {w}" for w in second.warnings]
@@ -354,21 +388,63 @@ def _stereo_observations(
             or len(pair) != 2
             or not all(isinstance(v, dict) for v in pair)
         ):
+            top = ' (a stereo frame has no "A" of its own)' if "A" in frame else ""
             raise CurveReconError(
-                f'frame {i}: "views" must be a list of two objects (camera 0, camera 1)'
+                f'frame {i}: "views" must be a list of two objects (camera 0, camera 1){top}'
             )
         views[0].append(pair[0])
         views[1].append(pair[1])
     names = _further_points(views[0])
     if _further_points(views[1]) != names:
         raise CurveReconError("camera 1's views name other points than camera 0's")
-    first = _view_arrays(data, views[0], names)
-    second = _view_arrays(data, views[1], names)
+    first = _camera_view_arrays(data, views, names, 0)
+    second = _camera_view_arrays(data, views, names, 1)
     if (first.tangents is None) != (second.tangents is None):
         raise CurveReconError("tangents must be given in both cameras' views or in neither")
     if (first.curves is None) != (second.curves is None):
         raise CurveReconError("polylines must be given in both cameras' views or in neither")
-    return _assemble(data, motion, times, names, first, second)
+    obs = _assemble(data, motion, times, names, first, second)
+    _require_in_front(obs.configuration.rig, first.points, second.points, ("A", "B", *names))
+    return obs
+
+
+def _camera_view_arrays(data: dict, views: list[list[dict]], names: list[str], k: int) -> _View:
+    """Camera ``k``'s views of every frame (``_view_arrays``); an error names the camera."""
+    try:
+        return _view_arrays(data, views[k], names)
+    except CurveReconError as exc:
+        raise CurveReconError(f"camera {k}: {exc}") from exc
+
+
+def _require_in_front(rig: StereoRig, p0: np.ndarray, p1: np.ndarray, names: tuple) -> None:
+    """Refuse a stereo document whose traceable points triangulate behind a camera in most
+    frames (the usual cause: ``t`` or ``R`` of the other direction, camera 0's position instead
+    of X1 = R X0 + t, or the views' order swapped).  ``p0``, ``p1``: (N, P, 2) pixels.
+
+    Each point is the midpoint of the two rays' closest approach: depth d0 along camera 0's ray
+    m0, d1 along camera 1's ray m1 (in camera 0's coordinates), from d0 m0 - d1 R^T m1 = -R^T t
+    by least squares.  Rays within 1e-9 of parallel are left out (they show no depth)."""
+    r = np.asarray(rig.R, dtype=float)
+    t = np.asarray(rig.t, dtype=float)
+    m0 = rig.camera0.rays(p0)
+    m1 = np.einsum("ji,...j->...i", r, rig.camera1.rays(p1))  # R^T m1
+    rhs = -(r.T @ t)
+    a, b, c = (m0 * m0).sum(-1), -(m0 * m1).sum(-1), (m1 * m1).sum(-1)
+    u, v = (m0 @ rhs), -(m1 @ rhs)
+    det = a * c - b * b
+    ok = det > 1e-9 * a * c
+    d0 = np.where(ok, (c * u - b * v) / np.where(ok, det, 1.0), np.nan)
+    d1 = np.where(ok, (a * v - b * u) / np.where(ok, det, 1.0), np.nan)
+    behind = ok & ((d0 <= 0) | (d1 <= 0))
+    if ok.any() and behind.sum() * 2 > ok.sum():
+        f, k = np.argwhere(behind)[0]
+        raise CurveReconError(
+            f"stereo: the points triangulate behind the cameras ({int(behind.sum())} of "
+            f"{int(ok.sum())}; frame {f}'s {names[k]} at depth {d0[f, k]:.4g} in camera 0, "
+            f"{d1[f, k]:.4g} in camera 1): check that cameras[1] gives X1 = R X0 + t (camera 0's "
+            "coordinates to camera 1's, not camera 1's position) and that each frame's views are "
+            "[camera 0, camera 1]"
+        )
 
 
 def _configuration(data: dict, motion: str, names: tuple, tangents: bool) -> Configuration:
@@ -390,6 +466,29 @@ def _configuration(data: dict, motion: str, names: tuple, tangents: bool) -> Con
     return Configuration(projection, motion, names, tangents, camera, rig, length)
 
 
+CAMERA_KEYS = ("focal_px", "principal_point")
+"""A camera's keys (CONTRACT.md, "Configurations"); camera 1 of a stereo rig adds ``R``, ``t``."""
+
+
+def _camera_key_warnings(data: dict) -> list[str]:
+    """A warning naming keys of ``"camera"`` / ``"cameras"`` that are not read (fx, fy, K,
+    distortion, ...): the model is one focal length, a principal point and no distortion."""
+    cams = [("camera", data.get("camera"))]
+    if isinstance(data.get("cameras"), list):
+        cams = [(f"cameras[{i}]", c) for i, c in enumerate(data["cameras"])]
+    out = []
+    for where, cam in cams:
+        known = CAMERA_KEYS + (("R", "t") if where == "cameras[1]" else ())
+        extra = [k for k in cam if k not in known] if isinstance(cam, dict) else []
+        if extra:
+            out.append(
+                f"{where}: keys {', '.join(extra)} ignored (a camera is focal_px and "
+                "principal_point in pixels, square pixels, no lens distortion: undistort the "
+                "image points first)"
+            )
+    return out
+
+
 def _camera(value: Any, where: str) -> Camera:
     """A camera object ``{"focal_px": f, "principal_point": [cx, cy]}``."""
     if value is None:
@@ -398,9 +497,12 @@ def _camera(value: Any, where: str) -> Camera:
         )
     if not isinstance(value, dict):
         raise CurveReconError(f'"{where}" must be an object with focal_px and principal_point')
-    for key in ("focal_px", "principal_point"):
+    for key in CAMERA_KEYS:
         if key not in value:
-            raise CurveReconError(f'{where}: missing key "{key}"')
+            raise CurveReconError(
+                f'{where}: missing key "{key}" (a camera is {{"focal_px": f, '
+                '"principal_point": [cx, cy]}, in pixels)'
+            )
     f = value["focal_px"]
     if not isinstance(f, int | float) or isinstance(f, bool):
         raise CurveReconError(f"{where}: focal_px must be a number")
@@ -433,7 +535,22 @@ def _rig(value: Any) -> StereoRig:
         t = np.array(value[1]["t"], dtype=float)
     except (TypeError, ValueError) as exc:
         raise CurveReconError("cameras[1]: R and t must be arrays of numbers") from exc
-    return StereoRig(cam0, cam1, r, t)
+    return StereoRig(cam0, cam1, _nearest_rotation(r), t)
+
+
+ROTATION_ROUNDING = 1e-3
+"""Camera 1's ``R`` within this of a rotation (max |R R^T - I|) is taken as the nearest rotation:
+a calibration printed to 4 decimals is off by up to 1e-4.  Farther off, StereoRig refuses it."""
+
+
+def _nearest_rotation(r: np.ndarray) -> np.ndarray:
+    """``r`` replaced by the nearest rotation (SVD) when it is one up to rounding, else as given."""
+    if r.shape != (3, 3) or not np.all(np.isfinite(r)):
+        return r
+    if np.max(np.abs(r @ r.T - np.eye(3))) > ROTATION_ROUNDING or np.linalg.det(r) < 0:
+        return r
+    u, _, vt = np.linalg.svd(r)
+    return u @ vt
 
 
 @dataclass

@@ -353,8 +353,20 @@ def _draw_frustums(ax3, rec, obs) -> np.ndarray:
         ring = np.vstack([k, k[:1]])
         ax3.plot(*ring.T, color=colour, lw=0.8, alpha=alpha)
         ax3.plot(*np.column_stack([c, c + 0.6 * (k.mean(axis=0) - c)]), color="C0", lw=0.6)
+        if fr["frame"] == 0:
+            ax3.text(*c, f" {fr['label']}, frame 0", fontsize=6, color=colour)
         shown.append(np.vstack([c, k]))
+    for label, colour in _frustum_legend(obs):
+        ax3.plot([], [], color=colour, lw=0.8, label=label)
     return np.concatenate(shown)
+
+
+def _frustum_legend(obs) -> list[tuple[str, tuple]]:
+    """Legend entries of the frustums: (label, colour) per camera of the rig."""
+    fade = "frame 0 dark, later frames fainter" if obs.n_frames > 1 else "frame 0"
+    if obs.configuration.projection == "stereo":
+        return [(f"camera 0 ({fade})", (0.2, 0.2, 0.2)), ("camera 1", (0.6, 0.1, 0.5))]
+    return [(f"camera ({fade})", (0.2, 0.2, 0.2))]
 
 
 def _camera_3d_panel(ax3, rec, obs) -> None:
@@ -367,6 +379,8 @@ def _camera_3d_panel(ax3, rec, obs) -> None:
     if rec.points3:
         p = np.array(list(rec.points3[0].values()), dtype=float).reshape(-1, 3)
         ax3.scatter(*p.T, color="C3", s=12, label="points (frame 0)")
+        for name, x in zip(rec.points3[0], p, strict=False):
+            ax3.text(*x, f" {name}", fontsize=7, color="C3")
         shown.append(p)
     allp = np.concatenate(shown)
     allp = allp[np.all(np.isfinite(allp), axis=1)]
@@ -391,7 +405,25 @@ def _observed(obs, f: int, view: int):
     return curve, np.asarray(src.points[f], float)
 
 
+def _image_frame(ax, camera, data: list) -> None:
+    """The image's border (dashed; its size taken as twice the principal point, seen where the
+    curve comes near it) and limits on what is drawn (the fit is judged there), y down."""
+    w, h = (2.0 * float(v) for v in camera.principal_point)
+    ax.plot([0, w, w, 0, 0], [0, 0, h, h, 0], ls="--", lw=0.6, color="0.7")
+    pts = np.concatenate([np.asarray(d, float).reshape(-1, 2) for d in data])
+    pts = pts[np.all(np.isfinite(pts), axis=1)]
+    if len(pts):  # a square view about what is drawn: equal axes without matplotlib's warning
+        mid = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+        half = 0.54 * float(np.max(pts.max(axis=0) - pts.min(axis=0))) + 1.0
+        ax.set_xlim(mid[0] - half, mid[0] + half)
+        ax.set_ylim(mid[1] + half, mid[1] - half)
+    else:
+        ax.invert_yaxis()
+    ax.set_aspect("equal", adjustable="box")
+
+
 def _image_panel(ax, obs, f, view, label, drawn) -> None:
+    """Frame ``f`` as camera ``view`` saw it (the whole image) with the answer reprojected."""
     from curverecon.curve.polyline import distance_to_polyline
 
     poly, pts = _observed(obs, f, view)
@@ -407,8 +439,8 @@ def _image_panel(ax, obs, f, view, label, drawn) -> None:
             title += f"\n(median off {off:.2f} px)"
     if points is not None:
         ax.plot(*points.T, "o", mfc="none", color="C3", ms=6, label="reprojected points")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.invert_yaxis()
+    drawn_xy = [pts] + [d for d in (poly, curve, points) if d is not None]
+    _image_frame(ax, camera_views(obs)[view][1], drawn_xy)
     ax.set_title(title, fontsize=8)
     ax.tick_params(labelsize=6)
 

@@ -395,12 +395,12 @@ def _point_names(points: str) -> tuple[str, ...]:
     return names
 
 
-def _scene_times(times: np.ndarray | None, frames: int) -> np.ndarray:
+def _scene_times(times: np.ndarray | None, frames: int, least: int = 2) -> np.ndarray:
     from curverecon.errors import CurveReconError
 
     if times is None:
-        if frames < 2:
-            raise CurveReconError("a scene needs at least 2 frames")
+        if frames < least:
+            raise CurveReconError(f"a scene needs at least {least} frames")
         return np.arange(float(frames))
     t = np.asarray(times, dtype=float)
     if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
@@ -492,7 +492,7 @@ def _scene_motion(
                 m = Rotation.random(random_state=rng).as_matrix()
                 if _frame_ok(m, body, tangents):
                     rots.append(m)
-            if _shows_depth(np.array(rots), body):
+            if len(rots) == 1 or _shows_depth(np.array(rots), body):  # one frame: stereo
                 return np.array(rots), None, {}
             continue
         r0 = Rotation.random(random_state=rng).as_matrix()
@@ -740,7 +740,8 @@ def simulate_camera_configuration(
     if not (np.isfinite(distance) and distance > 0):
         raise CurveReconError("the distance must be a positive number")
     names = _point_names(points)
-    t = _scene_times(times, frames)
+    single = projection == "stereo" and motion in ("free", "rotation-free")  # one frame shows it
+    t = _scene_times(times, frames, least=1 if single else 2)
     rng = np.random.default_rng(seed)
     curve = bezier_curve(random_curve(rng, chord)) if family == "bezier" else None
     if curve is None:

@@ -169,3 +169,24 @@ def test_command_draws_the_camera_figure(tmp_path, monkeypatch):
     )
     assert seen == ["stereo"]
     assert png.read_bytes()[:8] == PNG_MAGIC
+
+
+@pytest.mark.parametrize("projection", ["perspective", "stereo"])
+def test_3d_panel_names_the_points_and_frame_0s_cameras(projection):
+    """The 3-D panel labels A and B at the construction's frame-0 positions and each of frame
+    0's cameras at its centre (camera 1's at C1 = -R^T t, the construction's RIG_C1)."""
+    from matplotlib.figure import Figure
+
+    from curverecon.plot import _camera_3d_panel
+
+    rec, obs, moved, _ = _scene(projection, 3)
+    ax = Figure().add_subplot(projection="3d")
+    _camera_3d_panel(ax, rec, obs)
+    texts = {t.get_text().strip(): np.array(t.get_position_3d(), float) for t in ax.texts}
+    np.testing.assert_allclose(texts["A"], moved[0, 0], atol=1e-12)
+    np.testing.assert_allclose(texts["B"], moved[0, -1], atol=1e-12)
+    if projection == "stereo":
+        np.testing.assert_allclose(texts["camera 0, frame 0"], np.zeros(3), atol=1e-12)
+        np.testing.assert_allclose(texts["camera 1, frame 0"], RIG_C1, atol=1e-12)
+    else:
+        np.testing.assert_allclose(texts["camera, frame 0"], np.zeros(3), atol=1e-12)

@@ -159,9 +159,10 @@ def motion_determined(
     if projection != "orthographic":
         if motion == "auto" or pinhole_min_frames(projection, motion, n_points, tangents):
             return None
-        need = {"free": "four points (A, B, C, D)", "fixed-axis": "a third point (C)"}.get(
-            motion, "more points"
-        )
+        need = {
+            "free": 'four points (A, B, C, D), or a polyline ("curve") in every frame',
+            "fixed-axis": "a third point (C)",
+        }.get(motion, "more points")
         return (
             f"motion {motion} under {projection} projection with {n_points} points"
             f"{' and tangents' if tangents else ''} is not determined (every frame adds as many "

@@ -116,7 +116,8 @@ def pinhole_answer(
     rot = frame_rotations(layout, full, data.times)[0]
     poses = frame_poses(rot, p3)
     warnings = list(obs.warnings)
-    if layout.projection == "stereo" and len(layout.points) == 2 and layout.free_rotations:
+    turns = layout.free_rotations and data.n_frames > 1  # frame 0's pose is the identity
+    if layout.projection == "stereo" and len(layout.points) == 2 and turns:
         warnings.append(
             "A and B alone: each frame's turn about the chord AB is not determined (the frame "
             "poses keep one; the points are determined)"
