@@ -43,6 +43,7 @@ from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ReconstructOptions
 from curverecon.rigid.answer import (
     chord_std,
+    misfit_warning,
     motion_parameters,
     paper_answer,
     points3_dicts,
@@ -116,6 +117,7 @@ def answer(
     shape, poses = paper_answer(layout, full, data.times, tangents3)
     std = np.array([chord_std(layout, state, fit.covariance), np.nan, np.nan, np.nan])
     warnings += undetermined_warning(float(shape[0]), float(std[0]))
+    warnings += misfit_warning(layout, float(fit.chi2), len(idx))
     mp = motion_parameters(layout, replace(fit, state=state), sub)
     if "angle_deg" in mp:
         mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()

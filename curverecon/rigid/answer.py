@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.stats import chi2 as chi2_dist
 
 from curverecon.model.pose import normalise as normalise_pose
 from curverecon.rigid.measurements import RigidData
@@ -149,4 +150,27 @@ def undetermined_warning(c: float, c_std: float) -> list[str]:
     return [
         f"c = {c:.4g} with std {c_std:.3g}: these frames hardly determine the body (std above "
         f"{UNDETERMINED_FRACTION:.0%} of c): more frames, a further point or tangents would help"
+    ]
+
+
+MISFIT_FALSE_ALARM = 1e-6
+"""A fit whose chi2 on its inlier frames is this improbable under the stated point noise carries a
+warning (one false alarm in a million right answers)."""
+
+
+def misfit_warning(layout: Layout, chi2: float, n_frames: int) -> list[str]:
+    """A one-line warning when the inlier frames' chi2 (in units of the stated noise) is far above
+    what the noise explains: the points are noisier than ``point_sigma`` says (the std are then too
+    small by about sqrt(chi2 / dof)), or the model does not match the images (a wrong camera, rig,
+    time stamps or motion).  Nothing otherwise, or when the fit has no degrees of freedom."""
+    # with two points and no tangents a free rotation's turn about the chord AB is not observed:
+    # that local costs no degree of freedom
+    unseen = 1 if layout.free_rotations and len(layout.points) == 2 and not layout.tangents else 0
+    dof = n_frames * (layout.n_measurements - layout.n_local + unseen) - layout.n_global
+    if dof < 1 or not np.isfinite(chi2) or chi2_dist.sf(chi2, dof) >= MISFIT_FALSE_ALARM:
+        return []
+    return [
+        f"chi2 {chi2:.4g} on {dof} degrees of freedom: the images disagree with the model by "
+        f"{math.sqrt(chi2 / dof):.2g} times the stated point noise (noisier points than "
+        "--point-sigma says, or a wrong camera, rig, time stamps or motion); the std are too small"
     ]

@@ -22,6 +22,7 @@ from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ReconstructOptions
 from curverecon.rigid.answer import (
     chord_std,
+    misfit_warning,
     motion_parameters,
     paper_answer,
     undetermined_warning,
@@ -130,6 +131,7 @@ def pinhole_answer(
     paper_poses[:, 3:5] *= scale
     std = np.array([chord_std(layout, state, fit.covariance) * scale, np.nan, np.nan, np.nan])
     warnings += undetermined_warning(float(shape[0]), float(std[0]))
+    warnings += misfit_warning(layout, float(fit.chi2), len(idx))
     mp = _motion(layout, replace(fit, state=state), data.subset(idx), scale)
     if "angle_deg" in mp:
         mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()
