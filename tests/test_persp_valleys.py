@@ -79,9 +79,8 @@ def test_free_four_points_leave_the_depth_reversed_valley_for_the_lower_one():
     """Free motion, A, B, C, D, 20 frames at 1 px (bench seed 7, accuracy scene 16): the
     starts' fit stopped in the depth-reversed valley, 18 above the fit started at the
     construction's truth in chi2 (6 of its 9 body coordinates beyond three of their stds).  Its
-    depth reversal
-    refitted is the lower valley: the answer, with the truth-started fit's chi2, c within 5 % and
-    within three of its std."""
+    depth reversal refitted is the lower valley: the answer, with the truth-started fit's chi2,
+    c within 5 % and within three of its std."""
     from curverecon.rigid.model import Layout
     from curverecon.rigid.refinement import refine
 
