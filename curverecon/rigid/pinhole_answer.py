@@ -18,7 +18,7 @@ import numpy as np
 
 from curverecon.errors import CurveReconError
 from curverecon.model.configuration import RigidObservations
-from curverecon.model.reconstruction import Reconstruction
+from curverecon.model.reconstruction import Alternative, Reconstruction, alternatives_warning
 from curverecon.options import ReconstructOptions
 from curverecon.rigid.answer import (
     chord_std,
@@ -37,6 +37,7 @@ from curverecon.rigid.model import (
     tangent_vectors,
     with_frames,
 )
+from curverecon.rigid.pinhole_search import answer_valleys, widened_covariance
 from curverecon.rigid.refinement import RigidFit
 
 CURVE_MISSING = "curve stage under perspective not available"
@@ -98,6 +99,17 @@ def _motion(layout: Layout, fit: RigidFit, data: RigidData, scale: float) -> dic
     return mp
 
 
+def valley(obs: RigidObservations, layout: Layout, fit: RigidFit, times) -> Alternative:
+    """Another valley's fit (on the inlier frames) as an alternative in the answer's units."""
+    state = normalise(layout, fit.state, times)
+    scale = answer_scale(obs, points3(layout, state, times))
+    shape, poses = paper_answer(layout, state, times, None)
+    shape[0] *= scale
+    poses[:, 3:5] *= scale
+    std = np.array([chord_std(layout, state, fit.covariance) * scale, np.nan, np.nan, np.nan])
+    return Alternative(shape=shape, poses=poses, chi2=float(fit.chi2), std=std)
+
+
 def pinhole_answer(
     obs: RigidObservations,
     layout: Layout,
@@ -109,6 +121,7 @@ def pinhole_answer(
     """The Reconstruction of a fitted pinhole row (every frame; outlier frames with their last
     parameters)."""
     idx = np.flatnonzero(inliers)
+    fit, others = answer_valleys(layout, data, fit, idx)
     full = normalise(layout, fit.full_state or fit.state, data.times)
     state = with_frames(full, idx)
     p3 = points3(layout, full, data.times)
@@ -129,9 +142,13 @@ def pinhole_answer(
     shape, paper_poses = paper_answer(layout, full, data.times, tangents3)
     shape[0] *= scale
     paper_poses[:, 3:5] *= scale
-    std = np.array([chord_std(layout, state, fit.covariance) * scale, np.nan, np.nan, np.nan])
+    cov = widened_covariance(fit, others)  # reaches every valley that fits about as well
+    std = np.array([chord_std(layout, state, cov) * scale, np.nan, np.nan, np.nan])
     warnings += undetermined_warning(float(shape[0]), float(std[0]))
     warnings += misfit_warning(layout, float(fit.chi2), len(idx))
+    alternatives = [valley(obs, layout, alt, data.times[idx]) for alt in others]
+    if alternatives:
+        warnings.append(alternatives_warning(shape, std, alternatives))
     mp = _motion(layout, replace(fit, state=state), data.subset(idx), scale)
     if "angle_deg" in mp:
         mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()
@@ -146,6 +163,7 @@ def pinhole_answer(
         std=std,
         inliers=inliers,
         warnings=warnings,
+        alternatives=alternatives,
         method="auto",
         chi2=float(fit.chi2),
         frame_chi2=frame_chi2,
