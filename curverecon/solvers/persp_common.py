@@ -21,10 +21,8 @@ from curverecon.solvers.ortho_common import check_input
 from curverecon.solvers.rigid_solutions import RigidSolutions
 
 CHART = np.array(gen.CHART_ROTATION, dtype=float)
-"""G: rays are solved as G m (an exact rational rotation)."""
-SECOND_CHART = np.array([[0.0, 0.0, 1.0], [-0.6, -0.8, 0.0], [0.8, -0.6, 0.0]])
-"""A second chart rotation: its e3 direction (0.8, -0.6, 0) is perpendicular to CHART's, so an
-axis near the boundary n3 = 0 of one chart is well inside the other's."""
+"""G: rays are solved as G m (an exact rational rotation; the fixed-axis solver turns them by a
+complex rotation of its own)."""
 REAL_TOLERANCE = 1e-6
 """Largest |imaginary part| / (1 + |value|) of a tracked solution taken as real (endpoints are
 polished to about 1e-12; complex pairs of real data sit far above)."""
