@@ -1048,8 +1048,9 @@ SOLVERS = {
     "rotation_free": "closed form: one 3 x 3 linear solve (`persp_rotation_free.py`)",
     "uniform_rotation": "parameter homotopy, 26 paths (`persp_uniform_rotation.py`); equally "
     "spaced times",
-    "fixed_axis_3pt": "parameter homotopy, 84 paths, three solves merged (each frame the "
-    "reference once) (`persp_fixed_axis_3pt.py`)",
+    "fixed_axis_3pt": "parameter homotopy, 84 paths, one solve in a chart with no real motion "
+    "at infinity: mu_f = m_f / (1 + zeta_f m_f), zeta_f not real (a half turn is finite), the "
+    "rays turned by a complex rotation (`persp_fixed_axis_3pt.py`)",
     "free_4pt": "none practical: overdetermined by one; the square relaxation has 1,280 "
     "solutions (`persp_free_4pt.py` says why)",
     "force_field": "none practical: 33 quadrics in 33 unknowns (`persp_force_field.py` says why)",

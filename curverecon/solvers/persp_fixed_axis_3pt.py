@@ -122,13 +122,18 @@ def _motion_of(row: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
     return u / norm, np.array(angles)
 
 
-def _unit_normals(q: np.ndarray) -> np.ndarray:
+def _unit_normals(q: np.ndarray, start: np.ndarray) -> np.ndarray:
     """The parameters with every plane normal (after frame 0's three rays) scaled to unit
-    length: each equation is homogeneous in its normal, so the solutions stay, and the start
-    parameters' normals have unit length too (paths are shorter)."""
+    length and its sign turned towards the start parameters' normal (Re(N . conj(N_start))
+    >= 0): each equation is homogeneous in its normal, so the solutions stay, and the straight
+    path from the start does not pass near a zero normal.  Bench scenes (seed 3, 20): 40 steps
+    a path (median) against 51 with the normals' signs as they come."""
     out = q.copy()
     normals = out[9:].reshape(-1, 3)
-    out[9:] = (normals / np.linalg.norm(normals, axis=1, keepdims=True)).reshape(-1)
+    normals = normals / np.linalg.norm(normals, axis=1, keepdims=True)
+    flip = np.sum(normals * np.conj(start[9 : q.size].reshape(-1, 3)), axis=1).real < 0
+    normals[flip] *= -1
+    out[9:] = normals.reshape(-1)
     return out
 
 
@@ -146,8 +151,9 @@ def solve(points: np.ndarray, times: np.ndarray, camera: Camera) -> RigidSolutio
     (degrees in [-180, 180)).  One homotopy solve of the 84 paths in the complex chart."""
     m, _ = rays_of(points, times, camera, FRAMES, POINTS, ROW)
     pairs = ((0, 1), (0, 2), (1, 2))
-    target = np.concatenate([_unit_normals(homotopy_parameters(m, pairs, COMPLEX_CHART)), ZETAS])
     system = _system()
+    q = _unit_normals(homotopy_parameters(m, pairs, COMPLEX_CHART), system.start_parameters)
+    target = np.concatenate([q, ZETAS])
     tracked = homotopy.track(system, target)
     x = tracked.solutions
     finite = x[np.all(np.isfinite(x), axis=1)]
