@@ -176,32 +176,32 @@ ZETAS = np.asarray(system_module.START_PARAMETERS[-(FRAMES - 1) :], dtype=np.com
 """The angle chart zeta_f (mu_f = m_f / (1 + zeta_f m_f)), held at its start values."""
 
 
-def _real_direction(v: np.ndarray) -> tuple[np.ndarray, complex, float]:
-    """(u, scale, imaginary part): v = scale * u with u real up to the returned largest
-    |imaginary part| (u = v / its largest component, so |u| <= 1)."""
-    j = int(np.argmax(np.abs(v)))
-    u = v / v[j]
-    return u.real, v[j], float(np.max(np.abs(u.imag)))
+def _real_rows(v: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """For each row of ``v`` (k, n): (u, scale, imaginary part) with v = scale * u and u real up
+    to that largest |imaginary part| (u = the row / its largest component, so |u| <= 1)."""
+    j = np.argmax(np.abs(v), axis=1)
+    scale = v[np.arange(v.shape[0]), j]
+    u = v / scale[:, None]
+    return u.real, scale, np.max(np.abs(u.imag), axis=1)
 
 
-def _motion_of(row: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """(unit axis in the camera's frame, angles in radians per frame, 0 first) of an endpoint
-    (b0, c0, n1, n2, m1, m2) when it is real up to REAL_TOLERANCE, else None.  k_f = mu_f n
-    with n = G^T (n1, n2, 1) = lam a (a real unit) and mu_f = s_f / c_f, (s_f, c_f) =
-    (m_f, 1 + zeta_f m_f): tan(theta_f / 2) = s_f lam / c_f, read from the pair (s_f lam,
-    c_f), which is real up to a complex factor (a half turn: c_f = 0)."""
-    u, vj, im = _real_direction(COMPLEX_CHART.T @ np.array([row[2], row[3], 1.0]))
-    if im > REAL_TOLERANCE:
-        return None
-    norm = np.linalg.norm(u)
-    lam = vj * norm  # n = lam * (u / norm)
-    angles = [0.0]
-    for m, zeta in zip(row[4:], ZETAS, strict=True):
-        pair, _, im = _real_direction(np.array([m * lam, 1.0 + zeta * m]))
-        if im > REAL_TOLERANCE:
-            return None
-        angles.append(2.0 * np.arctan2(pair[0], pair[1]))
-    return u / norm, np.array(angles)
+def _motions(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(real?, unit axes (k, 3) in the camera's frame, angles (k, F) in radians, 0 first) of
+    endpoints (b0, c0, n1, n2, m1, m2) (k, 6); real means real up to REAL_TOLERANCE.
+    k_f = mu_f n with n = G^T (n1, n2, 1) = lam a (a real unit) and mu_f = s_f / c_f,
+    (s_f, c_f) = (m_f, 1 + zeta_f m_f): tan(theta_f / 2) = s_f lam / c_f, read from the pair
+    (s_f lam, c_f), which is real up to a complex factor (a half turn: c_f = 0)."""
+    chart = np.column_stack([rows[:, 2], rows[:, 3], np.ones(len(rows))])
+    u, scale, imag = _real_rows(chart @ COMPLEX_CHART)  # rows of (G^T n)^T
+    norm = np.linalg.norm(u, axis=1)
+    lam = scale * norm  # n = lam * (u / norm)
+    angles = np.zeros((len(rows), FRAMES))
+    for f in range(1, FRAMES):
+        m = rows[:, 3 + f]
+        pair, _, pair_imag = _real_rows(np.column_stack([m * lam, 1.0 + ZETAS[f - 1] * m]))
+        imag = np.maximum(imag, pair_imag)
+        angles[:, f] = 2.0 * np.arctan2(pair[:, 0], pair[:, 1])
+    return imag <= REAL_TOLERANCE, u / norm[:, None], angles
 
 
 def _unit_normals(q: np.ndarray, start: np.ndarray) -> np.ndarray:
@@ -219,10 +219,14 @@ def _unit_normals(q: np.ndarray, start: np.ndarray) -> np.ndarray:
     return out
 
 
-def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    """Rot(axis, angle) (Rodrigues; ``axis`` a unit vector)."""
-    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
-    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
+def _rotations(axes: np.ndarray, angles: np.ndarray) -> np.ndarray:
+    """Rot(axis, angle) (Rodrigues) for unit ``axes`` (k, 3) and ``angles`` (k, F): (k, F, 3,
+    3)."""
+    k = np.zeros((len(axes), 3, 3))
+    k[:, 0, 1], k[:, 0, 2], k[:, 1, 2] = -axes[:, 2], axes[:, 1], -axes[:, 0]
+    k = k - k.transpose(0, 2, 1)
+    sin, cos = np.sin(angles)[..., None, None], np.cos(angles)[..., None, None]
+    return np.eye(3) + sin * k[:, None] + (1 - cos) * (k @ k)[:, None]
 
 
 def solve(points: np.ndarray, times: np.ndarray, camera: Camera) -> RigidSolutions:
@@ -243,21 +247,18 @@ def solve(points: np.ndarray, times: np.ndarray, camera: Camera) -> RigidSolutio
         np.abs(finite[:, :2].imag) <= REAL_TOLERANCE * (1 + np.abs(finite[:, :2])), axis=1
     )
     candidates = system.polish(finite[depths_real], target, 4)
-    points3, rotations, motion = [], [], []
-    for row in candidates:
-        found = _motion_of(row)
-        if found is None:
-            continue
-        axis, angles = found
-        sign = 1.0 if (np.degrees(angles[1]) + 180) % 360 - 180 >= 0 else -1.0
-        rots = np.array([_rotation(axis, a) for a in angles])
+    real, axes, angles = _motions(candidates)
+    rows, axes, angles = candidates[real], axes[real], angles[real]
+    signs = np.where((np.degrees(angles[:, 1]) + 180) % 360 - 180 >= 0, 1.0, -1.0)
+    rotations = _rotations(axes, angles)
+    points3, motion = [], []
+    for row, rots, sign, axis, theta in zip(rows, rotations, signs, axes, angles, strict=True):
         diffs = np.array([row[0].real * m[0, 1] - m[0, 0], row[1].real * m[0, 2] - m[0, 0]])
         points3.append(place(m, rots, diffs))
-        rotations.append(rots)
-        wrapped = [float(sign * ((np.degrees(a) + 180) % 360 - 180)) for a in angles]
-        motion.append({"axis": (sign * axis).tolist(), "angle_deg": wrapped})
+        wrapped = sign * ((np.degrees(theta) + 180) % 360 - 180)
+        motion.append({"axis": (sign * axis).tolist(), "angle_deg": wrapped.tolist()})
     n_paths = int(x.shape[0])
     n_complex = len(finite) - len(points3)
     return make_solutions(
-        points3, rotations, motion, n_paths, n_complex, tracked.n_failed, (FRAMES, len(POINTS))
+        points3, list(rotations), motion, n_paths, n_complex, tracked.n_failed, (FRAMES, 3)
     )
