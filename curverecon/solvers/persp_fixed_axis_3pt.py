@@ -15,9 +15,10 @@ scene's truth is on.  No closed form was found, so the 84 are tracked to the fra
 which no real motion is at infinity (``generated/persp_fixed_axis_system.py``): the Cayley
 parameter as mu_f = m_f / (1 + zeta_f m_f) with a non-real zeta_f (a half turn is a finite
 m_f), the rays turned by a complex rotation (``COMPLEX_CHART``: the axis chart
-n = (n1, n2, 1) then misses one real direction only), and start parameters near a real scene
-(short paths).  Before, three solves in the real Cayley chart were merged (each frame the
-reference once, for the half turns): 0.12 s of CPU a solve against 0.015 s now.
+n = (n1, n2, 1) then misses one real direction only), from the start nearest the scene among
+start parameters near real scenes (``_starts``: short paths).  Before, three solves in the real
+Cayley chart were merged (each frame the reference once, for the half turns): 0.12 s of CPU a
+solve against 0.013 s now (docs/accuracy.md).
 """
 
 from __future__ import annotations
