@@ -274,15 +274,20 @@ def _starts() -> tuple[tuple[np.ndarray, np.ndarray], ...]:
 
 def _nearest_start(q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(start parameters, start solutions, target) for the rays' parameters ``q`` (without
-    the angle chart): the start nearest to q with its normals signed towards that start's."""
-    best = None
-    for q0, x0 in _starts():
-        target = np.concatenate([_unit_normals(q, q0), ZETAS])
-        dist = np.linalg.norm(target - q0)
-        if best is None or dist < best[0]:
-            best = (dist, q0, x0, target)
-    assert best is not None
-    return best[1], best[2], best[3]
+    the angle chart): the start nearest to q with its normals signed towards that start's
+    (``_unit_normals``, for every start at once)."""
+    starts = _starts()
+    q0s = np.array([q0 for q0, _ in starts])  # (K, parameters)
+    normals = q[9:].reshape(-1, 3)
+    normals = normals / np.linalg.norm(normals, axis=1, keepdims=True)
+    toward = q0s[:, 9 : q.size].reshape(len(starts), -1, 3)
+    sign = np.where(np.einsum("nc,knc->kn", normals, np.conj(toward)).real < 0, -1.0, 1.0)
+    signed = sign[..., None] * normals  # (K, normals, 3)
+    dist = np.linalg.norm(signed - toward, axis=(1, 2)) ** 2
+    dist += np.linalg.norm(q[:9] - q0s[:, :9], axis=1) ** 2  # the angle chart is the same
+    best = int(np.argmin(dist))
+    target = np.concatenate([q[:9], signed[best].reshape(-1), ZETAS])
+    return starts[best][0], starts[best][1], target
 
 
 def solve(points: np.ndarray, times: np.ndarray, camera: Camera) -> RigidSolutions:
