@@ -39,7 +39,6 @@ from curverecon.solvers.persp_common import (
     REAL_TOLERANCE,
     cayley,
     homotopy_parameters,
-    place,
     rays_of,
 )
 from curverecon.solvers.persp_common import solutions as make_solutions
@@ -290,6 +289,26 @@ def _nearest_start(q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return starts[best][0], starts[best][1], target
 
 
+def _place_all(m: np.ndarray, rotations: np.ndarray, depths: np.ndarray) -> np.ndarray:
+    """``persp_common.place`` for k solutions at once: every point in every frame (k, F, 3, 3)
+    from the rays ``m`` (F, 3, 3), the rotations (k, F, 3, 3) and frame 0's depths of B and C
+    (k, 2); A's depth in frame f from the moved difference B - A (least squares of the three
+    components, ``depths_from_difference``)."""
+    diffs = depths[:, :, None] * m[0, 1:][None] - m[0, 0]  # (k, 2, 3): B_0 - A_0, C_0 - A_0
+    out = np.empty((len(depths), FRAMES, 3, 3))
+    out[:, 0, 0] = m[0, 0]
+    out[:, 0, 1:] = m[0, 0] + diffs
+    for f in range(1, FRAMES):
+        moved = np.einsum("kij,kpj->kpi", rotations[:, f], diffs)
+        ma, mb = m[f, 0], m[f, 1]
+        aa, ab, bb = ma @ ma, ma @ mb, mb @ mb
+        da, db = moved[:, 0] @ ma, moved[:, 0] @ mb
+        lam_a = (ab * db - bb * da) / (aa * bb - ab * ab)
+        out[:, f, 0] = lam_a[:, None] * ma
+        out[:, f, 1:] = out[:, f, :1] + moved
+    return out
+
+
 def solve(points: np.ndarray, times: np.ndarray, camera: Camera) -> RigidSolutions:
     """Every real solution of three frames of A, B, C in pixels (``points`` (3, 3, 2),
     ``times`` (3,) increasing): ``points3`` in camera coordinates (A's depth in frame 0 = 1),
@@ -311,14 +330,12 @@ def solve(points: np.ndarray, times: np.ndarray, camera: Camera) -> RigidSolutio
     rows, axes, angles = candidates[real], axes[real], angles[real]
     signs = np.where((np.degrees(angles[:, 1]) + 180) % 360 - 180 >= 0, 1.0, -1.0)
     rotations = _rotations(axes, angles)
-    points3, motion = [], []
-    for row, rots, sign, axis, theta in zip(rows, rotations, signs, axes, angles, strict=True):
-        diffs = np.array([row[0].real * m[0, 1] - m[0, 0], row[1].real * m[0, 2] - m[0, 0]])
-        points3.append(place(m, rots, diffs))
-        wrapped = sign * ((np.degrees(theta) + 180) % 360 - 180)
-        motion.append({"axis": (sign * axis).tolist(), "angle_deg": wrapped.tolist()})
+    points3 = _place_all(m, rotations, rows[:, :2].real)
+    wrapped = signs[:, None] * ((np.degrees(angles) + 180) % 360 - 180)
+    motion = [{"axis": (sign * axis).tolist(), "angle_deg": theta.tolist()}
+              for sign, axis, theta in zip(signs, axes, wrapped, strict=True)]  # fmt: skip
     n_paths = int(x.shape[0])
     n_complex = len(finite) - len(points3)
     return make_solutions(
-        points3, list(rotations), motion, n_paths, n_complex, tracked.n_failed, (FRAMES, 3)
+        list(points3), list(rotations), motion, n_paths, n_complex, tracked.n_failed, (FRAMES, 3)
     )
