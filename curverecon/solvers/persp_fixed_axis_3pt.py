@@ -18,7 +18,7 @@ m_f), the rays turned by a complex rotation (``COMPLEX_CHART``: the axis chart
 n = (n1, n2, 1) then misses one real direction only), from the start nearest the scene among
 start parameters near real scenes (``_starts``: short paths).  Before, three solves in the real
 Cayley chart were merged (each frame the reference once, for the half turns): 0.12 s of CPU a
-solve against 0.013 s now (docs/accuracy.md).
+solve against 0.011 s now (docs/accuracy.md).
 """
 
 from __future__ import annotations
