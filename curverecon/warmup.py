@@ -69,6 +69,13 @@ TABLE_TRACKER = frozenset(
 """The homotopy tracker's table-driven kernels: they serve polynomial systems without generated
 kernels (tests, derivations), never a reconstruction, so the warm-up leaves them alone."""
 
+UNCALLED = frozenset(
+    f"curverecon.generated.persp_fixed_axis_kernel.{name}"
+    for name in ("coefficients_t", "coefficient_rates")
+)
+"""Generated kernels no solver calls: the fixed-axis solver tracks W(q(t)) as a polynomial in t
+(``persp_fixed_axis_3pt._track_kernels``), not by way of dW/dt along dq."""
+
 
 def cached_kernels() -> dict[str, Any]:
     """``module.name`` -> numba dispatcher, for every kernel with an on-disk cache."""
@@ -99,7 +106,7 @@ def not_compiled(perspective: bool = False) -> list[str]:
 
 def _warmed(name: str, perspective: bool) -> bool:
     """Whether the warm-up compiles kernel ``module.name`` (with ``--perspective`` or not)."""
-    if name in TABLE_TRACKER:
+    if name in TABLE_TRACKER or name in UNCALLED:
         return False
     return perspective or not name.startswith(tuple(m + "." for m in PERSPECTIVE_MODULES))
 

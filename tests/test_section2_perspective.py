@@ -81,6 +81,37 @@ def test_uniform_rotation_motion_parameters() -> None:
     assert np.allclose(rot @ d0, d1, atol=1e-7)
 
 
+@pytest.mark.parametrize("frames_turned", ((0, 1), (1, 2), (0, 2)))
+def test_fixed_axis_half_turn_between_two_frames(frames_turned: tuple[int, int]) -> None:
+    """A half turn between two frames (the real Cayley chart's infinity, where one solve in it
+    missed the truth) is a finite point of the solver's chart: the truth is listed, with the
+    constructed axis and angles.  The 3-D construction: three body points, one axis, the
+    angles chosen so that frames ``frames_turned`` are 180 degrees apart, projected."""
+    from bench.config_minimal import random_rotation, rotation
+
+    solver = _solver("persp_fixed_axis_3pt")
+    rng = np.random.default_rng(41)
+    for _ in range(3):
+        body = rng.normal(size=(3, 3)) * 0.3
+        axis = random_rotation(rng)[:, 0]
+        angles = np.concatenate([[0.0], rng.uniform(-np.pi, np.pi, 2)])
+        i, j = frames_turned
+        angles[j] = angles[i] + np.pi
+        angles -= angles[0]
+        x3 = np.array([body @ rotation(axis, a).T + [0.0, 0.0, 2.0] + rng.normal(size=3) * 0.2
+                       for a in angles])  # fmt: skip
+        s = {"points": CAMERA.project(x3), "points3": x3 / x3[0, 0, 2]}
+        sol = solver.solve(s["points"], np.arange(3.0), CAMERA)
+        assert truth_listed(sol, s)
+        err = np.abs(sol.points3 - s["points3"][None]).reshape(sol.n_solutions, -1).max(axis=1)
+        motion = sol.motion[int(np.argmin(err))]
+        got = np.array(motion["axis"])
+        sign = np.sign(got @ axis)
+        assert np.allclose(got, sign * axis, atol=1e-7)
+        turned = np.radians(motion["angle_deg"][j] - motion["angle_deg"][i])
+        assert abs(np.cos(turned) + 1.0) < 1e-10
+
+
 def test_rotation_free_degenerates_at_a_large_distance() -> None:
     """Pushed away, the rays of a body of size s at distance d differ by about s/d, and the
     rotation-free system's determinant falls like (s/d)^2: the orthographic twin leaves the

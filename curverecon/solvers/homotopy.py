@@ -890,6 +890,53 @@ def track_generated(
 
 
 @numba.njit(**_JIT)
+def track_workspace(
+    coefficients,
+    coefficients_t,
+    coefficient_rates,
+    residual_jacobian,
+    residual_jacobian_t,
+    solve_pair,
+    w,
+    wt,
+    q0,
+    q1,
+    d,
+    x_start,
+    opts,
+    plan,
+    x_end,
+    status,
+    steps,
+    t_end,
+):
+    """``track_generated`` on the caller's coefficient workspaces ``w`` and ``wt``, for kernels
+    that keep data of their own beyond W's entries (``persp_fixed_axis_3pt``: W as a polynomial
+    in t, its coefficients after the entries)."""
+    _track_core(
+        coefficients,
+        coefficients_t,
+        coefficient_rates,
+        residual_jacobian,
+        residual_jacobian_t,
+        solve_pair,
+        w,
+        wt,
+        x_start.shape[1],
+        q0,
+        q1,
+        d,
+        x_start,
+        opts,
+        plan,
+        x_end,
+        status,
+        steps,
+        t_end,
+    )
+
+
+@numba.njit(**_JIT)
 def _track_core(
     coefficients,
     coefficients_t,

@@ -21,10 +21,8 @@ from curverecon.solvers.ortho_common import check_input
 from curverecon.solvers.rigid_solutions import RigidSolutions
 
 CHART = np.array(gen.CHART_ROTATION, dtype=float)
-"""G: rays are solved as G m (an exact rational rotation)."""
-SECOND_CHART = np.array([[0.0, 0.0, 1.0], [-0.6, -0.8, 0.0], [0.8, -0.6, 0.0]])
-"""A second chart rotation: its e3 direction (0.8, -0.6, 0) is perpendicular to CHART's, so an
-axis near the boundary n3 = 0 of one chart is well inside the other's."""
+"""G: rays are solved as G m (an exact rational rotation; the fixed-axis solver turns them by a
+complex rotation of its own)."""
 REAL_TOLERANCE = 1e-6
 """Largest |imaginary part| / (1 + |value|) of a tracked solution taken as real (endpoints are
 polished to about 1e-12; complex pairs of real data sit far above)."""
@@ -48,10 +46,17 @@ def homotopy_parameters(
     then per later frame the plane normals G m_P x G m_Q of ``pairs`` (indices into the
     points)."""
     turned = rays @ chart.T
-    out = [turned[0].reshape(-1)]
-    for f in range(1, rays.shape[0]):
-        out += [np.cross(turned[f, i], turned[f, j]) for i, j in pairs]
-    return np.concatenate(out)
+    first, second = zip(*pairs, strict=True)
+    a, b = turned[1:, list(first)], turned[1:, list(second)]  # (F - 1, pairs, 3)
+    normals = np.stack(
+        [
+            a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
+            a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
+            a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0],
+        ],
+        axis=-1,
+    )  # the cross products, written out (numpy's cross took 20 us a call)
+    return np.concatenate([turned[0].reshape(-1), normals.reshape(-1)])
 
 
 def cayley(k: np.ndarray) -> np.ndarray:
