@@ -34,6 +34,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from curverecon.curve.polyline import arc_length, as_polyline, noise_level
+from curverecon.curve.stereo_smooth import smooth_curve
 from curverecon.curve.stereo_turn import best_turn, turned_pose
 from curverecon.errors import CurveReconError
 from curverecon.solvers.camera import Camera, StereoRig
@@ -477,7 +478,7 @@ def _fused_frames(frames, poses: np.ndarray):
     stds = [std for _, std, _ in frames]
     params = [u for _, _, u in frames]
     if len(frames) == 1:
-        return curves[0], stds[0]
+        return curves[0], stds[0], params[0]
     m = max(len(c) for c in curves)
     fused, std = _fuse(curves, stds, params, m)
     for _ in range(2):
@@ -485,7 +486,7 @@ def _fused_frames(frames, poses: np.ndarray):
         for u in params:
             u[0], u[-1] = 0.0, 1.0
         fused, std = _fuse(curves, stds, params, m)
-    return fused, std
+    return fused, std, np.linspace(0.0, 1.0, m)
 
 
 def stereo_curve_and_poses(
@@ -495,12 +496,16 @@ def stereo_curve_and_poses(
     frame_poses: np.ndarray,
     point_sigma: float,
     chord: np.ndarray | None = None,
+    smooth: bool = True,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`stereo_curve3d` and the frame poses it used: with ``chord`` ((2, 3) A and B in
     frame 0's camera-0 coordinates) each frame's turn about the chord is taken from its curve
     (the turn that lays its triangulated curve on frame 0's, then on the fused curve; a global
-    search, then closest points), for poses whose turn the points leave free (A and B alone);
-    without it the poses as given.  Returns (curve3d (M, 3), std (M,), poses (N, 3, 4))."""
+    search, then closest points), for poses whose turn the points leave free (A and B alone),
+    and the std of frame 0's A and B (which place the shape in frame 0) is added to every
+    point's (interpolated along the curve); without it the poses as given.  ``smooth``: the
+    fused points smoothed along the curve (``curve.stereo_smooth``).  Returns (curve3d (M, 3),
+    std (M,), poses (N, 3, 4))."""
     poses = _checked_poses(polylines0, polylines1, frame_poses)
     frames = []
     for f in range(len(poses)):
@@ -509,7 +514,14 @@ def stereo_curve_and_poses(
         frames.append((x, std, s / s[-1]))
     if chord is not None and len(frames) > 1:
         _align_turns(frames, poses, np.asarray(chord, float))
-    curve, std = _fused_frames(frames, poses)
+    curve, std, u = _fused_frames(frames, poses)
+    if smooth:
+        curve, std = smooth_curve(u, curve, std)
+    if chord is not None and len(frames) > 1:
+        # the fused shape is placed in frame 0 through the fit's A and B there, which frame 0
+        # alone sees: their std (frame 0's triangulated ends') adds, interpolated along the curve
+        ends = frames[0][1][[0, -1]]
+        std = np.hypot(std, (1.0 - u) * ends[0] + u * ends[1])
     return curve, std, poses
 
 
@@ -520,6 +532,7 @@ def stereo_curve3d(
     frame_poses: np.ndarray,
     point_sigma: float,
     chord: np.ndarray | None = None,
+    smooth: bool = True,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The curve from every stereo frame, in frame 0's camera-0 coordinates, fused.
 
@@ -535,7 +548,7 @@ def stereo_curve3d(
     frame counts or poses.
     """
     curve, std, _ = stereo_curve_and_poses(
-        rig, polylines0, polylines1, frame_poses, point_sigma, chord
+        rig, polylines0, polylines1, frame_poses, point_sigma, chord, smooth
     )
     return curve, std
 

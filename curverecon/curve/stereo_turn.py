@@ -22,8 +22,11 @@ _CAP = 25.0
 #: takes them all).
 _SEARCH_POINTS = 60
 
-#: Closest-point refinements of the turn after the global search.
-_REFINE = 6
+#: Most closest-point refinements of the turn after the global search (each gains a fixed
+#: fraction where the turn slides the curve along itself; stopped when the turn stays within
+#: ``_TOLERANCE`` radians).
+_REFINE = 60
+_TOLERANCE = 1e-10
 
 
 def _axis_frame(points: np.ndarray, a0: np.ndarray, axis: np.ndarray):
@@ -81,7 +84,7 @@ def best_turn(points, std, reference, a0, axis, search: bool = True) -> float:
     ``points`` (K, 3; std (K,)) closest to the polyline ``reference``: a global search over
     ``_TURN_GRID`` turns of the capped cost sum min(d^2 / std^2, ``_CAP``) (``search``; else
     from no turn), then closest-point refinements, each the weighted least-squares turn in
-    closed form."""
+    closed form (until it stays put)."""
     h, perp, quarter = _axis_frame(points, a0, axis)
     w = 1.0 / np.maximum(std, 1e-300) ** 2
     angle = _search(h, perp, quarter, w, reference, a0, axis) if search else 0.0
@@ -93,7 +96,9 @@ def best_turn(points, std, reference, a0, axis, search: bool = True) -> float:
         q = target - (target @ axis)[:, None] * axis
         num = (w[keep] * (q * quarter[keep]).sum(1)).sum()
         den = (w[keep] * (q * perp[keep]).sum(1)).sum()
-        angle = float(np.arctan2(num, den))
+        angle, last = float(np.arctan2(num, den)), angle
+        if abs(angle - last) < _TOLERANCE:
+            break
     return angle
 
 
