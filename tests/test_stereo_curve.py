@@ -324,12 +324,14 @@ def test_stereo_frames_with_a_and_b_alone_give_the_curve(seed):
     assert np.mean(d) <= 0.01 * length
     assert np.max(d) <= 0.04 * length
     assert np.mean(d <= 3.0 * rec.curve3d_normal_std) >= 0.95
-    cam = obs.configuration.rig.camera0
+    cam, gaps = obs.configuration.rig.camera0, []
     for f, frame in enumerate(truth["frames"]):
         rot, true_rot = rec.frame_poses[f, :, :3], np.asarray(frame["frame_pose"]["R"])
         cos = (np.trace(rot @ true_rot.T) - 1.0) / 2.0
         assert np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))) <= 5.0
         pix = cam.project(rec.curve3d @ rot.T + rec.frame_poses[f, :, 3])
         poly = np.asarray(obs.curves[f])
-        assert np.median(_distance(pix, poly)) <= 1.0  # pixels
+        gaps.append(np.median(_distance(pix, poly)))
+    # pixels: 0.34 for a curve exactly on the truth (median distance of 0.5 px noise)
+    assert np.median(gaps) <= 0.6 and np.max(gaps) <= 2.0
     assert not any("turn about the chord" in w for w in rec.warnings)

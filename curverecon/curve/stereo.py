@@ -35,7 +35,7 @@ import numpy as np
 
 from curverecon.curve.polyline import arc_length, as_polyline, noise_level
 from curverecon.curve.stereo_smooth import smooth_curve
-from curverecon.curve.stereo_turn import best_turn, turned_pose
+from curverecon.curve.stereo_turn import best_motion, best_turn, moved_pose, turned_pose
 from curverecon.errors import CurveReconError
 from curverecon.solvers.camera import Camera, StereoRig
 
@@ -469,6 +469,27 @@ def _align_turns(frames, poses: np.ndarray, chord: np.ndarray) -> None:
         reference = _fused_frames(frames, poses)[0]
     for f in range(len(frames)):
         poses[f] = turned_pose(given[f], a0, axis, total[f] - total[0])
+    _align_motions(frames, poses)
+
+
+def _align_motions(frames, poses: np.ndarray) -> None:
+    """Every frame's whole rigid motion onto the frames fused (the fit's A and B in a frame
+    are far less certain in depth than its whole curve), twice, then all moved back together
+    by frame 0's motion (frame 0's pose is the gauge), in place."""
+    given = poses.copy()
+    motions = [(np.eye(3), np.zeros(3)) for _ in frames]
+    for _ in range(2):
+        reference = _fused_frames(frames, poses)[0]
+        for f, (x, std, _) in enumerate(frames):
+            rot, t = motions[f]
+            moved = (x - poses[f, :, 3]) @ poses[f, :, :3]
+            step_rot, step_t = best_motion(moved, std, reference)
+            motions[f] = (step_rot @ rot, step_rot @ t + step_t)
+            poses[f] = moved_pose(given[f], *motions[f])
+    back_rot, back_t = motions[0][0].T, -motions[0][0].T @ motions[0][1]
+    for f in range(len(frames)):
+        rot, t = motions[f]
+        poses[f] = moved_pose(given[f], back_rot @ rot, back_rot @ t + back_t)
 
 
 def _fused_frames(frames, poses: np.ndarray):
