@@ -67,7 +67,7 @@ def frame_poses(rot: np.ndarray, p3: np.ndarray) -> np.ndarray:
 
 def curve_stage(obs: RigidObservations, poses, p3: np.ndarray, idx, sigma: float, turn_free=False):
     """(curve3d (M, 3) or None, its std (M,) or None, warnings) on the inlier frames ``idx``;
-    ``turn_free`` (stereo, A and B alone): their turns about AB in ``poses`` set by the curve."""
+    ``turn_free`` (stereo, A and B alone): their ``poses`` refitted to the curve, in place."""
     if obs.curves is None:
         return None, None, []
     cfg = obs.configuration
