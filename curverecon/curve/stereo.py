@@ -532,12 +532,13 @@ def stereo_curve_and_poses(
     for f in range(len(poses)):
         x, std, p0 = _match(rig, polylines0[f], polylines1[f], point_sigma)
         s = arc_length(p0)
-        frames.append((x, std, s / s[-1]))
+        u = s / s[-1]
+        if smooth:  # each frame's own scatter, before the frames' poses and fusion
+            x, std = smooth_curve(u, x, std)
+        frames.append((x, std, u))
     if chord is not None and len(frames) > 1:
         _align_turns(frames, poses, np.asarray(chord, float))
     curve, std, u = _fused_frames(frames, poses)
-    if smooth:
-        curve, std = smooth_curve(u, curve, std)
     if chord is not None and len(frames) > 1:
         # the fused shape is placed in frame 0 through the fit's A and B there, which frame 0
         # alone sees: their std (frame 0's triangulated ends') adds, interpolated along the curve
