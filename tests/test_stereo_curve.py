@@ -186,12 +186,15 @@ def test_frames_fused_on_their_poses():
     rig = _rig()
     rng = np.random.default_rng(8)
     pts, dense, poses, v0, v1 = _moving_frames(rng, rig, 0.0)
-    curve, std = stereo_curve3d(rig, v0, v1, poses, 0.5)
+    curve, std = stereo_curve3d(rig, v0, v1, poses, 0.5, smooth=False)
     length = _length(dense)
     assert curve.shape == (len(pts), 3) and std.shape == (len(pts),)
     # linear resampling between points 1/150 of the curve apart: chord error only
     assert _distance(curve, dense).max() <= 1e-4 * length
     np.testing.assert_allclose(curve[[0, -1]], pts[[0, -1]], atol=1e-9 * length)
+    # smoothed without noise: the least smoothing tried bends the curve only a little
+    smoothed, _ = stereo_curve3d(rig, v0, v1, poses, 0.5)
+    assert _distance(smoothed, dense).max() <= 5e-4 * length
     single, rms_fused, rms_single, z = [], [], [], []
     for _ in range(6):
         pts, dense, poses, v0, v1 = _moving_frames(rng, rig, 0.5)
@@ -213,7 +216,7 @@ def test_one_frame_is_its_own_match():
     pts, _ = _scene(rng, "helix")
     p0, p1 = _views(rig, pts, rng, 0.3)
     pose = np.hstack([np.eye(3), np.zeros((3, 1))])[None]
-    curve, std = stereo_curve3d(rig, [p0], [p1], pose, 0.3)
+    curve, std = stereo_curve3d(rig, [p0], [p1], pose, 0.3, smooth=False)
     x, s = match_stereo_curve(rig, p0, p1, 0.3)
     np.testing.assert_allclose(curve, x)
     np.testing.assert_allclose(std, s)
@@ -272,3 +275,63 @@ def _print_figures() -> None:  # pragma: no cover - figures for docs/accuracy.md
 
 if __name__ == "__main__":  # pragma: no cover
     _print_figures()
+
+
+def test_turn_about_the_chord_recovered():
+    """A curve turned about its chord AB by a known angle: the turn is found, and the pose it
+    gives moves frame f's points back onto frame 0's curve with A and B kept."""
+    from curverecon.curve.stereo_turn import best_turn, rotation_about, turned_pose
+
+    rng = np.random.default_rng(21)
+    pts, _ = _scene(rng, "helix")
+    a0, axis = pts[0], (pts[-1] - pts[0]) / np.linalg.norm(pts[-1] - pts[0])
+    std = np.full(len(pts), 0.01)
+    for angle in (-2.5, -0.4, 0.3, 1.7, 3.0):
+        # an independent turn: Rodrigues' formula written out
+        k = np.cross(axis, pts - a0)
+        turned = a0 + (pts - a0) * np.cos(angle) + k * np.sin(angle)
+        turned += np.outer((pts - a0) @ axis, axis) * (1 - np.cos(angle))
+        found = best_turn(turned, std, pts, a0, axis)
+        assert abs(np.angle(np.exp(1j * (found + angle)))) < 1e-7
+        pose = np.column_stack([rotation_about(axis, 0.0), np.zeros(3)])
+        new = turned_pose(pose, a0, axis, found)
+        back = (turned - new[:, 3]) @ new[:, :3]
+        np.testing.assert_allclose(back, pts, atol=1e-9)
+
+
+def _stereo_scene(seed: int, frames: int):
+    from curverecon.io import observations_from_dict
+    from curverecon.options import ReconstructOptions
+    from curverecon.rigid import reconstruct_rigid
+    from curverecon.simulate import simulate_camera_configuration
+
+    doc, truth = simulate_camera_configuration(
+        "stereo", "free", "AB", frames, seed, noise_px=0.5, with_curve=True
+    )
+    obs = observations_from_dict(doc)
+    return obs, truth, reconstruct_rigid(obs, ReconstructOptions(point_sigma=0.5))
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_stereo_frames_with_a_and_b_alone_give_the_curve(seed):
+    """Five stereo frames, A, B and polylines, 0.5 px (the simulator's own 3-D scene): each
+    frame's turn about AB, left free by the points, comes from the curves, so the fused curve
+    lies on the true one and reprojects onto every frame's polyline."""
+    obs, truth, rec = _stereo_scene(seed, 5)
+    dense = np.asarray(truth["curve3d"])
+    length = _length(dense)
+    d = _distance(rec.curve3d, dense)
+    assert np.mean(d) <= 0.01 * length
+    assert np.max(d) <= 0.04 * length
+    assert np.mean(d <= 3.0 * rec.curve3d_normal_std) >= 0.95
+    cam, gaps = obs.configuration.rig.camera0, []
+    for f, frame in enumerate(truth["frames"]):
+        rot, true_rot = rec.frame_poses[f, :, :3], np.asarray(frame["frame_pose"]["R"])
+        cos = (np.trace(rot @ true_rot.T) - 1.0) / 2.0
+        assert np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))) <= 5.0
+        pix = cam.project(rec.curve3d @ rot.T + rec.frame_poses[f, :, 3])
+        poly = np.asarray(obs.curves[f])
+        gaps.append(np.median(_distance(pix, poly)))
+    # pixels: 0.34 for a curve exactly on the truth (median distance of 0.5 px noise)
+    assert np.median(gaps) <= 0.6 and np.max(gaps) <= 2.0
+    assert not any("turn about the chord" in w for w in rec.warnings)

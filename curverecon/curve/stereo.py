@@ -34,6 +34,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from curverecon.curve.polyline import arc_length, as_polyline, noise_level
+from curverecon.curve.stereo_smooth import smooth_curve
+from curverecon.curve.stereo_turn import best_motion, best_turn, moved_pose, turned_pose
 from curverecon.errors import CurveReconError
 from curverecon.solvers.camera import Camera, StereoRig
 
@@ -426,24 +428,7 @@ def _fuse(curves, stds, params, m: int):
     return acc / wsum[:, None], 1.0 / np.sqrt(wsum)
 
 
-def stereo_curve3d(
-    rig: StereoRig,
-    polylines0: Sequence[np.ndarray],
-    polylines1: Sequence[np.ndarray],
-    frame_poses: np.ndarray,
-    point_sigma: float,
-) -> tuple[np.ndarray, np.ndarray]:
-    """The curve from every stereo frame, in frame 0's camera-0 coordinates, fused.
-
-    polylines0, polylines1: per frame camera 0's and camera 1's polylines (A' to B').
-    frame_poses: (N, 3, 4) [R_f | T_f] with X_f = R_f X_0 + T_f (frame 0's camera-0 coordinates
-    to frame f's).  Each frame is matched and triangulated (:func:`match_stereo_curve`), moved
-    by X_0 = R_f^T (X_f - T_f), and the frames are fused: resampled at common arc positions
-    (each frame's points placed by their foot on the fused curve, twice refined) and averaged
-    with weights 1 / std^2; the std is 1 / sqrt(sum of the weights) (frames independent).
-    One frame: its own points.  Returns (curve3d (M, 3), std (M,)); M is the largest frame's
-    point count.  Raises CurveReconError for inconsistent frame counts or poses.
-    """
+def _checked_poses(polylines0, polylines1, frame_poses) -> np.ndarray:
     poses = np.asarray(frame_poses, dtype=float)
     n = len(polylines0)
     if n == 0 or len(polylines1) != n or poses.shape != (n, 3, 4):
@@ -453,16 +438,68 @@ def stereo_curve3d(
         )
     if not np.all(np.isfinite(poses)):
         raise CurveReconError("stereo curve: frame poses must be finite numbers")
-    curves, stds, params = [], [], []
-    for f in range(n):
-        x, std, p0 = _match(rig, polylines0[f], polylines1[f], point_sigma)
-        rot, tr = poses[f, :, :3], poses[f, :, 3]
-        curves.append((x - tr) @ rot)
-        stds.append(std)
-        s = arc_length(p0)
-        params.append(s / s[-1])
-    if n == 1:
-        return curves[0], stds[0]
+    return poses.copy()
+
+
+def _align_turns(frames, poses: np.ndarray, chord: np.ndarray) -> None:
+    """Every frame's pose turned about the chord (A, B in frame 0's coordinates, in place):
+    first each curve laid on the best-determined frame's (least median std), then each on the
+    frames fused, and all turned back together by frame 0's turn (frame 0's pose is the
+    gauge: its curve fixes the turn of the whole)."""
+    a0 = np.asarray(chord[0], float)
+    axis = np.asarray(chord[1], float) - a0
+    norm = float(np.linalg.norm(axis))
+    if not (np.isfinite(norm) and norm > 0):
+        raise CurveReconError("stereo curve: the chord's ends A and B coincide")
+    axis = axis / norm
+    given = poses.copy()
+    total = np.zeros(len(frames))
+
+    def moved(f: int) -> np.ndarray:
+        return (frames[f][0] - poses[f, :, 3]) @ poses[f, :, :3]
+
+    best = int(np.argmin([np.median(std) for _, std, _ in frames]))
+    reference = moved(best)
+    for search in (True, False, False):
+        for f in range(len(frames)):
+            if search and f == best:
+                continue
+            total[f] += best_turn(moved(f), frames[f][1], reference, a0, axis, search)
+            poses[f] = turned_pose(given[f], a0, axis, total[f])
+        reference = _fused_frames(frames, poses)[0]
+    for f in range(len(frames)):
+        poses[f] = turned_pose(given[f], a0, axis, total[f] - total[0])
+    _align_motions(frames, poses)
+
+
+def _align_motions(frames, poses: np.ndarray) -> None:
+    """Every frame's whole rigid motion onto the frames fused (the fit's A and B in a frame
+    are far less certain in depth than its whole curve), twice, then all moved back together
+    by frame 0's motion (frame 0's pose is the gauge), in place."""
+    given = poses.copy()
+    motions = [(np.eye(3), np.zeros(3)) for _ in frames]
+    for _ in range(2):
+        reference = _fused_frames(frames, poses)[0]
+        for f, (x, std, _) in enumerate(frames):
+            rot, t = motions[f]
+            moved = (x - poses[f, :, 3]) @ poses[f, :, :3]
+            step_rot, step_t = best_motion(moved, std, reference)
+            motions[f] = (step_rot @ rot, step_rot @ t + step_t)
+            poses[f] = moved_pose(given[f], *motions[f])
+    back_rot, back_t = motions[0][0].T, -motions[0][0].T @ motions[0][1]
+    for f in range(len(frames)):
+        rot, t = motions[f]
+        poses[f] = moved_pose(given[f], back_rot @ rot, back_rot @ t + back_t)
+
+
+def _fused_frames(frames, poses: np.ndarray):
+    """Frames [(points in frame f's camera-0 coordinates, std, camera-0 arc positions)] moved
+    to frame 0 and fused (``stereo_curve3d``)."""
+    curves = [(x - pose[:, 3]) @ pose[:, :3] for (x, _, _), pose in zip(frames, poses, strict=True)]
+    stds = [std for _, std, _ in frames]
+    params = [u for _, _, u in frames]
+    if len(frames) == 1:
+        return curves[0], stds[0], params[0]
     m = max(len(c) for c in curves)
     fused, std = _fuse(curves, stds, params, m)
     for _ in range(2):
@@ -470,7 +507,77 @@ def stereo_curve3d(
         for u in params:
             u[0], u[-1] = 0.0, 1.0
         fused, std = _fuse(curves, stds, params, m)
-    return fused, std
+    return fused, std, np.linspace(0.0, 1.0, m)
 
 
-__all__ = ["fundamental_matrix", "match_stereo_curve", "stereo_curve3d"]
+def stereo_curve_and_poses(
+    rig: StereoRig,
+    polylines0: Sequence[np.ndarray],
+    polylines1: Sequence[np.ndarray],
+    frame_poses: np.ndarray,
+    point_sigma: float,
+    chord: np.ndarray | None = None,
+    smooth: bool = True,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`stereo_curve3d` and the frame poses it used: with ``chord`` ((2, 3) A and B in
+    frame 0's camera-0 coordinates) each frame's turn about the chord is taken from its curve
+    (the turn that lays its triangulated curve on frame 0's, then on the fused curve; a global
+    search, then closest points), for poses whose turn the points leave free (A and B alone),
+    and the std of frame 0's A and B (which place the shape in frame 0) is added to every
+    point's (interpolated along the curve); without it the poses as given.  ``smooth``: the
+    fused points smoothed along the curve (``curve.stereo_smooth``).  Returns (curve3d (M, 3),
+    std (M,), poses (N, 3, 4))."""
+    poses = _checked_poses(polylines0, polylines1, frame_poses)
+    frames = []
+    for f in range(len(poses)):
+        x, std, p0 = _match(rig, polylines0[f], polylines1[f], point_sigma)
+        s = arc_length(p0)
+        u = s / s[-1]
+        if smooth:  # each frame's own scatter, before the frames' poses and fusion
+            x, std = smooth_curve(u, x, std)
+        frames.append((x, std, u))
+    if chord is not None and len(frames) > 1:
+        _align_turns(frames, poses, np.asarray(chord, float))
+    curve, std, u = _fused_frames(frames, poses)
+    if chord is not None and len(frames) > 1:
+        # the fused shape is placed in frame 0 through the fit's A and B there, which frame 0
+        # alone sees: their std (frame 0's triangulated ends') adds, interpolated along the curve
+        ends = frames[0][1][[0, -1]]
+        std = np.hypot(std, (1.0 - u) * ends[0] + u * ends[1])
+    return curve, std, poses
+
+
+def stereo_curve3d(
+    rig: StereoRig,
+    polylines0: Sequence[np.ndarray],
+    polylines1: Sequence[np.ndarray],
+    frame_poses: np.ndarray,
+    point_sigma: float,
+    chord: np.ndarray | None = None,
+    smooth: bool = True,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The curve from every stereo frame, in frame 0's camera-0 coordinates, fused.
+
+    polylines0, polylines1: per frame camera 0's and camera 1's polylines (A' to B').
+    frame_poses: (N, 3, 4) [R_f | T_f] with X_f = R_f X_0 + T_f (frame 0's camera-0 coordinates
+    to frame f's).  Each frame is matched and triangulated (:func:`match_stereo_curve`), moved
+    by X_0 = R_f^T (X_f - T_f), and the frames are fused: resampled at common arc positions
+    (each frame's points placed by their foot on the fused curve, twice refined) and averaged
+    with weights 1 / std^2; the std is 1 / sqrt(sum of the weights) (frames independent).
+    One frame: its own points.  ``chord``: (2, 3) A and B in frame 0's coordinates when each
+    frame's turn about AB is free (:func:`stereo_curve_and_poses`).  Returns (curve3d (M, 3),
+    std (M,)); M is the largest frame's point count.  Raises CurveReconError for inconsistent
+    frame counts or poses.
+    """
+    curve, std, _ = stereo_curve_and_poses(
+        rig, polylines0, polylines1, frame_poses, point_sigma, chord, smooth
+    )
+    return curve, std
+
+
+__all__ = [
+    "fundamental_matrix",
+    "match_stereo_curve",
+    "stereo_curve3d",
+    "stereo_curve_and_poses",
+]

@@ -66,18 +66,22 @@ def frame_poses(rot: np.ndarray, p3: np.ndarray) -> np.ndarray:
     return np.concatenate([rot, trans[..., None]], axis=2)
 
 
-def curve_stage(obs: RigidObservations, poses: np.ndarray, p3: np.ndarray, idx, sigma: float):
-    """(curve3d (M, 3) or None, its std (M,) or None, warnings) on the inlier frames ``idx``."""
+def curve_stage(obs: RigidObservations, poses, p3: np.ndarray, idx, sigma: float, turn_free=False):
+    """(curve3d (M, 3) or None, its std (M,) or None, warnings) on the inlier frames ``idx``;
+    ``turn_free`` (stereo, A and B alone): their ``poses`` refitted to the curve, in place."""
     if obs.curves is None:
         return None, None, []
     cfg = obs.configuration
     curves = [obs.curves[i] for i in idx]
     try:
         if cfg.projection == "stereo":
-            from curverecon.curve.stereo import stereo_curve3d
+            from curverecon.curve.stereo import stereo_curve_and_poses
 
             other = [obs.view1.curves[i] for i in idx]
-            curve, std = stereo_curve3d(cfg.rig, curves, other, poses[idx], sigma)
+            chord = p3[0, :2] if turn_free else None
+            curve, std, poses[idx] = stereo_curve_and_poses(
+                cfg.rig, curves, other, poses[idx], sigma, chord
+            )
             return curve, std, []
         from curverecon.curve.pinhole import curve_on_pinhole_poses
 
@@ -131,12 +135,14 @@ def pinhole_answer(
     poses = frame_poses(rot, p3)
     warnings = list(obs.warnings)
     turns = layout.free_rotations and data.n_frames > 1  # frame 0's pose is the identity
-    if layout.projection == "stereo" and len(layout.points) == 2 and turns:
+    free = layout.projection == "stereo" and len(layout.points) == 2 and turns
+    if free and obs.curves is None:
         warnings.append(
             "A and B alone: each frame's turn about the chord AB is not determined (the frame "
             "poses keep one; the points are determined)"
         )
-    curve3d, curve_std, more = curve_stage(obs, poses, p3, idx, options.point_sigma)
+    free = free and not layout.tangents
+    curve3d, curve_std, more = curve_stage(obs, poses, p3, idx, options.point_sigma, free)
     warnings += more
     tangents3 = tangent_vectors(state)
     shape, paper_poses = paper_answer(layout, full, data.times, tangents3)
