@@ -2,7 +2,8 @@
 (``bench.configurations_persp``: noise-free exactness, RMSE over the Cramer-Rao bound, std
 coverage, outlier frames) and the ordinary camera beyond the table (``bench.persp_curve``: free
 motion, A, B and polylines under a pinhole; the curve rate at a fifth of the distance and
-against the distance, plotted in bench/persp_curve_vs_distance.png).
+against the distance, plotted in bench/persp_curve_vs_distance.png), and the stereo row's curve
+with A, B and polylines (``bench.stereo_curve``).
 
 ``python -m bench --only perspective`` (about 10 minutes on 2 cores; more scenes: `python -m
 bench.persp_curve --scenes N`); each module also runs
@@ -13,7 +14,7 @@ the configurations section (``bench.config_minimal_persp``).
 
 from __future__ import annotations
 
-from bench import configurations_persp, persp_curve
+from bench import configurations_persp, persp_curve, stereo_curve
 
 CURVE_SCENES = 12
 """Scenes of the ordinary camera at a fifth of the distance (the target's cell); 26 s a scene
@@ -21,6 +22,9 @@ CURVE_SCENES = 12
 
 SWEEP_SCENES = 2
 """Scenes at each other distance of the sweep."""
+
+STEREO_CURVE_SCENES = 20
+"""Stereo scenes with A, B and polylines (20 frames, 0.5 px): about 4 s a scene on one core."""
 
 
 def run(quick: bool = False) -> dict:
@@ -30,6 +34,11 @@ def run(quick: bool = False) -> dict:
             scenes=2 if quick else CURVE_SCENES,
             sweep_scenes=1 if quick else SWEEP_SCENES,
             workers=configurations_persp.WORKERS,
+        )
+    )
+    out.update(
+        stereo_curve.run(
+            scenes=2 if quick else STEREO_CURVE_SCENES, workers=configurations_persp.WORKERS
         )
     )
     return out

@@ -27,6 +27,8 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+from bench.common import Task, chunks, run_tasks  # noqa: E402
+
 SIGMA_PX = 0.5
 FRAMES = 20
 
@@ -98,9 +100,16 @@ def _median(rows: list[dict], key: str) -> float | None:
     return float(np.median(vals)) if vals else None
 
 
-def run(seed: int = 0, scenes: int = 20, frames: int = FRAMES) -> dict:
-    """The keys of the module docstring over scenes ``seed`` .. ``seed + scenes - 1``."""
-    rows = [scene_row(seed + i, frames) for i in range(scenes)]
+def _rows(seeds: range, frames: int) -> list[dict]:
+    return [dict(scene_row(s, frames), index=s) for s in seeds]
+
+
+def run(seed: int = 0, scenes: int = 20, frames: int = FRAMES, workers: int = 1) -> dict:
+    """The keys of the module docstring over scenes ``seed`` .. ``seed + scenes - 1``, on
+    ``workers`` processes."""
+    seeds = [range(seed + r.start, seed + r.stop) for r in chunks(scenes, 5)]
+    tasks = [Task(_rows, (s, frames), len(s), "stereo") for s in seeds]
+    rows = run_tasks(tasks, workers, "stereo curve").get("stereo", [])
     name = "config_stereo_free_curve"
     return {
         f"{name}_within_1pct_rate": _rate(rows, "error"),
@@ -122,8 +131,9 @@ def main(argv: list[str] | None = None) -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--scenes", type=int, default=20)
     ap.add_argument("--frames", type=int, default=FRAMES)
+    ap.add_argument("--workers", type=int, default=2)
     args = ap.parse_args(argv)
-    print(json.dumps(run(args.seed, args.scenes, args.frames), indent=1))
+    print(json.dumps(run(args.seed, args.scenes, args.frames, args.workers), indent=1))
 
 
 if __name__ == "__main__":
