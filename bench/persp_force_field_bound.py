@@ -94,13 +94,14 @@ def median_bound(sweep_deg: float, frames: int, perspective: bool = True, scenes
     return float(np.median(out))
 
 
-def bench_scene_bound(seed: int, frames: int, distance: float) -> float:
+def bench_scene_bound(seed: int, frames: int, distance: float, turn_deg=None) -> float:
     """c's relative bound at 1 px on ``simulate_camera_configuration``'s force-field scene
-    (default camera at ``distance``), from its truth."""
+    (default camera at ``distance``; ``turn_deg`` its range of turns, default the
+    simulation's), from its truth."""
     from curverecon.simulate import simulate_camera_configuration
 
     _, truth = simulate_camera_configuration(
-        "perspective", "force-field", "AB", frames, seed, distance=distance
+        "perspective", "force-field", "AB", frames, seed, distance=distance, turn_deg=turn_deg
     )
     mp = truth["motion_parameters"]
     g = np.array([mp["position"], mp["velocity"], mp["acceleration"]])
