@@ -83,39 +83,56 @@ def _unit(v: np.ndarray) -> np.ndarray:
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
 
 
-def _residuals(u: np.ndarray, t: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """(K, N, 3) residuals of parameter rows x (K, 11) at normalised image points u (N, 2, 2):
-    E's Sampson distance and the depths' existence (module docstring)."""
+def _rays(u: np.ndarray) -> np.ndarray:
+    return _unit(np.concatenate([u, np.ones(u.shape[:-1] + (1,))], axis=-1))
+
+
+def _sampson_scale(u: np.ndarray, t: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """(K, N) the norm of E's gradient in the four normalised image coordinates (forward
+    differences), with a floor where it vanishes."""
     g, aa, bb, ab = _unpack(x, t)
-    rays = _unit(np.concatenate([u, np.ones(u.shape[:-1] + (1,))], axis=-1))
-    e, p, q = _terms(rays[None, :, 0], rays[None, :, 1], g, aa, bb, ab)
+    rays = _rays(u)
+    e = _terms(rays[None, :, 0], rays[None, :, 1], g, aa, bb, ab)[0]
     h = 1e-6
     grad2 = np.zeros_like(e)
     for j in range(2):
         for d in range(2):
             v = u.copy()
             v[:, j, d] += h
-            r2 = _unit(np.concatenate([v, np.ones(v.shape[:-1] + (1,))], axis=-1))
+            r2 = _rays(v)
             ed = _terms(r2[None, :, 0], r2[None, :, 1], g, aa, bb, ab)[0]
             grad2 += ((ed - e) / h) ** 2
-    scale = np.sqrt(np.maximum(np.abs(aa) + np.abs(bb), 1e-300))
     floor = 1e-8 * np.maximum(np.abs(aa) + np.abs(bb), 1e-300) ** 4
+    return np.sqrt(grad2 + floor)
+
+
+def _residuals(u: np.ndarray, t: np.ndarray, x: np.ndarray, scale=None) -> np.ndarray:
+    """(K, N, 3) residuals of parameter rows x (K, 11) at normalised image points u (N, 2, 2):
+    E's Sampson distance and the depths' existence (module docstring).  ``scale`` (K, N): the
+    Sampson normalisation held (Gauss-Newton's Jacobian), default x's own."""
+    g, aa, bb, ab = _unpack(x, t)
+    rays = _rays(u)
+    e, p, q = _terms(rays[None, :, 0], rays[None, :, 1], g, aa, bb, ab)
+    scale = _sampson_scale(u, t, x) if scale is None else scale
+    size = np.sqrt(np.maximum(np.abs(aa) + np.abs(bb), 1e-300))
     out = np.empty(e.shape + (3,))
-    out[..., 0] = e / np.sqrt(grad2 + floor)
-    out[..., 1] = np.minimum(p, 0.0) / scale
-    out[..., 2] = np.minimum(q, 0.0) / scale
+    out[..., 0] = e / scale
+    out[..., 1] = np.minimum(p, 0.0) / size
+    out[..., 2] = np.minimum(q, 0.0) / size
     return out
 
 
 def _jacobian(u, t, x, res) -> np.ndarray:
-    """(K, N, 3, 11) forward differences of :func:`_residuals`, each step relative to its
-    parameter's size."""
+    """(K, N, 3, 11) forward differences of :func:`_residuals` with x's Sampson normalisation
+    held, each step relative to its parameter's size."""
     jac = np.zeros(res.shape + (x.shape[1],))
+    scale = _sampson_scale(u, t, x)
+    base = _residuals(u, t, x, scale)
     for i in range(x.shape[1]):
         h = 1e-7 * np.maximum(np.abs(x[:, i]), 1e-4)
         xi = x.copy()
         xi[:, i] += h
-        jac[..., i] = (_residuals(u, t, xi) - res) / h[:, None, None]
+        jac[..., i] = (_residuals(u, t, xi, scale) - base) / h[:, None, None]
     return jac
 
 
@@ -218,7 +235,7 @@ def branches(u: np.ndarray, times: np.ndarray, row: np.ndarray):
     y = (-1)^j sqrt(Q) (negative P, Q clipped to 0)."""
     t = np.asarray(times, float)
     g, aa, bb, ab = (v[0] for v in _unpack(row[None], t))
-    rays = _unit(np.concatenate([u, np.ones(u.shape[:-1] + (1,))], axis=-1))
+    rays = _rays(u)
     ma, mb = rays[:, 0], rays[:, 1]
     alpha, beta = np.sum(ma * g, -1), np.sum(mb * g, -1)
     k = np.sum(ma * mb, -1)
