@@ -253,13 +253,26 @@ def _c_crlb(obs, truth, names, inliers) -> float:
 
 def _turn_bounds(row, seed, i, frames, obs, truth, names) -> dict:
     """c's relative bound at 1 px on a force-field accuracy scene and on the same seed drawn
-    with the earlier turns (``OLD_TURN``)."""
-    every = np.ones(frames, bool)
+    with the earlier turns (``OLD_TURN``): the inverse of the Fisher information at the truth
+    (no regularity test: the earlier scenes' is nearly singular, their bound many times c)."""
+    from curverecon.rigid import rigid_data
+    from curverecon.rigid.answer import chord_std
+    from curverecon.rigid.measurements import fixed_globals
+    from curverecon.rigid.model import Layout
+    from curverecon.rigid.refinement import fisher_information
+
     old = _scene(row, "accuracy", seed, i, frames, noise_px=1.0, turn_deg=OLD_TURN)
+    layout = Layout("force-field", tuple(names), False, "perspective")
     out = {}
     for key, (o, t, n) in (("c_crlb", (obs, truth, names)), ("c_crlb_old_turn", old)):
         try:
-            out[key] = _c_crlb(o, t, n, every)
+            data = rigid_data(o, _options(1.0))
+            state = truth_state(layout, data, t, n)
+            cov = np.linalg.pinv(fisher_information(layout, state, data), rcond=1e-15)
+            gf = fixed_globals(layout)
+            cov[gf, :], cov[:, gf] = 0.0, 0.0
+            c = float(np.linalg.norm(state.body[1] - state.body[0]))
+            out[key] = chord_std(layout, state, cov) / c
         except Exception:  # noqa: BLE001
             out[key] = float("inf")
     return out
