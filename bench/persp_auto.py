@@ -66,6 +66,8 @@ def auto_scenes(seed: int, row: int, indices: range) -> list[dict]:
                 warnings.simplefilter("ignore")
                 got = reconstruct_rigid(observations_from_dict(doc), ReconstructOptions())
             rec["chosen"] = got.motion_scores["chosen"]
+            rec["bic"] = {m: v["bic"] for m, v in got.motion_scores["scores"].items()}
+            rec["p"] = {f"{t['simple']}<{t['complex']}": t["p"] for t in got.motion_scores["tests"]}
         except Exception as exc:  # noqa: BLE001 (a failure is counted, not raised)
             rec["message"] = str(exc)
         rec["seconds"] = time.perf_counter() - start
@@ -73,23 +75,36 @@ def auto_scenes(seed: int, row: int, indices: range) -> list[dict]:
     return out
 
 
-def run(seed: int = DEFAULT_SEED, scenes: int = SCENES, workers: int = 1) -> dict:
-    """The keys (module docstring)."""
+def run(
+    seed: int = DEFAULT_SEED,
+    scenes: int = SCENES,
+    workers: int = 1,
+    rows: tuple[str, ...] = tuple(ROWS),
+    detail: bool = False,
+) -> dict:
+    """The keys (module docstring) of ``rows`` (a subset of ``ROWS``); with ``detail`` also
+    ``persp_auto_<row>_per_scene``: each scene's choice, every candidate's BIC and every nested
+    test's p."""
     tasks = [
         Task(auto_scenes, (seed, row, idx), len(idx), f"{row}|{idx.start}")
-        for row in range(len(ROWS))
+        for row, key in enumerate(ROWS)
+        if key in rows
         for idx in chunks(scenes, CHUNK)
     ]
     groups = run_tasks(tasks, workers, "persp auto", progress=False)
     out: dict = {}
     for row, (key, (motion, _)) in enumerate(ROWS.items()):
         recs = [r for label, g in groups.items() if label.split("|")[0] == str(row) for r in g]
+        if not recs:
+            continue
         chosen = [r["chosen"] for r in recs]
         pre = f"persp_auto_{key}_"
         out[pre + "chosen_rate"] = float(np.mean([c == motion for c in chosen]))
         out[pre + "choices"] = {str(c): chosen.count(c) for c in sorted(set(map(str, chosen)))}
         out[pre + "seconds_median"] = float(np.median([r["seconds"] for r in recs]))
         out[pre + "scenes"] = len(recs)
+        if detail:
+            out[pre + "per_scene"] = sorted(recs, key=lambda r: r["index"])
     return out
 
 
@@ -98,8 +113,11 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=DEFAULT_SEED)
     parser.add_argument("--scenes", type=int, default=SCENES)
     parser.add_argument("--workers", type=int, default=1)
+    parser.add_argument("--rows", nargs="+", choices=list(ROWS), default=list(ROWS))
+    parser.add_argument("--detail", action="store_true", help="every scene's scores and tests")
     args = parser.parse_args()
-    print(json.dumps(run(args.seed, args.scenes, args.workers), indent=1))
+    out = run(args.seed, args.scenes, args.workers, tuple(args.rows), args.detail)
+    print(json.dumps(out, indent=1))
 
 
 if __name__ == "__main__":
