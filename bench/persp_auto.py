@@ -4,11 +4,12 @@ For every perspective row (``ROWS``: the motion simulated and its traceable poin
 scenes of ``curverecon.simulate.simulate_camera_configuration`` (its default camera and
 distance, 1 px, 20 frames, 30 for the force field), each seeded by (bench seed, row, scene),
 are reconstructed with the document's motion set to "auto" (``rigid.select``: every motion the
-points determine under a pinhole, chosen by BIC).  Keys per row ``persp_auto_<row>_...``:
-``chosen_rate`` the fraction of scenes whose chosen motion is the simulated one, ``choices`` how
-often each motion was chosen, ``seconds_median`` the median wall time of one auto
-reconstruction (every candidate fitted).  Not registered in ``bench.__main__``:
-``run(seed, scenes, workers)`` returns the keys, the command prints them as JSON.
+points determine under a pinhole, chosen by nested likelihood-ratio tests and BIC).  Keys per
+row ``persp_auto_<row>_...``: ``chosen_rate`` the fraction of scenes whose chosen motion is the
+simulated one, ``choices`` how often each motion was chosen, ``seconds_median`` the median wall
+time of one auto reconstruction (every candidate fitted).  Not registered in
+``bench.__main__``: ``run(seed, scenes, workers, rows)`` returns the keys, the command prints
+them as JSON (``--rows`` a part, ``--detail`` every scene's scores and tests).
 """
 
 from __future__ import annotations

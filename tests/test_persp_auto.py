@@ -16,7 +16,7 @@ from curverecon.simulate import simulate_camera_configuration
     "motion,tangents", [("rotation-free", False), ("uniform-rotation", False), ("fixed-axis", True)]
 )
 def test_auto_chooses_the_simulated_motion(motion, tangents):
-    """Eight frames, 0.5 px (and 0.5 degrees): the simulated motion wins the BIC; the force
+    """Eight frames, 0.5 px (and 0.5 degrees): the simulated motion is chosen; the force
     field, which needs 11 frames without tangents, is listed with its reason; free motion with
     A and B is no candidate under a pinhole (never determined), the fixed axis only with
     tangents (without, a frame's angle and position take all four of its measurements)."""
