@@ -9,7 +9,8 @@ pinhole whose focal length puts the chord at ``CHORD_PX``.  The Jacobian of ever
 pixels in the unknowns (A - G and B - G in frame 0's orientation, the parabola less g0_z, every
 later frame's rotation as a left increment) is written out by hand; c's bound at 1 px follows
 from it.  ``bench_scene_bound`` takes ``simulate_camera_configuration``'s own scenes (their
-truth) instead.  Prints the median relative bound against the turn and the frame count, against
+truth; the earlier turns of 180-300 degrees or the default, ``simulate.FORCE_FIELD_TURN_DEG``)
+instead.  Prints the median relative bound against the turn and the frame count, against
 the body's size over its distance, the orthographic twin's, and the bench's scenes' against
 distance and frames.  Registered nowhere (a study behind docs/accuracy.md's force-field bullet).
 """
@@ -94,13 +95,14 @@ def median_bound(sweep_deg: float, frames: int, perspective: bool = True, scenes
     return float(np.median(out))
 
 
-def bench_scene_bound(seed: int, frames: int, distance: float) -> float:
+def bench_scene_bound(seed: int, frames: int, distance: float, turn_deg=None) -> float:
     """c's relative bound at 1 px on ``simulate_camera_configuration``'s force-field scene
-    (default camera at ``distance``), from its truth."""
+    (default camera at ``distance``; ``turn_deg`` its range of turns, default the
+    simulation's), from its truth."""
     from curverecon.simulate import simulate_camera_configuration
 
     _, truth = simulate_camera_configuration(
-        "perspective", "force-field", "AB", frames, seed, distance=distance
+        "perspective", "force-field", "AB", frames, seed, distance=distance, turn_deg=turn_deg
     )
     mp = truth["motion_parameters"]
     g = np.array([mp["position"], mp["velocity"], mp["acceleration"]])
@@ -154,11 +156,13 @@ def main() -> None:
         ortho = median_bound(sweep, 30, perspective=False)
         print(f"orthographic twin, {sweep:.0f} degrees, 30 frames: {ortho:.3g}")
     print("simulate_camera_configuration's scenes (seeds 0-9): median [min, max]")
-    for distance in (1000.0, 500.0, 250.0):
-        for n in (12, 20, 30, 60):
-            got = [bench_scene_bound(s, n, distance) for s in range(10)]
-            print(f"distance {distance:.0f}, {n} frames: {np.median(got):.3g} "
-                  f"[{min(got):.3g}, {max(got):.3g}]", flush=True)  # fmt: skip
+    for turn in ((180.0, 300.0), None):
+        label = "turns 180-300 degrees" if turn else "the default turns, 720-1080 degrees"
+        for distance in (1000.0, 500.0, 250.0) if turn else (1000.0,):
+            for n in (12, 20, 30, 60) if turn else (16, 20, 30):
+                got = [bench_scene_bound(s, n, distance, turn) for s in range(10)]
+                print(f"{label}, distance {distance:.0f}, {n} frames: {np.median(got):.3g} "
+                      f"[{min(got):.3g}, {max(got):.3g}]", flush=True)  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -479,10 +479,16 @@ def _rot(rotvec: np.ndarray) -> np.ndarray:
 
 
 def _scene_motion(
-    rng: np.random.Generator, motion: str, t: np.ndarray, body: dict, tangents: bool
+    rng: np.random.Generator,
+    motion: str,
+    t: np.ndarray,
+    body: dict,
+    tangents: bool,
+    sweep: tuple[float, float] = SWEEP_DEG,
 ) -> tuple[np.ndarray, np.ndarray | None, dict]:
     """(N, 3, 3) body-to-camera rotations, the mass centre's image path (N, 2) for the force
-    field (else None) and the true motion parameters; redrawn until every frame is observable."""
+    field (else None) and the true motion parameters; redrawn until every frame is observable.
+    ``sweep``: the range of the total turn (degrees) of the force field's rotation."""
     from curverecon.errors import CurveReconError
 
     for _ in range(2000):
@@ -497,9 +503,9 @@ def _scene_motion(
             continue
         r0 = Rotation.random(random_state=rng).as_matrix()
         if motion == "force-field":
-            rel, centre, params = _force_field_motion(rng, t, r0 @ body["centre"])
+            rel, centre, params = _force_field_motion(rng, t, r0 @ body["centre"], sweep)
         else:
-            rel, params = _axis_motion(rng, motion, t, r0 @ body["points"][1])
+            rel, params = _axis_motion(rng, motion, t, r0 @ body["points"][1], sweep)
             centre = None
         if rel is None:
             continue
@@ -512,15 +518,20 @@ def _scene_motion(
 
 
 def _axis_motion(
-    rng: np.random.Generator, motion: str, t: np.ndarray, chord0: np.ndarray
+    rng: np.random.Generator,
+    motion: str,
+    t: np.ndarray,
+    chord0: np.ndarray,
+    sweep_range: tuple[float, float] = SWEEP_DEG,
 ) -> tuple[np.ndarray | None, dict]:
     """Rotations relative to frame 0 about one axis (fixed axis: increasing random angles;
-    uniform rotation: a constant rate), or None when the axis is too close to the chord."""
+    uniform rotation: a constant rate; a total sweep uniform in ``sweep_range`` degrees, at most
+    60 a frame), or None when the axis is too close to the chord."""
     n = _tilted_axis(rng)
     cosang = abs(n @ chord0) / np.linalg.norm(chord0)
     if cosang > np.cos(np.radians(MIN_AXIS_TO_CHORD_DEG)):
         return None, {}
-    sweep = min(rng.uniform(*SWEEP_DEG), 60.0 * (len(t) - 1))
+    sweep = min(rng.uniform(*sweep_range), 60.0 * (len(t) - 1))
     if motion == "uniform-rotation":
         rate = sweep / (t[-1] - t[0])
         angles = rate * (t - t[0])
@@ -533,13 +544,17 @@ def _axis_motion(
 
 
 def _force_field_motion(
-    rng: np.random.Generator, t: np.ndarray, centre0: np.ndarray
+    rng: np.random.Generator,
+    t: np.ndarray,
+    centre0: np.ndarray,
+    sweep_range: tuple[float, float] = SWEEP_DEG,
 ) -> tuple[np.ndarray, np.ndarray, dict]:
     """A smooth free rotation (rotation vector w1 tau + w2 tau^2 / 2, tau = t - t0, w1 at least
-    MIN_AXIS_TILT_DEG from the view) and the mass centre's image on a parabola in t."""
+    MIN_AXIS_TILT_DEG from the view, |w1| (t_N - t_0) uniform in ``sweep_range`` degrees, at
+    most 60 a frame) and the mass centre's image on a parabola in t."""
     span = t[-1] - t[0]
     tau = t - t[0]
-    sweep = np.radians(min(rng.uniform(*SWEEP_DEG), 60.0 * (len(t) - 1)))
+    sweep = np.radians(min(rng.uniform(*sweep_range), 60.0 * (len(t) - 1)))
     w1 = _tilted_axis(rng) * sweep / span
     w2 = _unit(rng.normal(size=3)) * rng.uniform(0.0, 0.5) * sweep / span**2
     rel = _rot(np.outer(tau, w1) + np.outer(tau**2 / 2, w2))
@@ -668,6 +683,13 @@ DEPTH_MOVE = 0.08
 """Per-frame translation of the body's centre: lateral uniform within this fraction of the
 distance, depth within this fraction (both ways)."""
 
+FORCE_FIELD_TURN_DEG = (720.0, 1080.0)
+"""Total turn (degrees, uniform in this range, at most 60 a frame) of a perspective or stereo
+force-field scene: with A and B under a pinhole the row is determined in practice only when the
+body turns about two full turns or more (c's Cramer-Rao bound at 1 px, 30 frames: 8 c at
+360 degrees, 4 % at 720, 3 % at 1080; ``bench/persp_force_field_bound.py``, docs/accuracy.md);
+the other motions keep ``SWEEP_DEG``."""
+
 
 def default_camera(distance: float = DEFAULT_DISTANCE):
     """The default pinhole camera with its focal length scaled by ``distance`` /
@@ -710,6 +732,7 @@ def simulate_camera_configuration(
     camera=None,
     rig=None,
     move: tuple[float, float] = (LATERAL_MOVE, DEPTH_MOVE),
+    turn_deg: tuple[float, float] | None = None,
 ) -> tuple[dict, dict]:
     """A perspective or stereo scene of a Section 2 row: its observations and its truth.
 
@@ -727,8 +750,11 @@ def simulate_camera_configuration(
     X_f = R X_0 + T; ``curve3d`` in frame 0's camera coordinates; ``motion_parameters`` as the
     orthographic rows' (the force field's ``acceleration``, ``velocity``, ``position`` as 3-D
     vectors of the mass centre in camera coordinates, ``mass_centre`` relative to A in frame 0).
+    ``turn_deg`` (lo, hi): the range of the body's total turn over the sequence in degrees (at
+    most 60 a frame; default ``FORCE_FIELD_TURN_DEG`` for the force field, else ``SWEEP_DEG``).
 
-    Raises CurveReconError for an unknown projection or motion, bad names, too few frames.
+    Raises CurveReconError for an unknown projection or motion, bad names, too few frames, a
+    bad turn range.
     """
     from curverecon.errors import CurveReconError
     from curverecon.model.configuration import Configuration
@@ -741,6 +767,7 @@ def simulate_camera_configuration(
         raise CurveReconError("the distance must be a positive number")
     names = _point_names(points)
     t = _scene_times(times, frames)
+    sweep = _turn_range(motion, turn_deg)
     rng = np.random.default_rng(seed)
     curve = bezier_curve(random_curve(rng, chord)) if family == "bezier" else None
     if curve is None:
@@ -753,7 +780,7 @@ def simulate_camera_configuration(
             r0 = Rotation.random(random_state=rng).as_matrix()
         rots, params = np.array([r0] * len(t)), {}
     else:
-        rots, _, params = _scene_motion(rng, motion, t, body, tangents)
+        rots, _, params = _scene_motion(rng, motion, t, body, tangents, sweep)
     centre, path_params = _centre_path(rng, motion, t, distance, move)
     if motion == "force-field":
         params = {k: v for k, v in params.items() if k == "mass_centre"}
@@ -775,6 +802,18 @@ def simulate_camera_configuration(
     doc, inliers = _camera_document(rng, cfg, geometry, noise, with_curve, outlier_fraction)
     truth = _camera_truth(cfg, geometry, scale, params, inliers, noise, (seed, family))
     return doc, truth
+
+
+def _turn_range(motion: str, turn_deg) -> tuple[float, float]:
+    """The camera scene's range of total turns in degrees (``simulate_camera_configuration``)."""
+    from curverecon.errors import CurveReconError
+
+    if turn_deg is None:
+        return FORCE_FIELD_TURN_DEG if motion == "force-field" else SWEEP_DEG
+    lo, hi = (float(v) for v in turn_deg)
+    if not (np.isfinite(lo) and np.isfinite(hi) and 0 < lo <= hi):
+        raise CurveReconError("the turn range needs 0 < MIN <= MAX degrees")
+    return lo, hi
 
 
 def _centre_path(rng: np.random.Generator, motion: str, t: np.ndarray, distance: float, move):

@@ -169,11 +169,13 @@ def test_command_writes_frame_poses(tmp_path):
 
 
 def test_an_answer_the_frames_hardly_determine_says_so():
-    """A and B under a force field seen in perspective: every frame may turn about the chord
-    while the unseen mass centre stays on its parabola, so c's std comes out many times c; the
-    answer warns.  A uniform rotation of the same size and noise does not."""
+    """A and B under a force field seen in perspective, turning 180-300 degrees: every frame may
+    turn about the chord while the unseen mass centre stays on its parabola, so c's std comes
+    out many times c; the answer warns.  A uniform rotation of the same size and noise does not."""
     opts = ReconstructOptions(point_sigma=1.0)
-    doc, _ = simulate_camera_configuration("perspective", "force-field", "AB", 30, 0, noise_px=1.0)
+    doc, _ = simulate_camera_configuration(
+        "perspective", "force-field", "AB", 30, 0, noise_px=1.0, turn_deg=(180.0, 300.0)
+    )
     rec = reconstruct_rigid(observations_from_dict(doc), opts)
     assert rec.std[0] > 0.5 * rec.c
     assert any("hardly determine the body" in w for w in rec.warnings)

@@ -17,7 +17,8 @@
   ambiguity a pinhole resolves) become starts, A at depth 1 + its relative depth (the free row
   also from the orthographic row's all-frame starts, ``FREE_STARTS``).  The fixed
   axis with three frames (too few for the orthographic row) uses
-  ``solvers/persp_fixed_axis_3pt.py``.
+  ``solvers/persp_fixed_axis_3pt.py``; the force field with A and B adds the minima of its
+  global search (``rigid/pinhole_force_field.py``).
 Each start then goes through the consensus fit and maximum likelihood of ``rigid.estimate``.
 """
 
@@ -243,6 +244,10 @@ def pinhole_starts(layout: Layout, data: RigidData) -> list[RigidState]:
         from curverecon.rigid.pinhole_search import search_starts
 
         out += search_starts(layout, data)
+    elif layout.motion == "force-field":
+        from curverecon.rigid.pinhole_force_field import force_field_starts
+
+        out += force_field_starts(layout, data)
     return out + weak_perspective(layout, data)
 
 
