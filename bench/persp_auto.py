@@ -4,11 +4,12 @@ For every perspective row (``ROWS``: the motion simulated and its traceable poin
 scenes of ``curverecon.simulate.simulate_camera_configuration`` (its default camera and
 distance, 1 px, 20 frames, 30 for the force field), each seeded by (bench seed, row, scene),
 are reconstructed with the document's motion set to "auto" (``rigid.select``: every motion the
-points determine under a pinhole, chosen by BIC).  Keys per row ``persp_auto_<row>_...``:
-``chosen_rate`` the fraction of scenes whose chosen motion is the simulated one, ``choices`` how
-often each motion was chosen, ``seconds_median`` the median wall time of one auto
-reconstruction (every candidate fitted).  Not registered in ``bench.__main__``:
-``run(seed, scenes, workers)`` returns the keys, the command prints them as JSON.
+points determine under a pinhole, chosen by nested likelihood-ratio tests and BIC).  Keys per
+row ``persp_auto_<row>_...``: ``chosen_rate`` the fraction of scenes whose chosen motion is the
+simulated one, ``choices`` how often each motion was chosen, ``seconds_median`` the median wall
+time of one auto reconstruction (every candidate fitted).  Not registered in
+``bench.__main__``: ``run(seed, scenes, workers, rows)`` returns the keys, the command prints
+them as JSON (``--rows`` a part, ``--detail`` every scene's scores and tests).
 """
 
 from __future__ import annotations
@@ -66,6 +67,8 @@ def auto_scenes(seed: int, row: int, indices: range) -> list[dict]:
                 warnings.simplefilter("ignore")
                 got = reconstruct_rigid(observations_from_dict(doc), ReconstructOptions())
             rec["chosen"] = got.motion_scores["chosen"]
+            rec["bic"] = {m: v["bic"] for m, v in got.motion_scores["scores"].items()}
+            rec["p"] = {f"{t['simple']}<{t['complex']}": t["p"] for t in got.motion_scores["tests"]}
         except Exception as exc:  # noqa: BLE001 (a failure is counted, not raised)
             rec["message"] = str(exc)
         rec["seconds"] = time.perf_counter() - start
@@ -73,23 +76,36 @@ def auto_scenes(seed: int, row: int, indices: range) -> list[dict]:
     return out
 
 
-def run(seed: int = DEFAULT_SEED, scenes: int = SCENES, workers: int = 1) -> dict:
-    """The keys (module docstring)."""
+def run(
+    seed: int = DEFAULT_SEED,
+    scenes: int = SCENES,
+    workers: int = 1,
+    rows: tuple[str, ...] = tuple(ROWS),
+    detail: bool = False,
+) -> dict:
+    """The keys (module docstring) of ``rows`` (a subset of ``ROWS``); with ``detail`` also
+    ``persp_auto_<row>_per_scene``: each scene's choice, every candidate's BIC and every nested
+    test's p."""
     tasks = [
         Task(auto_scenes, (seed, row, idx), len(idx), f"{row}|{idx.start}")
-        for row in range(len(ROWS))
+        for row, key in enumerate(ROWS)
+        if key in rows
         for idx in chunks(scenes, CHUNK)
     ]
     groups = run_tasks(tasks, workers, "persp auto", progress=False)
     out: dict = {}
     for row, (key, (motion, _)) in enumerate(ROWS.items()):
         recs = [r for label, g in groups.items() if label.split("|")[0] == str(row) for r in g]
+        if not recs:
+            continue
         chosen = [r["chosen"] for r in recs]
         pre = f"persp_auto_{key}_"
         out[pre + "chosen_rate"] = float(np.mean([c == motion for c in chosen]))
         out[pre + "choices"] = {str(c): chosen.count(c) for c in sorted(set(map(str, chosen)))}
         out[pre + "seconds_median"] = float(np.median([r["seconds"] for r in recs]))
         out[pre + "scenes"] = len(recs)
+        if detail:
+            out[pre + "per_scene"] = sorted(recs, key=lambda r: r["index"])
     return out
 
 
@@ -98,8 +114,11 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=DEFAULT_SEED)
     parser.add_argument("--scenes", type=int, default=SCENES)
     parser.add_argument("--workers", type=int, default=1)
+    parser.add_argument("--rows", nargs="+", choices=list(ROWS), default=list(ROWS))
+    parser.add_argument("--detail", action="store_true", help="every scene's scores and tests")
     args = parser.parse_args()
-    print(json.dumps(run(args.seed, args.scenes, args.workers), indent=1))
+    out = run(args.seed, args.scenes, args.workers, tuple(args.rows), args.detail)
+    print(json.dumps(out, indent=1))
 
 
 if __name__ == "__main__":

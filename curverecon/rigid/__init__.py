@@ -12,7 +12,7 @@ its frames (orthographic, perspective, stereo).
   field's global search (the mass centre's parabola and the body's invariants);
   ``geometry.py``: a state from 3-D points and rotations (a minimal solver's or a simulator's);
 - ``estimate.py``: one row's fit, outlier frames, degenerate fits refused;
-- ``select.py``: ``--motion auto`` (BIC with a robust chi2);
+- ``select.py``: ``--motion auto`` (nested likelihood-ratio tests, BIC between the rest);
 - ``answer.py``: the answer in the toolkit's conventions; ``curve.py``: section 4 on the row's
   poses.
 
@@ -148,7 +148,7 @@ def reconstruct_rigid(
     """The reconstruction of a configuration of the Section 2 table (orthographic, perspective
     and stereo rows).
 
-    ``obs.configuration.motion`` "auto" fits every model the points allow and chooses by BIC
+    ``obs.configuration.motion`` "auto" fits every model the points allow and chooses one
     (``rigid.select``), filling ``motion_scores``.  Raises CurveReconError (one line) for input
     the model cannot determine (too few frames or points, a degenerate fitted motion).
     """
