@@ -1,7 +1,8 @@
-"""A fit the stated point noise cannot explain says so (``rigid.answer.misfit_warning``): a
-stereo rig whose calibration is off by a small turn, or points noisier than ``point_sigma``,
-against the same scenes with the right rig and noise (the 3-D construction of
-``simulate_camera_configuration``), which carry no such warning."""
+"""A fit the stated point noise cannot explain says so (``rigid.answer.misfit_warning``,
+``outlier_share_warning``): a stereo rig whose calibration is off by a small turn, or points
+noisier than ``point_sigma`` (a high chi2, or many frames left out), against the same scenes
+with the right rig and noise (the 3-D construction of ``simulate_camera_configuration``), which
+carry no such warning."""
 
 from __future__ import annotations
 
@@ -53,3 +54,19 @@ def test_points_noisier_than_stated_are_reported():
     doc, _ = simulate_camera_configuration("stereo", "free", "AB", 20, 0, noise_px=3.0)
     assert _misfit(doc, 3.0) == []
     assert len(_misfit(doc, 1.0)) == 1
+
+
+@pytest.mark.parametrize("seed", [0, 2])
+def test_many_frames_left_out_is_reported(seed):
+    # three times the stated noise: the outlier test, in the stated units, drops 7 of 20 frames
+    doc, _ = simulate_camera_configuration("perspective", "fixed-axis", "ABC", 20, seed, 3.0)
+    rec = reconstruct_rigid(observations_from_dict(doc), ReconstructOptions(point_sigma=1.0))
+    left_out = int(np.sum(~rec.inliers))
+    assert left_out > 5
+    assert [w for w in rec.warnings if "were left out" in w] == [
+        f"{left_out} of 20 frames do not fit the model and were left out: if that many images "
+        "are not bad, the points are noisier than --point-sigma says (raise it)"
+    ]
+    rec = reconstruct_rigid(observations_from_dict(doc), ReconstructOptions(point_sigma=3.0))
+    assert int(np.sum(~rec.inliers)) <= 5
+    assert not [w for w in rec.warnings if "were left out" in w]

@@ -45,6 +45,7 @@ from curverecon.rigid.answer import (
     chord_std,
     misfit_warning,
     motion_parameters,
+    outlier_share_warning,
     paper_answer,
     points3_dicts,
     undetermined_warning,
@@ -118,6 +119,7 @@ def answer(
     std = np.array([chord_std(layout, state, fit.covariance), np.nan, np.nan, np.nan])
     warnings += undetermined_warning(float(shape[0]), float(std[0]))
     warnings += misfit_warning(layout, float(fit.chi2), len(idx))
+    warnings += outlier_share_warning(inliers)
     mp = motion_parameters(layout, replace(fit, state=state), sub)
     if "angle_deg" in mp:
         mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()

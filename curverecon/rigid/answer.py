@@ -174,3 +174,21 @@ def misfit_warning(layout: Layout, chi2: float, n_frames: int) -> list[str]:
         f"{math.sqrt(chi2 / dof):.2g} times the stated point noise (noisier points than "
         "--point-sigma says, or a wrong camera, rig, time stamps or motion); the std are too small"
     ]
+
+
+OUTLIER_SHARE = 0.25
+"""More than this share of the frames left out as outliers carries a warning (the bench's outlier
+scenes draw a fifth)."""
+
+
+def outlier_share_warning(inliers: np.ndarray) -> list[str]:
+    """A one-line warning when more than ``OUTLIER_SHARE`` of the frames were left out as
+    outliers: either that many images are bad, or the points are noisier than ``point_sigma``
+    says (the outlier test is in its units), else nothing."""
+    n, out = len(inliers), int(np.sum(~np.asarray(inliers, dtype=bool)))
+    if out < 2 or out <= OUTLIER_SHARE * n:
+        return []
+    return [
+        f"{out} of {n} frames do not fit the model and were left out: if that many images are "
+        "not bad, the points are noisier than --point-sigma says (raise it)"
+    ]

@@ -24,6 +24,7 @@ from curverecon.rigid.answer import (
     chord_std,
     misfit_warning,
     motion_parameters,
+    outlier_share_warning,
     paper_answer,
     undetermined_warning,
 )
@@ -152,6 +153,7 @@ def pinhole_answer(
     std = np.array([chord_std(layout, state, cov) * scale, np.nan, np.nan, np.nan])
     warnings += undetermined_warning(float(shape[0]), float(std[0]))
     warnings += misfit_warning(layout, float(fit.chi2), len(idx))
+    warnings += outlier_share_warning(inliers)
     alternatives = [valley(obs, layout, alt, data.times[idx]) for alt in others]
     if alternatives:
         warnings.append(alternatives_warning(shape, std, alternatives))
