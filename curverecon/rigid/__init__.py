@@ -43,12 +43,10 @@ from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ReconstructOptions
 from curverecon.rigid.answer import (
     chord_std,
-    misfit_warning,
+    fit_warnings,
     motion_parameters,
-    outlier_share_warning,
     paper_answer,
     points3_dicts,
-    undetermined_warning,
 )
 from curverecon.rigid.estimate import fit_row
 from curverecon.rigid.measurements import RigidData
@@ -117,9 +115,7 @@ def answer(
         warnings += more
     shape, poses = paper_answer(layout, full, data.times, tangents3)
     std = np.array([chord_std(layout, state, fit.covariance), np.nan, np.nan, np.nan])
-    warnings += undetermined_warning(float(shape[0]), float(std[0]))
-    warnings += misfit_warning(layout, float(fit.chi2), len(idx))
-    warnings += outlier_share_warning(inliers)
+    warnings += fit_warnings(layout, float(fit.chi2), inliers, float(shape[0]), float(std[0]))
     mp = motion_parameters(layout, replace(fit, state=state), sub)
     if "angle_deg" in mp:
         mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()

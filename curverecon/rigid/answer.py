@@ -192,3 +192,16 @@ def outlier_share_warning(inliers: np.ndarray) -> list[str]:
         f"{out} of {n} frames do not fit the model and were left out: if that many images are "
         "not bad, the points are noisier than --point-sigma says (raise it)"
     ]
+
+
+def fit_warnings(
+    layout: Layout, chi2: float, inliers: np.ndarray, c: float, c_std: float
+) -> list[str]:
+    """Every warning an answer's fit carries, whatever its camera: c hardly determined, a chi2 the
+    stated noise cannot explain, too many frames left out (the three functions above)."""
+    n_inliers = int(np.sum(inliers))
+    return (
+        undetermined_warning(c, c_std)
+        + misfit_warning(layout, chi2, n_inliers)
+        + outlier_share_warning(inliers)
+    )

@@ -22,11 +22,9 @@ from curverecon.model.reconstruction import Alternative, Reconstruction, alterna
 from curverecon.options import ReconstructOptions
 from curverecon.rigid.answer import (
     chord_std,
-    misfit_warning,
+    fit_warnings,
     motion_parameters,
-    outlier_share_warning,
     paper_answer,
-    undetermined_warning,
 )
 from curverecon.rigid.measurements import RigidData
 from curverecon.rigid.model import (
@@ -151,9 +149,7 @@ def pinhole_answer(
     paper_poses[:, 3:5] *= scale
     cov = widened_covariance(fit, others)  # reaches every valley that fits about as well
     std = np.array([chord_std(layout, state, cov) * scale, np.nan, np.nan, np.nan])
-    warnings += undetermined_warning(float(shape[0]), float(std[0]))
-    warnings += misfit_warning(layout, float(fit.chi2), len(idx))
-    warnings += outlier_share_warning(inliers)
+    warnings += fit_warnings(layout, float(fit.chi2), inliers, float(shape[0]), float(std[0]))
     alternatives = [valley(obs, layout, alt, data.times[idx]) for alt in others]
     if alternatives:
         warnings.append(alternatives_warning(shape, std, alternatives))
