@@ -132,3 +132,44 @@ def test_stated_noise_three_times_too_small_warns_on_every_route(right_noise, no
         if line.startswith("chi2 "):  # the chi2's ratio: the noise about 3 times the stated
             ratio = float(line.split(" by ")[1].split(" times")[0])
             assert 1.5 < ratio < 4.5, (name, line)
+
+
+def test_a_pose_branch_chosen_by_the_curve_keeps_the_rest_of_the_answer():
+    """The paper's row: a frame switched to its other pose branch by the curve
+    (``curve.branches``) changes that frame's pose and chi2 and nothing else of the answer (its
+    estimator, labels and configuration stay).  The curve's residuals here are a stand-in that
+    prefers frame 2's other branch."""
+    from types import SimpleNamespace
+
+    from curverecon.curve.branches import resolve_branches_with_curves
+    from curverecon.model.pose import rotations
+    from curverecon.model.reconstruction import Reconstruction
+    from curverecon.options import CurveOptions
+
+    rng = np.random.default_rng(7)
+    poses = rng.uniform(-1.0, 1.0, (5, 5))
+    other = poses.copy()
+    other[2, :2] = [0.3, -poses[2, 1]]
+    rec = Reconstruction(
+        shape=np.array([100.0, 0.4, 0.5, 0.6]),
+        poses=poses,
+        std=np.full(4, 0.01),
+        inliers=np.ones(5, bool),
+        chi2=5.0,
+        frame_chi2=np.ones(5),
+        branch_alternatives=other,
+        branch_alternative_chi2=np.full(5, 2.0),
+        estimator="marginal",
+        ends_exchanged=np.zeros(5, bool),
+    )
+
+    def curve_residuals(curves, rot, tra):
+        wrong = not np.allclose(rot[2], rotations(other)[2])
+        return SimpleNamespace(frame_residual=np.array([1.0, 1.0, 9.0 if wrong else 1.0, 1, 1]))
+
+    new, _ = resolve_branches_with_curves(rec, [None] * 5, curve_residuals, CurveOptions())
+    kept = [0, 1, 3, 4]
+    assert np.array_equal(new.poses[2], other[2]) and np.array_equal(new.poses[kept], poses[kept])
+    assert new.frame_chi2[2] == 2.0 and new.chi2 == 6.0
+    assert new.estimator == "marginal" and new.ends_exchanged is rec.ends_exchanged
+    assert new.shape is rec.shape and new.std is rec.std
