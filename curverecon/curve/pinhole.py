@@ -868,7 +868,8 @@ def _answer(obs, fit: PinholeFit, gap: float, data: _Data):
     shape, poses = normalise(shape, poses)
     a_f = np.einsum("fij,j->fi", fit.rot, ctrl[0] * factor) + tra
     b_f = np.einsum("fij,j->fi", fit.rot, ctrl[-1] * factor) + tra
-    # every frame's rows: its polyline samples and A', B' (the penalty's part is in fit.cost)
+    # every frame's rows: its polyline samples and A', B'; the degrees of freedom count them
+    # less every free parameter (the penalty's rows, in fit.cost, fix the control points' slide)
     rows = _frame_rows(data, Basis(len(ctrl)), ctrl, fit.rot, fit.trans)[0]
     info = {
         "camera": "pinhole",
