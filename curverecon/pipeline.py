@@ -326,7 +326,12 @@ def _reconstruct_linear(obs: Observations) -> Reconstruction:
             "(noisy data: the linear method is not reliable; use --method auto)"
         )
     return Reconstruction(
-        shape, poses, None, np.ones(obs.n_frames, bool), [], warnings, "linear", None, None
+        shape=shape,
+        poses=poses,
+        std=None,
+        inliers=np.ones(obs.n_frames, bool),
+        warnings=warnings,
+        method="linear",
     )
 
 

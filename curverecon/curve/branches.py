@@ -12,6 +12,7 @@ from __future__ import annotations
 import functools
 import inspect
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -143,19 +144,14 @@ def resolve_branches_with_curves(
         f"frames {take}: pose branch chosen by the curve (their end points and tangents fit "
         "two branches about equally well)"
     ]
-    new = Reconstruction(
-        rec.shape,
-        poses,
-        rec.std,
-        rec.inliers,
-        rec.alternatives,
-        warnings,
-        rec.method,
-        chi2,
-        fchi2,
-        alt,
-        achi2,
-        ambiguous_dchi2=rec.ambiguous_dchi2,
+    new = replace(
+        rec,
+        poses=poses,
+        warnings=warnings,
+        chi2=chi2,
+        frame_chi2=fchi2,
+        branch_alternatives=alt,
+        branch_alternative_chi2=achi2,
     )
     if not full:
         return new, results[switched.tobytes()]
@@ -344,18 +340,17 @@ def refit_branches_with_curves(
         "the curve chose between nearby maximum-likelihood optima (pose branches refitted "
         f"jointly; chi2 {rec.chi2:.2f} -> {fit.chi2:.2f})"
     ]
-    new = Reconstruction(
-        shape,
-        poses,
-        std,
-        rec.inliers,
-        alternatives,
-        warnings,
-        rec.method,
-        fit.chi2,
-        fit.frame_chi2,
-        alt_poses,
-        alt_chi2,
-        ambiguous_dchi2=rec.ambiguous_dchi2,
+    new = replace(  # a joint maximum-likelihood refit: its estimator "ml"
+        rec,
+        shape=shape,
+        poses=poses,
+        std=std,
+        alternatives=alternatives,
+        warnings=warnings,
+        chi2=fit.chi2,
+        frame_chi2=fit.frame_chi2,
+        branch_alternatives=alt_poses,
+        branch_alternative_chi2=alt_chi2,
+        estimator="ml",
     )
     return new, reconstruct_curve(obs.curves, new.rotations(), new.translations())

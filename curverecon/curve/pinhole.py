@@ -854,7 +854,7 @@ def _answer(obs, fit: PinholeFit, gap: float, data: _Data):
     """The Reconstruction of a fitted pinhole bundle (see reconstruct_perspective_curve)."""
     from curverecon.curve.spline import BundleResult, shape_and_poses
     from curverecon.model.pose import normalise
-    from curverecon.model.reconstruction import Reconstruction
+    from curverecon.rigid.answer import configuration_answer
 
     cfg = obs.configuration
     ctrl = fit.control
@@ -868,9 +868,9 @@ def _answer(obs, fit: PinholeFit, gap: float, data: _Data):
     shape, poses = normalise(shape, poses)
     a_f = np.einsum("fij,j->fi", fit.rot, ctrl[0] * factor) + tra
     b_f = np.einsum("fij,j->fi", fit.rot, ctrl[-1] * factor) + tra
-    points3 = [{"A": a.tolist(), "B": b.tolist()} for a, b in zip(a_f, b_f, strict=True)]
-    frame_chi2 = fit.rms**2 * SAMPLES_PER_FRAME / data.sigma**2
-    warnings = list(obs.warnings) + _warnings(fit, gap, data)
+    # every frame's rows: its polyline samples and A', B'; the degrees of freedom count them
+    # less every free parameter (the penalty's rows, in fit.cost, fix the control points' slide)
+    rows = _frame_rows(data, Basis(len(ctrl)), ctrl, fit.rot, fit.trans)[0]
     info = {
         "camera": "pinhole",
         "control_points": int(len(ctrl)),
@@ -880,24 +880,26 @@ def _answer(obs, fit: PinholeFit, gap: float, data: _Data):
         "converged": bool(fit.converged),
         "mirror_dchi2": None if not np.isfinite(gap) else float(gap),
     }
-    return Reconstruction(
+    return configuration_answer(
+        cfg,
+        "free",
         shape=shape,
         poses=poses,
         std=_shape_std(fit, cfg.length_ab),
         inliers=np.ones(obs.n_frames, bool),
-        warnings=warnings,
-        method="auto",
-        chi2=float(fit.cost),
-        frame_chi2=frame_chi2,
+        chi2=fit.cost,
+        frame_chi2=np.sum(rows**2, axis=1),
+        dof=rows.size - int(fit.free.sum()),
         estimator="curve-bundle",
+        points3=np.stack([a_f, b_f], axis=1),
+        names=("A", "B"),
+        motion_parameters={},
+        warnings=list(obs.warnings) + _warnings(fit, gap, data),
+        frame_poses=np.concatenate([fit.rot, tra[:, :, None]], axis=2),
         curve3d=curve3d,
         curve3d_std=std,
         curve3d_normal_std=nstd,
         curve_bundle=info,
-        points3=points3,
-        configuration=cfg.to_json_dict(),
-        motion_parameters={},
-        frame_poses=np.concatenate([fit.rot, tra[:, :, None]], axis=2),
     )
 
 

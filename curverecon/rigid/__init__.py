@@ -43,14 +43,22 @@ from curverecon.model.reconstruction import Reconstruction
 from curverecon.options import ReconstructOptions
 from curverecon.rigid.answer import (
     chord_std,
-    fit_warnings,
+    configuration_answer,
+    inlier_frame_chi2,
     motion_parameters,
     paper_answer,
-    points3_dicts,
+    rigid_dof,
 )
 from curverecon.rigid.estimate import fit_row
 from curverecon.rigid.measurements import RigidData
-from curverecon.rigid.model import Layout, frame_angles, normalise, tangent_vectors, with_frames
+from curverecon.rigid.model import (
+    Layout,
+    frame_angles,
+    normalise,
+    points3,
+    tangent_vectors,
+    with_frames,
+)
 
 
 def rigid_data(obs: RigidObservations, options: ReconstructOptions) -> RigidData:
@@ -115,28 +123,25 @@ def answer(
         warnings += more
     shape, poses = paper_answer(layout, full, data.times, tangents3)
     std = np.array([chord_std(layout, state, fit.covariance), np.nan, np.nan, np.nan])
-    warnings += fit_warnings(layout, float(fit.chi2), inliers, float(shape[0]), float(std[0]))
     mp = motion_parameters(layout, replace(fit, state=state), sub)
     if "angle_deg" in mp:
         mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()
-    frame_chi2 = np.full(data.n_frames, np.nan)
-    frame_chi2[idx] = fit.frame_chi2
-    cfg = obs.configuration.to_json_dict()
-    cfg["motion"] = layout.motion
-    return Reconstruction(
+    return configuration_answer(
+        obs.configuration,
+        layout.motion,
         shape=shape,
         poses=poses,
         std=std,
         inliers=inliers,
-        warnings=warnings,
-        method="auto",
-        chi2=float(fit.chi2),
-        frame_chi2=frame_chi2,
+        chi2=fit.chi2,
+        frame_chi2=inlier_frame_chi2(fit, inliers),
+        dof=rigid_dof(layout, len(idx)),
         estimator="ml",
-        curve3d=curve3d,
-        points3=points3_dicts(layout, full, data.times),
-        configuration=cfg,
+        points3=points3(layout, full, data.times),
+        names=layout.points,
         motion_parameters=mp,
+        warnings=warnings,
+        curve3d=curve3d,
     )
 
 

@@ -1,5 +1,9 @@
 """A row's fit as the toolkit's answer: shape, the paper's poses, points3, motion parameters.
 
+:func:`configuration_answer` builds the answer of every configuration beyond the paper's own
+(the orthographic and pinhole rows, the ordinary camera's curve bundle) from its named parts and
+adds the fit's warnings (:func:`fit_warnings`) in that one place.
+
 The paper's pose convention (``model/pose.py``: X_cam = R_z(theta) R_y(tau) R_x(delta) X + t,
 the curve frame with A at the origin, B on +x and the tangent at B in the xy plane) is reached
 from a row's rotations R_f by the curve frame's axes in frame 0: e1 along AB, e2 the part of the
@@ -13,11 +17,14 @@ where neither tangents nor curves are given.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 from scipy.stats import chi2 as chi2_dist
 
+from curverecon.model.configuration import Configuration
 from curverecon.model.pose import normalise as normalise_pose
+from curverecon.model.reconstruction import Alternative, Reconstruction
 from curverecon.rigid.measurements import RigidData
 from curverecon.rigid.model import (
     Layout,
@@ -129,12 +136,6 @@ def motion_parameters(layout: Layout, fit: RigidFit, data: RigidData) -> dict:
     return out
 
 
-def points3_dicts(layout: Layout, state: RigidState, times: np.ndarray) -> list[dict]:
-    """Per frame {name: [x, y, z]} (camera coordinates, A at z = 0)."""
-    p3 = points3(layout, state, times)
-    return [{n: p3[f, k].tolist() for k, n in enumerate(layout.points)} for f in range(len(p3))]
-
-
 UNDETERMINED_FRACTION = 0.5
 """An answer whose std of c exceeds this fraction of c (or is not finite) carries a warning that
 the frames hardly determine the body.  The bench's rows (1 px, 20 frames) have c's own bound at
@@ -158,15 +159,21 @@ MISFIT_FALSE_ALARM = 1e-6
 warning (one false alarm in a million right answers)."""
 
 
-def misfit_warning(layout: Layout, chi2: float, n_frames: int) -> list[str]:
-    """A one-line warning when the inlier frames' chi2 (in units of the stated noise) is far above
-    what the noise explains: the points are noisier than ``point_sigma`` says (the std are then too
-    small by about sqrt(chi2 / dof)), or the model does not match the images (a wrong camera, rig,
-    time stamps or motion).  Nothing otherwise, or when the fit has no degrees of freedom."""
+def rigid_dof(layout: Layout, n_frames: int) -> int:
+    """Degrees of freedom of a row's fit on ``n_frames`` frames: its measurements less every
+    parameter it determines."""
     # with two points and no tangents a free rotation's turn about the chord AB is not observed:
     # that local costs no degree of freedom
     unseen = 1 if layout.free_rotations and len(layout.points) == 2 and not layout.tangents else 0
-    dof = n_frames * (layout.n_measurements - layout.n_local + unseen) - layout.n_global
+    return n_frames * (layout.n_measurements - layout.n_local + unseen) - layout.n_global
+
+
+def misfit_warning(chi2: float, dof: int) -> list[str]:
+    """A one-line warning when the inlier frames' chi2 (in units of the stated noise) is far above
+    what the noise explains on ``dof`` degrees of freedom: the points are noisier than
+    ``point_sigma`` says (the std are then too small by about sqrt(chi2 / dof)), or the model does
+    not match the images (a wrong camera, rig, time stamps or motion).  Nothing otherwise, or when
+    the fit has no degrees of freedom."""
     if dof < 1 or not np.isfinite(chi2) or chi2_dist.sf(chi2, dof) >= MISFIT_FALSE_ALARM:
         return []
     return [
@@ -194,14 +201,88 @@ def outlier_share_warning(inliers: np.ndarray) -> list[str]:
     ]
 
 
-def fit_warnings(
-    layout: Layout, chi2: float, inliers: np.ndarray, c: float, c_std: float
-) -> list[str]:
+def fit_warnings(dof: int, chi2: float, inliers: np.ndarray, c: float, c_std: float) -> list[str]:
     """Every warning an answer's fit carries, whatever its camera: c hardly determined, a chi2 the
-    stated noise cannot explain, too many frames left out (the three functions above)."""
-    n_inliers = int(np.sum(inliers))
+    stated noise cannot explain on ``dof`` degrees of freedom, too many frames left out (the three
+    functions above)."""
     return (
-        undetermined_warning(c, c_std)
-        + misfit_warning(layout, chi2, n_inliers)
-        + outlier_share_warning(inliers)
+        undetermined_warning(c, c_std) + misfit_warning(chi2, dof) + outlier_share_warning(inliers)
     )
+
+
+def configuration_answer(
+    configuration: Configuration,
+    motion: str,
+    *,
+    shape: np.ndarray,
+    poses: np.ndarray,
+    std: np.ndarray | None,
+    inliers: np.ndarray,
+    chi2: float,
+    frame_chi2: np.ndarray,
+    dof: int,
+    estimator: str,
+    points3: np.ndarray,
+    names: Sequence[str],
+    motion_parameters: dict,
+    warnings: list[str],
+    frame_poses: np.ndarray | None = None,
+    alternatives: list[Alternative] | None = None,
+    curve3d: np.ndarray | None = None,
+    curve3d_std: np.ndarray | None = None,
+    curve3d_normal_std: np.ndarray | None = None,
+    curve_bundle: dict | None = None,
+) -> Reconstruction:
+    """The answer of a configuration beyond the paper's own, whatever its camera (the
+    orthographic and pinhole rows, the ordinary camera's curve bundle), from its named parts.
+
+    Args:
+        configuration, motion: what the frames show; ``motion`` the fitted model (``--motion
+            auto`` chooses one), written as the output's ``configuration.motion``.
+        shape, poses: (4,) c, alpha, beta, phi and (N, 5) the paper's poses (radians, the
+            answer's length unit).
+        std: (4,) their standard deviations (NaN where not estimated), or None.
+        inliers: (N,) False for frames left out; chi2: over the inlier frames (units of the
+            stated noise); frame_chi2: (N,) per frame (NaN for frames left out); dof: the fit's
+            degrees of freedom on its inlier frames (the misfit warning's).
+        estimator: "ml" or "curve-bundle".
+        points3: (N, P, 3) the points ``names`` in every frame's camera coordinates.
+        motion_parameters: the contract's (``{}`` for free motion).
+        warnings: the route's own, in order; the fit's (:func:`fit_warnings`) are appended.
+        frame_poses: (N, 3, 4) [R_f | T_f] where the camera places the answer in depth.
+        alternatives: other fits as good (the route adds its warning about them).
+        curve3d, curve3d_std, curve3d_normal_std, curve_bundle: the curve where there are
+            polylines (Reconstruction's attributes: the std across the curve alone where a
+            point's slide along it is not determined, stereo).
+    """
+    cfg = configuration.to_json_dict()
+    cfg["motion"] = motion
+    c_std = math.nan if std is None else float(std[0])
+    p3 = np.asarray(points3, float)
+    return Reconstruction(
+        shape=shape,
+        poses=poses,
+        std=std,
+        inliers=inliers,
+        alternatives=list(alternatives or []),
+        warnings=list(warnings) + fit_warnings(dof, chi2, inliers, float(shape[0]), c_std),
+        method="auto",
+        chi2=float(chi2),
+        frame_chi2=frame_chi2,
+        estimator=estimator,
+        curve3d=curve3d,
+        curve3d_std=curve3d_std,
+        curve3d_normal_std=curve3d_normal_std,
+        curve_bundle=curve_bundle,
+        points3=[{n: p3[f, k].tolist() for k, n in enumerate(names)} for f in range(len(p3))],
+        configuration=cfg,
+        motion_parameters=motion_parameters,
+        frame_poses=frame_poses,
+    )
+
+
+def inlier_frame_chi2(fit: RigidFit, inliers: np.ndarray) -> np.ndarray:
+    """(N,) every frame's chi2 from a fit on the inlier frames, NaN for the frames left out."""
+    out = np.full(len(inliers), np.nan)
+    out[np.flatnonzero(inliers)] = fit.frame_chi2
+    return out

@@ -22,9 +22,11 @@ from curverecon.model.reconstruction import Alternative, Reconstruction, alterna
 from curverecon.options import ReconstructOptions
 from curverecon.rigid.answer import (
     chord_std,
-    fit_warnings,
+    configuration_answer,
+    inlier_frame_chi2,
     motion_parameters,
     paper_answer,
+    rigid_dof,
 )
 from curverecon.rigid.measurements import RigidData
 from curverecon.rigid.model import (
@@ -149,35 +151,32 @@ def pinhole_answer(
     paper_poses[:, 3:5] *= scale
     cov = widened_covariance(fit, others)  # reaches every valley that fits about as well
     std = np.array([chord_std(layout, state, cov) * scale, np.nan, np.nan, np.nan])
-    warnings += fit_warnings(layout, float(fit.chi2), inliers, float(shape[0]), float(std[0]))
     alternatives = [valley(obs, layout, alt, data.times[idx]) for alt in others]
     if alternatives:
         warnings.append(alternatives_warning(shape, std, alternatives))
     mp = _motion(layout, replace(fit, state=state), data.subset(idx), scale)
     if "angle_deg" in mp:
         mp["angle_deg"] = np.degrees(frame_angles(layout, full, data.times)).tolist()
-    frame_chi2 = np.full(data.n_frames, np.nan)
-    frame_chi2[idx] = fit.frame_chi2
-    cfg = obs.configuration.to_json_dict()
-    cfg["motion"] = layout.motion
-    names = layout.points
-    return Reconstruction(
+    stereo = layout.projection == "stereo"
+    return configuration_answer(
+        obs.configuration,
+        layout.motion,
         shape=shape,
         poses=paper_poses,
         std=std,
         inliers=inliers,
-        warnings=warnings,
-        alternatives=alternatives,
-        method="auto",
-        chi2=float(fit.chi2),
-        frame_chi2=frame_chi2,
+        chi2=fit.chi2,
+        frame_chi2=inlier_frame_chi2(fit, inliers),
+        dof=rigid_dof(layout, len(idx)),
         estimator="ml",
+        points3=p3,
+        names=layout.points,
+        motion_parameters=mp,
+        warnings=warnings,
+        frame_poses=poses,
+        alternatives=alternatives,
         curve3d=curve3d,
         # the stereo curve's std is across the curve (a match slides along it freely)
-        curve3d_std=None if layout.projection == "stereo" else curve_std,
-        curve3d_normal_std=curve_std if layout.projection == "stereo" else None,
-        points3=[{n: p3[f, k].tolist() for k, n in enumerate(names)} for f in range(len(p3))],
-        configuration=cfg,
-        motion_parameters=mp,
-        frame_poses=poses,
+        curve3d_std=None if stereo else curve_std,
+        curve3d_normal_std=curve_std if stereo else None,
     )

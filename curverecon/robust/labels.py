@@ -461,7 +461,11 @@ def _quick_curve(
             obs.curves, rotations(fit.poses), translations(fit.poses), tangents=_ANY_TANGENTS
         )
         return Reconstruction(
-            shape, fit.poses, None, np.ones(obs.n_frames, bool), curve3d=res.points
+            shape=shape,
+            poses=fit.poses,
+            std=None,
+            inliers=np.ones(obs.n_frames, bool),
+            curve3d=res.points,
         )
     except CurveReconError:
         pass
