@@ -1,0 +1,218 @@
+"""Slips a newcomer makes by accident: each is one line on stderr with exit status 2 from the
+command, naming what to do, and a ``CurveReconError`` from the library."""
+
+from __future__ import annotations
+
+import copy
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from curverecon.cli import main
+from curverecon.errors import CurveReconError
+from curverecon.io import (
+    MAX_FIELD_FOCAL_LENGTHS,
+    MAX_IMAGE_COORDINATE,
+    load_observations,
+    observations_from_dict,
+    observations_to_dict,
+    read_json,
+)
+from curverecon.model.configuration import RigidObservations
+from curverecon.simulate import make_scene, simulate_camera_configuration
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+
+
+def _command(capsys, *argv: str) -> str:
+    """Run the command; assert exit 2 and one line on stderr; return that line."""
+    status = main(list(argv))
+    err = capsys.readouterr().err.strip().splitlines()
+    assert status == 2, err
+    assert len(err) == 1, err
+    assert err[0].startswith("curverecon: error: ")
+    return err[0]
+
+
+def _paper_doc(seed: int = 0) -> dict:
+    """A scene of the paper's own setting (A, B, tangents, polylines), by the 3-D construction."""
+    scene = make_scene(np.random.default_rng(seed), 6, 0.5, 0.5, with_curve=True)
+    return observations_to_dict(scene.observations)
+
+
+def _scaled(doc: dict, factor: float) -> dict:
+    """``doc`` with every image point and polyline point multiplied by ``factor``."""
+    out = copy.deepcopy(doc)
+    for frame in out["frames"]:
+        for key in ("A", "B"):
+            frame[key] = [factor * v for v in frame[key]]
+        frame["curve"] = [[factor * x, factor * y] for x, y in frame["curve"]]
+    return out
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        '{"format": "curverecon.observations/1", "frames": [{"A": [1, 2], "B": [3, 4],}]}',
+        '{"format": "curverecon.observations/1", "frames": [{"A": [1, 2], "B": [3, 4]},]}',
+    ],
+    ids=["object", "list"],
+)
+def test_a_trailing_comma_is_named(tmp_path, capsys, text):
+    path = tmp_path / "obs.json"
+    path.write_text(text)
+    line = _command(capsys, "reconstruct", str(path), "-o", str(tmp_path / "out.json"))
+    assert "malformed JSON" in line and "no comma before ] or }" in line
+    with pytest.raises(CurveReconError, match="no comma before"):
+        read_json(path)
+    assert not (tmp_path / "out.json").exists()
+
+
+def test_a_malformed_file_without_a_trailing_comma_gets_no_comma_hint(tmp_path):
+    path = tmp_path / "obs.json"
+    path.write_text('{"format": "curverecon.observations/1", "frames": [')
+    with pytest.raises(CurveReconError, match="malformed JSON") as err:
+        read_json(path)
+    assert "comma" not in str(err.value)
+
+
+KINDS = {
+    "curverecon.reconstruction/1": "the answer `curverecon reconstruct` writes",
+    "curverecon.truth/1": "simulate --truth",
+    "curverecon.flat-views/1": "`curverecon match-flat`",
+    "curverecon.matches/1": "the answer `curverecon match-flat` writes",
+}
+
+
+@pytest.mark.parametrize("fmt", sorted(KINDS))
+def test_reconstruct_names_the_document_it_was_given(tmp_path, capsys, fmt):
+    path = tmp_path / "doc.json"
+    path.write_text(json.dumps({**_paper_doc(), "format": fmt}))
+    line = _command(capsys, "reconstruct", str(path), "-o", str(tmp_path / "out.json"))
+    assert "wrong format tag" in line and KINDS[fmt] in line
+    with pytest.raises(CurveReconError, match="wrong format tag"):
+        load_observations(path)
+
+
+def test_match_flat_given_observations_points_to_reconstruct(tmp_path, capsys):
+    path = tmp_path / "obs.json"
+    path.write_text(json.dumps(_paper_doc()))
+    line = _command(capsys, "match-flat", str(path), "-o", str(tmp_path / "m.json"))
+    assert "curverecon.flat-views/1" in line and "`curverecon reconstruct`" in line
+
+
+def test_the_real_outputs_are_refused_by_name(tmp_path, capsys):
+    """A reconstruction the command wrote, fed back to it (the usual slip after a first run)."""
+    scene = tmp_path / "scene.json"
+    obs = make_scene(np.random.default_rng(1), 8, 0.5, 0.5).observations
+    scene.write_text(json.dumps(observations_to_dict(obs)))
+    rec, truth = tmp_path / "rec.json", tmp_path / "truth.json"
+    assert main(["reconstruct", str(scene), "-o", str(rec), "--quiet"]) == 0
+    assert main(["simulate", "-o", str(tmp_path / "s.json"), "--truth", str(truth)]) == 0
+    capsys.readouterr()
+    line = _command(capsys, "reconstruct", str(rec), "-o", str(tmp_path / "again.json"))
+    assert "not its input" in line
+    line = _command(capsys, "reconstruct", str(truth), "-o", str(tmp_path / "again.json"))
+    assert "scene of `-o`" in line
+
+
+def test_a_missing_relative_path_says_where_it_looked(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    line = _command(capsys, "reconstruct", "data/obs.json", "-o", "out.json")
+    assert "cannot read data/obs.json" in line and f"looked in {tmp_path}" in line
+    line = _command(capsys, "reconstruct", str(tmp_path / "obs.json"), "-o", "out.json")
+    assert "cannot read" in line and "looked in" not in line  # an absolute path says it all
+
+
+@pytest.mark.parametrize(
+    "doc",
+    [
+        {"format": "curverecon.observations/1", "frames": []},
+        {"format": "curverecon.observations/1", "motion": "fixed-axis", "frames": []},
+        {
+            "format": "curverecon.observations/1",
+            "projection": "perspective",
+            "camera": {"focal_px": 800, "principal_point": [320, 240]},
+            "frames": [],
+        },
+    ],
+    ids=["paper", "fixed-axis", "perspective"],
+)
+def test_an_empty_frames_list(tmp_path, capsys, doc):
+    path = tmp_path / "obs.json"
+    path.write_text(json.dumps(doc))
+    line = _command(capsys, "reconstruct", str(path), "-o", str(tmp_path / "out.json"))
+    assert '"frames" is empty' in line
+    with pytest.raises(CurveReconError, match='"frames" is empty'):
+        observations_from_dict(doc)
+
+
+def test_huge_coordinates_under_orthographic_projection(tmp_path, capsys):
+    """A scene in pixels scaled a million times (points in the wrong units) is refused; scaled a
+    thousand times (coordinates up to some 1e5) it still reads, every point where it was."""
+    doc = _paper_doc()
+    big = _scaled(doc, 1e6)
+    path = tmp_path / "big.json"
+    path.write_text(json.dumps(big))
+    line = _command(capsys, "reconstruct", str(path), "-o", str(tmp_path / "out.json"))
+    assert "frame 0: an image coordinate of" in line and "pixels" in line
+    with pytest.raises(CurveReconError, match="image coordinate"):
+        observations_from_dict(big)
+    larger = _scaled(doc, 1e3)
+    largest = max(abs(v) for f in larger["frames"] for p in f["curve"] for v in p)
+    assert 1e4 < largest < MAX_IMAGE_COORDINATE
+    obs = observations_from_dict(larger)
+    np.testing.assert_allclose(obs.a, 1e3 * np.array([f["A"] for f in doc["frames"]]))
+
+
+def _normalised(doc: dict, camera: dict) -> dict:
+    """``doc``'s points and camera in normalised image coordinates (focal length 1, principal
+    point at the origin): the same rays."""
+    f, (cx, cy) = camera["focal_px"], camera["principal_point"]
+    out = copy.deepcopy(doc)
+    out["camera"] = {"focal_px": 1.0, "principal_point": [0.0, 0.0]}
+    for frame in out["frames"]:
+        for key in ("A", "B"):
+            frame[key] = [(frame[key][0] - cx) / f, (frame[key][1] - cy) / f]
+        for name, p in frame.get("points", {}).items():
+            frame["points"][name] = [(p[0] - cx) / f, (p[1] - cy) / f]
+    return out
+
+
+def test_pixel_points_with_a_normalised_camera(tmp_path, capsys):
+    """A camera in normalised units (focal_px 1) with the points left in pixels: rays 89.8
+    degrees off the axis.  Refused; the same rays with the points normalised too read."""
+    doc, _ = simulate_camera_configuration("perspective", "free", "ABCD", 4, 5)
+    camera = doc["camera"]
+    normalised = _normalised(doc, camera)
+    obs = observations_from_dict(normalised)
+    assert isinstance(obs, RigidObservations)
+    rays = np.concatenate([obs.points, np.ones(obs.points.shape[:-1] + (1,))], axis=-1)
+    pixels = observations_from_dict(doc).points
+    cx, cy = camera["principal_point"]
+    np.testing.assert_allclose(rays[..., 0] * camera["focal_px"] + cx, pixels[..., 0])
+    np.testing.assert_allclose(rays[..., 1] * camera["focal_px"] + cy, pixels[..., 1])
+    mixed = {**doc, "camera": normalised["camera"]}
+    path = tmp_path / "mixed.json"
+    path.write_text(json.dumps(mixed))
+    line = _command(capsys, "reconstruct", str(path), "-o", str(tmp_path / "out.json"))
+    assert "focal lengths from the principal point" in line and "units" in line
+    with pytest.raises(CurveReconError, match="focal lengths"):
+        observations_from_dict(mixed)
+
+
+def test_a_stereo_camera_in_other_units_is_named(tmp_path):
+    doc, _ = simulate_camera_configuration("stereo", "free", "AB", 1, 3)
+    observations_from_dict(doc)
+    wrong = copy.deepcopy(doc)
+    wrong["cameras"][1]["focal_px"] = 800.0 / (2 * MAX_FIELD_FOCAL_LENGTHS * 100)
+    with pytest.raises(CurveReconError, match="camera 1: frame 0: an image point"):
+        observations_from_dict(wrong)
+
+
+def test_the_bundled_examples_still_read():
+    for name in ("wire.json",):
+        obs = load_observations(EXAMPLES / name)
+        assert len(obs.a) == 20
