@@ -216,3 +216,50 @@ def test_the_bundled_examples_still_read():
     for name in ("wire.json",):
         obs = load_observations(EXAMPLES / name)
         assert len(obs.a) == 20
+
+
+def _camera_scene(size: float, frames: int = 3):
+    """A curve ``size`` across, 2 units before an 800 px camera, turned a little per frame:
+    the observations (pixels by the pinhole formula) and a Reconstruction holding the truth."""
+    from curverecon.model.configuration import Configuration
+    from curverecon.model.reconstruction import Reconstruction
+    from curverecon.solvers.camera import Camera
+
+    u = np.linspace(0.0, 1.0, 40)
+    curve = size * np.column_stack([u - 0.5, 0.3 * np.sin(3 * u), 0.2 * u**2]) + [0, 0, 2.0]
+    poses, moved = [], []
+    for f in range(frames):
+        a = 0.3 * f
+        rot = np.array([[np.cos(a), 0, np.sin(a)], [0, 1, 0], [-np.sin(a), 0, np.cos(a)]])
+        tr = curve.mean(axis=0) - rot @ curve.mean(axis=0)
+        poses.append(np.column_stack([rot, tr]))
+        moved.append(curve @ rot.T + tr)
+    moved = np.array(moved)
+    pixels = 800.0 * moved[..., :2] / moved[..., 2:] + [320.0, 240.0]
+    cfg = Configuration("perspective", "free", ("A", "B"), False, camera=Camera(800.0, (320, 240)))
+    obs = RigidObservations(cfg, np.arange(float(frames)), pixels[:, [0, -1]], None, list(pixels))
+    rec = Reconstruction(
+        shape=np.full(4, np.nan),
+        poses=np.full((frames, 5), np.nan),
+        std=None,
+        inliers=np.ones(frames, dtype=bool),
+        curve3d=curve,
+        points3=[{"A": m[0].tolist(), "B": m[-1].tolist()} for m in moved],
+        frame_poses=np.array(poses),
+        configuration=cfg.to_json_dict(),
+    )
+    return rec, obs
+
+
+def test_a_small_curve_among_the_cameras_is_also_drawn_enlarged(tmp_path):
+    """A body a fortieth of its distance across is a dot beside the frustums: the figure adds
+    the curve enlarged; a body as large as its distance needs no enlargement."""
+    from curverecon.plot import _needs_zoom, plot_camera_file
+
+    small, obs = _camera_scene(0.05)
+    assert _needs_zoom(small, obs)
+    large, obs_large = _camera_scene(2.0)
+    assert not _needs_zoom(large, obs_large)
+    path = tmp_path / "small.png"
+    plot_camera_file(str(path), small, obs)
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
