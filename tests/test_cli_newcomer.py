@@ -263,3 +263,19 @@ def test_a_small_curve_among_the_cameras_is_also_drawn_enlarged(tmp_path):
     path = tmp_path / "small.png"
     plot_camera_file(str(path), small, obs)
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_a_stereo_scene_with_polylines_answers_the_angles():
+    """The contract leaves alpha, beta, phi null only where neither tangents nor curves were
+    given: with polylines in both views they come from the curve's end tangents (noise-free
+    stereo scene, against the simulated body's angles)."""
+    from curverecon.options import ReconstructOptions
+    from curverecon.pipeline import reconstruct
+
+    doc, truth = simulate_camera_configuration("stereo", "free", "AB", 6, 2, with_curve=True)
+    rec = reconstruct(observations_from_dict(doc), options=ReconstructOptions(progress=False))
+    out = rec.to_json_dict()
+    assert out["c"] == pytest.approx(truth["c"], rel=1e-6)
+    for key in ("alpha_deg", "beta_deg", "phi_deg"):
+        assert out[key] is not None
+        assert abs(out[key] - truth[key]) < 3.0, (key, out[key], truth[key])

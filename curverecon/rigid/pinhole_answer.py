@@ -26,6 +26,7 @@ from curverecon.rigid.answer import (
     motion_parameters,
     paper_answer,
 )
+from curverecon.rigid.curve import end_tangents
 from curverecon.rigid.measurements import RigidData
 from curverecon.rigid.model import (
     Layout,
@@ -144,6 +145,8 @@ def pinhole_answer(
     curve3d, curve_std, more = curve_stage(obs, poses, p3, idx, options.point_sigma, free)
     warnings += more
     tangents3 = tangent_vectors(state)
+    if tangents3 is None and curve3d is not None:  # the angles from the curve's end tangents
+        tangents3 = end_tangents(np.asarray(curve3d, float))
     shape, paper_poses = paper_answer(layout, full, data.times, tangents3)
     shape[0] *= scale
     paper_poses[:, 3:5] *= scale
