@@ -279,3 +279,24 @@ def test_a_stereo_scene_with_polylines_answers_the_angles():
     for key in ("alpha_deg", "beta_deg", "phi_deg"):
         assert out[key] is not None
         assert abs(out[key] - truth[key]) < 3.0, (key, out[key], truth[key])
+
+
+def test_a_curve_that_does_not_fit_a_rows_poses_leaves_the_points_answer(monkeypatch):
+    """``--motion auto`` on a freely moving body seen by one camera with A, B and polylines
+    chooses among the rows the points allow; when the polylines fit none of the chosen row's
+    poses the answer is the row's points with a warning naming --motion free, not an error."""
+    import curverecon.curve.pinhole as pinhole
+    from curverecon.options import ReconstructOptions
+    from curverecon.pipeline import reconstruct
+
+    def refuse(*args, **kwargs):
+        raise CurveReconError("pinhole curve bundle: the start is not valid (behind the camera)")
+
+    monkeypatch.setattr(pinhole, "curve_on_pinhole_poses", refuse)
+    doc, truth = simulate_camera_configuration(
+        "perspective", "uniform-rotation", "AB", 6, 4, with_curve=True
+    )
+    rec = reconstruct(observations_from_dict(doc), options=ReconstructOptions(progress=False))
+    assert rec.curve3d is None
+    assert rec.c == pytest.approx(truth["c"], rel=1e-6)
+    assert any("--motion free" in w and "behind the camera" in w for w in rec.warnings)

@@ -41,6 +41,7 @@ from curverecon.rigid.pinhole_search import answer_valleys, widened_covariance
 from curverecon.rigid.refinement import RigidFit
 
 CURVE_MISSING = "curve stage under perspective not available"
+CURVE_HINT = "; a body moving freely: --motion free (A, B and polylines: the curve bundle)"
 
 
 def answer_scale(obs: RigidObservations, p3: np.ndarray) -> float:
@@ -88,6 +89,8 @@ def curve_stage(obs: RigidObservations, poses, p3: np.ndarray, idx, sigma: float
         return curve_on_pinhole_poses(cfg.camera, poses[idx], curves, p3[0], sigma)
     except ImportError:
         return None, None, [CURVE_MISSING]
+    except CurveReconError as exc:  # the points' answer stands; the polylines do not fit it
+        return None, None, [f"motion {cfg.motion}: no curve fits its poses ({exc}){CURVE_HINT}"]
 
 
 def _motion(layout: Layout, fit: RigidFit, data: RigidData, scale: float) -> dict:
