@@ -480,6 +480,12 @@ def _cmd_trace(args: argparse.Namespace) -> int:
 
     if not (math.isfinite(args.width) and 1.0 <= args.width <= 100.0):
         raise CurveReconError("--width must be a number of pixels between 1 and 100")
+    documents = [p for p in args.inputs if p.lower().endswith(".json")]
+    if documents:
+        raise CurveReconError(
+            f"{documents[0]}: trace reads images or a video; a JSON document of observations "
+            "goes to `curverecon reconstruct`"
+        )
     options = TraceOptions(width=args.width, dark_curve=args.dark_curve)
     result = trace_inputs(
         args.inputs,

@@ -77,7 +77,9 @@ def read_json(path: str | Path) -> Any:
     except OSError as exc:
         raise CurveReconError(f"cannot read {path}: {exc.strerror or exc}") from exc
     except UnicodeDecodeError as exc:
-        raise CurveReconError(f"{path} is not UTF-8 text") from exc
+        raise CurveReconError(
+            f"{path} is not UTF-8 text (an image or a video? `curverecon trace` reads those)"
+        ) from exc
     seen: list[str] = []
     try:
         data = json.loads(text, parse_constant=lambda name: seen.append(name) or float(name))

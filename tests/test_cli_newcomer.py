@@ -300,3 +300,17 @@ def test_a_curve_that_does_not_fit_a_rows_poses_leaves_the_points_answer(monkeyp
     assert rec.curve3d is None
     assert rec.c == pytest.approx(truth["c"], rel=1e-6)
     assert any("--motion free" in w and "behind the camera" in w for w in rec.warnings)
+
+
+def test_a_video_given_to_reconstruct_points_to_trace(tmp_path, capsys):
+    video = EXAMPLES / "trace" / "sequence.mp4"
+    line = _command(capsys, "reconstruct", str(video), "-o", str(tmp_path / "out.json"))
+    assert "not UTF-8 text" in line and "`curverecon trace`" in line
+    with pytest.raises(CurveReconError, match="curverecon trace"):
+        read_json(video)
+
+
+def test_observations_given_to_trace_point_to_reconstruct(tmp_path, capsys):
+    line = _command(capsys, "trace", str(EXAMPLES / "wire.json"), "-o", str(tmp_path / "o.json"))
+    assert "wire.json" in line and "`curverecon reconstruct`" in line
+    assert not (tmp_path / "o.json").exists()
