@@ -465,7 +465,7 @@ def _needs_zoom(rec, obs) -> bool:
     """Whether the curve spans less than ``ZOOM_BELOW`` of the 3-D panel's extent (the curve and
     every camera drawn, as :func:`_camera_3d_panel` frames them)."""
     pts = _curve_points(rec)
-    if len(pts) < 2:
+    if len(pts) < 3:  # A and B alone: two dots, nothing to enlarge
         return False
     frustums = camera_frustums(rec, obs, _scene_depth(rec, obs))
     allp = np.concatenate([pts] + [np.vstack([f["centre"], f["corners"]]) for f in frustums])
@@ -535,8 +535,9 @@ def plot_camera_file(path: str, rec, obs) -> None:
         if slot == 0:
             ax.legend(fontsize=6, loc="best")
     cfg = obs.configuration
+    motion = (rec.configuration or {}).get("motion", cfg.motion)  # auto: the chosen model
     fig.suptitle(
-        f"Reconstruction ({cfg.projection}, motion {cfg.motion}): {obs.n_frames} frame"
+        f"Reconstruction ({cfg.projection}, motion {motion}): {obs.n_frames} frame"
         + ("s" if obs.n_frames != 1 else "")
         + (f" (showing {len(frames)})" if len(frames) < obs.n_frames else ""),
         fontsize=10,

@@ -314,3 +314,24 @@ def test_observations_given_to_trace_point_to_reconstruct(tmp_path, capsys):
     line = _command(capsys, "trace", str(EXAMPLES / "wire.json"), "-o", str(tmp_path / "o.json"))
     assert "wire.json" in line and "`curverecon reconstruct`" in line
     assert not (tmp_path / "o.json").exists()
+
+
+def test_the_camera_figure_names_the_motion_auto_chose(tmp_path, monkeypatch):
+    from dataclasses import replace
+
+    from matplotlib.figure import Figure
+
+    from curverecon.plot import plot_camera_file
+
+    rec, obs = _camera_scene(0.05)
+    obs = replace(obs, configuration=replace(obs.configuration, motion="auto"))
+    rec.configuration = {**rec.configuration, "motion": "fixed-axis"}
+    titles = []
+    real = Figure.savefig
+    monkeypatch.setattr(
+        Figure,
+        "savefig",
+        lambda fig, *a, **k: titles.append(fig._suptitle.get_text()) or real(fig, *a, **k),
+    )
+    plot_camera_file(str(tmp_path / "auto.png"), rec, obs)
+    assert titles and "motion fixed-axis" in titles[0] and "auto" not in titles[0]
