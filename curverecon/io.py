@@ -70,7 +70,7 @@ def read_json(path: str | Path) -> Any:
     """Parse a JSON file; NaN / Infinity literals (named with their place, e.g.
     ``frames[3].A[0]``) and unreadable files are errors."""
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = Path(path).read_text(encoding="utf-8-sig")  # a byte-order mark (Notepad) is fine
     except FileNotFoundError as exc:
         here = "" if Path(path).is_absolute() else f" (looked in {Path.cwd()})"
         raise CurveReconError(f"cannot read {path}: {exc.strerror or exc}{here}") from exc

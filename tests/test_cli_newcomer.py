@@ -335,3 +335,11 @@ def test_the_camera_figure_names_the_motion_auto_chose(tmp_path, monkeypatch):
     )
     plot_camera_file(str(tmp_path / "auto.png"), rec, obs)
     assert titles and "motion fixed-axis" in titles[0] and "auto" not in titles[0]
+
+
+def test_a_byte_order_mark_is_read_as_without_it(tmp_path):
+    """A JSON file saved by an editor that writes a UTF-8 byte-order mark reads as the same
+    document without it."""
+    path = tmp_path / "bom.json"
+    path.write_bytes(b"\xef\xbb\xbf" + (EXAMPLES / "wire.json").read_bytes())
+    assert read_json(path) == read_json(EXAMPLES / "wire.json")
