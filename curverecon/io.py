@@ -245,28 +245,41 @@ def _require_image_scale(obs: Observations | RigidObservations) -> Observations 
             views.append((obs.view1.points, obs.view1.curves, cams[1]))
     for k, (points, curves, camera) in enumerate(views):
         where = f"camera {k}: " if len(views) > 1 else ""
-        frames = [np.asarray(p).reshape(-1, 2) for p in points]
-        if curves is not None:
-            frames = [np.vstack([p, c]) for p, c in zip(frames, curves, strict=True)]
-        for i, xy in enumerate(frames):
-            worst = float(np.max(np.abs(xy))) if xy.size else 0.0
-            if worst > MAX_IMAGE_COORDINATE:
-                raise CurveReconError(
-                    f"{where}frame {i}: an image coordinate of {worst:.3g}, beyond "
-                    f"{MAX_IMAGE_COORDINATE:.0e}: image points are expected in pixels (or units "
-                    "of that size); scale them down (the answer's lengths scale with them)"
-                )
-            if camera is None or not xy.size:
-                continue
-            off = np.hypot(*(xy - np.asarray(camera.principal_point)).T).max() / camera.focal_px
-            if off > MAX_FIELD_FOCAL_LENGTHS:
-                raise CurveReconError(
-                    f"{where}frame {i}: an image point {off:.3g} focal lengths from the principal "
-                    f"point (more than {MAX_FIELD_FOCAL_LENGTHS:g}): the points and the camera "
-                    "are in different units? focal_px, principal_point and the points are all "
-                    "in pixels"
-                )
+        n = len(points)
+        xy = np.asarray(points, float).reshape(n, -1, 2)
+        frame = np.repeat(np.arange(n), xy.shape[1])
+        xy = xy.reshape(-1, 2)
+        if curves is not None and n:
+            frame = np.concatenate([frame, np.repeat(np.arange(n), [len(c) for c in curves])])
+            xy = np.vstack([xy, *curves])
+        if not len(xy):
+            continue
+        size = np.abs(xy).max(axis=1)
+        if size.max() > MAX_IMAGE_COORDINATE:
+            i = _first_frame(frame, size > MAX_IMAGE_COORDINATE)
+            raise CurveReconError(
+                f"{where}frame {frame[i]}: an image coordinate of {size[i]:.3g}, beyond "
+                f"{MAX_IMAGE_COORDINATE:.0e}: image points are expected in pixels (or units "
+                "of that size); scale them down (the answer's lengths scale with them)"
+            )
+        if camera is None:
+            continue
+        off = np.hypot(*(xy - np.asarray(camera.principal_point)).T) / camera.focal_px
+        if off.max() > MAX_FIELD_FOCAL_LENGTHS:
+            i = _first_frame(frame, off > MAX_FIELD_FOCAL_LENGTHS)
+            raise CurveReconError(
+                f"{where}frame {frame[i]}: an image point {off[i]:.3g} focal lengths from the "
+                f"principal point (more than {MAX_FIELD_FOCAL_LENGTHS:g}): the points and the "
+                "camera are in different units? focal_px, principal_point and the points are "
+                "all in pixels"
+            )
     return obs
+
+
+def _first_frame(frame: np.ndarray, bad: np.ndarray) -> int:
+    """The index of the first of the ``bad`` entries in frame order (``frame``: each entry's)."""
+    hits = np.flatnonzero(bad)
+    return int(hits[np.argmin(frame[hits])])
 
 
 def _require_projection_keys(data: dict, projection: str) -> None:
