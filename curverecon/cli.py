@@ -240,11 +240,21 @@ def _add_match_flat(flat: argparse.ArgumentParser) -> None:
     flat.add_argument("-o", "--output", required=True, help="curverecon.matches/1 JSON")
 
 
+def _refuse_overwriting_input(args: argparse.Namespace) -> None:
+    """Refuse ``-o`` naming the input file itself (the answer would replace the data)."""
+    from pathlib import Path
+
+    if Path(args.output).resolve() == Path(args.input).resolve():
+        raise CurveReconError(f"-o {args.output} would overwrite the input: choose another file")
+
+
 def _cmd_reconstruct(args: argparse.Namespace) -> int:
     from curverecon.io import load_observations, write_json
     from curverecon.model.configuration import RigidObservations
     from curverecon.options import CurveOptions, ReconstructOptions
     from curverecon.pipeline import reconstruct
+
+    _refuse_overwriting_input(args)
 
     if not (math.isfinite(args.point_sigma) and args.point_sigma > 0):
         raise CurveReconError("--point-sigma must be a positive number")
@@ -507,6 +517,7 @@ def _cmd_trace(args: argparse.Namespace) -> int:
 def _cmd_match_flat(args: argparse.Namespace) -> int:
     from curverecon.solvers.flat import run_match_flat
 
+    _refuse_overwriting_input(args)
     run_match_flat(args.input, args.output)
     return 0
 

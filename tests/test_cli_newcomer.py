@@ -343,3 +343,16 @@ def test_a_byte_order_mark_is_read_as_without_it(tmp_path):
     path = tmp_path / "bom.json"
     path.write_bytes(b"\xef\xbb\xbf" + (EXAMPLES / "wire.json").read_bytes())
     assert read_json(path) == read_json(EXAMPLES / "wire.json")
+
+
+@pytest.mark.parametrize("command", ["reconstruct", "match-flat"])
+def test_an_output_that_would_overwrite_the_input_is_refused(
+    tmp_path, capsys, monkeypatch, command
+):
+    path = tmp_path / "obs.json"
+    text = json.dumps(_paper_doc())
+    path.write_text(text)
+    monkeypatch.chdir(tmp_path)
+    line = _command(capsys, command, "obs.json", "-o", str(path))
+    assert "would overwrite the input" in line
+    assert path.read_text() == text
