@@ -240,6 +240,25 @@ def _add_match_flat(flat: argparse.ArgumentParser) -> None:
     flat.add_argument("-o", "--output", required=True, help="curverecon.matches/1 JSON")
 
 
+SLOW_CAMERA_CURVE = (
+    "curverecon: one camera, A, B and polylines: the curve bundle takes about one to two "
+    "CPU-minutes for 20 frames (no progress bar)"
+)
+"""Said on a terminal before the ordinary camera's reconstruction (measured: 64 and 134 s of CPU
+for the README's and ``simulate``'s default 20-frame perspective scenes)."""
+
+
+def _slow_camera_curve(obs) -> bool:
+    """Whether ``obs`` goes to the pinhole curve bundle (free motion, fewer than four points)."""
+    cfg = obs.configuration
+    return (
+        cfg.projection == "perspective"
+        and cfg.motion == "free"
+        and obs.n_points < 4
+        and bool(obs.curves)
+    )
+
+
 def _refuse_overwriting_input(args: argparse.Namespace) -> None:
     """Refuse ``-o`` naming the input file itself (the answer would replace the data)."""
     from pathlib import Path
@@ -269,6 +288,8 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
         curve=CurveOptions(bundle=args.curve_bundle == "on"),
         progress=sys.stderr.isatty() and not args.quiet,
     )
+    if options.progress and isinstance(obs, RigidObservations) and _slow_camera_curve(obs):
+        print(SLOW_CAMERA_CURVE, file=sys.stderr)
     rec = reconstruct(obs, options=options)
     for w in rec.warnings:
         _warn(w)

@@ -356,3 +356,32 @@ def test_an_output_that_would_overwrite_the_input_is_refused(
     line = _command(capsys, command, "obs.json", "-o", str(path))
     assert "would overwrite the input" in line
     assert path.read_text() == text
+
+
+@pytest.mark.parametrize(
+    "projection, points, curve",
+    [("perspective", "AB", True), ("perspective", "ABCD", True), ("stereo", "AB", True)],
+)
+def test_the_slow_camera_curve_note_matches_the_route(monkeypatch, projection, points, curve):
+    """The terminal note before the pinhole curve bundle is said exactly for the documents the
+    pipeline sends there."""
+    import curverecon.curve.pinhole as pinhole
+    from curverecon.cli import _slow_camera_curve
+    from curverecon.pipeline import reconstruct
+
+    class Routed(Exception):
+        pass
+
+    def routed(*args, **kwargs):
+        raise Routed
+
+    monkeypatch.setattr(pinhole, "reconstruct_perspective_curve", routed)
+    doc, _ = simulate_camera_configuration(projection, "free", points, 5, 1, with_curve=curve)
+    obs = observations_from_dict(doc)
+    sent = False
+    try:
+        reconstruct(obs)
+    except Routed:
+        sent = True
+    assert _slow_camera_curve(obs) == sent
+    assert sent == (projection == "perspective" and points == "AB")
