@@ -279,6 +279,7 @@ def test_a_stereo_scene_with_polylines_answers_the_angles():
     for key in ("alpha_deg", "beta_deg", "phi_deg"):
         assert out[key] is not None
         assert abs(out[key] - truth[key]) < 3.0, (key, out[key], truth[key])
+    assert any("end tangents" in w and "no std" in w for w in out["warnings"])
 
 
 def test_a_curve_that_does_not_fit_a_rows_poses_leaves_the_points_answer(monkeypatch):
