@@ -44,7 +44,7 @@ CURVE_MISSING = "curve stage under perspective not available"
 CURVE_ANGLES = (
     "alpha, beta, phi come from the 3-D curve's end tangents (no tangents were given) and have no "
     "std: a curve triangulated from noisy polylines fixes its end tangents poorly (stereo, 0.5 px, "
-    "simulated: alpha and beta 8-11 degrees off, phi 35-55; noise-free within 2)"
+    "simulated: alpha and beta 8-11 degrees off, phi 35-53; noise-free within 2)"
 )
 CURVE_HINT = "; a body moving freely: --motion free (A, B and polylines: the curve bundle)"
 
