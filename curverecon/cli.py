@@ -58,19 +58,33 @@ def _warn(message: str) -> None:
 def _add_reconstruct(rec: argparse.ArgumentParser) -> None:
     rec.add_argument("input", help="curverecon.observations/1 JSON file")
     rec.add_argument("-o", "--output", required=True, help="curverecon.reconstruction/1 JSON")
-    rec.add_argument("--method", choices=["auto", "linear"], default="auto")
+    rec.add_argument(
+        "--method",
+        choices=["auto", "linear"],
+        default="auto",
+        help="auto (default): a robust start, maximum likelihood and an outlier test; linear: "
+        "the paper's linearisation alone (its own setting, 38 frames or more)",
+    )
     rec.add_argument(
         "--estimator",
         choices=["marginal", "ml"],
         default="marginal",
-        help="auto's final shape: the marginal likelihood, every frame's pose integrated out "
-        "(default; less biased), or plain maximum likelihood",
+        help="with --method auto, the final shape: the marginal likelihood, every frame's pose "
+        "integrated out (default; less biased), or plain maximum likelihood",
     )
     rec.add_argument(
-        "--point-sigma", type=float, default=1.0, help="image point noise (input units)"
+        "--point-sigma",
+        type=float,
+        default=1.0,
+        metavar="PX",
+        help="std of the image points, in their units (pixels; default 1)",
     )
     rec.add_argument(
-        "--tangent-sigma", type=float, default=1.0, help="tangent direction noise (degrees)"
+        "--tangent-sigma",
+        type=float,
+        default=1.0,
+        metavar="DEG",
+        help="std of the tangent directions, degrees (default 1)",
     )
     rec.add_argument(
         "--motion",
@@ -80,7 +94,9 @@ def _add_reconstruct(rec: argparse.ArgumentParser) -> None:
         "parabola; rotation-free: translation only, perspective or stereo; auto: every model "
         "the points allow, chosen by model selection)",
     )
-    rec.add_argument("--plot", help="also draw the reconstruction to this PNG file")
+    rec.add_argument(
+        "--plot", metavar="FILE.png", help="also draw the reconstruction to this PNG file"
+    )
     rec.add_argument(
         "--quiet", action="store_true", help="no progress bar (shown only on a terminal anyway)"
     )
@@ -96,13 +112,15 @@ def _add_reconstruct(rec: argparse.ArgumentParser) -> None:
 def _add_simulate(sim: argparse.ArgumentParser) -> None:
     sim.add_argument("-o", "--output", required=True, help="scene (observations) JSON")
     sim.add_argument("--truth", help="write the truth to this JSON file")
-    sim.add_argument("--frames", type=int, default=20)
+    sim.add_argument("--frames", type=int, default=20, help="number of frames (default 20)")
     sim.add_argument(
         "--point-noise", "--noise-px", dest="point_noise", type=float, default=0.0,
         help="pixels (std)",
     )  # fmt: skip
     sim.add_argument("--tangent-noise", type=float, default=0.0, help="degrees (std)")
-    sim.add_argument("--outlier-fraction", type=float, default=0.0)
+    sim.add_argument(
+        "--outlier-fraction", type=float, default=0.0, help="share of frames made outliers (0-1)"
+    )
     sim.add_argument(
         "--outlier-model",
         choices=list(OUTLIER_MODELS),
@@ -110,13 +128,21 @@ def _add_simulate(sim: argparse.ArgumentParser) -> None:
         help="gross: 15-40 degree errors on one or both tangents of an outlier frame (default); "
         "random: both tangent directions of an outlier frame uniformly random",
     )
-    sim.add_argument("--chord", type=float, nargs=2, default=(100.0, 300.0), metavar=("MIN", "MAX"))
-    sim.add_argument("--seed", type=int, default=0)
+    sim.add_argument(
+        "--chord",
+        type=float,
+        nargs=2,
+        default=(100.0, 300.0),
+        metavar=("MIN", "MAX"),
+        help="the chord |AB| is drawn between MIN and MAX, pixels (camera scenes: the units of "
+        "--distance; default 100 300)",
+    )
+    sim.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     sim.add_argument("--with-curve", action="store_true", help="also write projected polylines")
     sim.add_argument(
         "--motion",
         choices=list(SIMULATED_MOTIONS),
-        help="a scene of another row of the seed's Section 2 table: the body (the curve, A and B "
+        help="a scene of another row of the paper's Section 2 table: the body (the curve, A and B "
         "its ends, further points marked on it) moved by this model, with per-frame times "
         "(default: the paper's own setting, free motion with tangents)",
     )
@@ -132,8 +158,9 @@ def _add_simulate(sim: argparse.ArgumentParser) -> None:
         "--distance",
         type=float,
         default=1000.0,
-        help="with --projection perspective|stereo: the body's depth in frame 0 (the focal "
-        "length scales with it, so the image keeps its size)",
+        help="with --projection perspective|stereo: the body's depth in frame 0 (default 1000; "
+        "the focal length scales with it, so the image keeps its size and the perspective "
+        "weakens as it grows)",
     )
     sim.add_argument(
         "--points",
@@ -213,11 +240,40 @@ def _add_match_flat(flat: argparse.ArgumentParser) -> None:
     flat.add_argument("-o", "--output", required=True, help="curverecon.matches/1 JSON")
 
 
+SLOW_CAMERA_CURVE = (
+    "curverecon: one camera, A, B and polylines: the curve bundle takes about one to two "
+    "CPU-minutes for 20 frames (no progress bar)"
+)
+"""Said on a terminal before the ordinary camera's reconstruction (measured: 64 and 134 s of CPU
+for the README's and ``simulate``'s default 20-frame perspective scenes)."""
+
+
+def _slow_camera_curve(obs) -> bool:
+    """Whether ``obs`` goes to the pinhole curve bundle (free motion, fewer than four points)."""
+    cfg = obs.configuration
+    return (
+        cfg.projection == "perspective"
+        and cfg.motion == "free"
+        and obs.n_points < 4
+        and bool(obs.curves)
+    )
+
+
+def _refuse_overwriting_input(args: argparse.Namespace) -> None:
+    """Refuse ``-o`` naming the input file itself (the answer would replace the data)."""
+    from pathlib import Path
+
+    if Path(args.output).resolve() == Path(args.input).resolve():
+        raise CurveReconError(f"-o {args.output} would overwrite the input: choose another file")
+
+
 def _cmd_reconstruct(args: argparse.Namespace) -> int:
     from curverecon.io import load_observations, write_json
     from curverecon.model.configuration import RigidObservations
     from curverecon.options import CurveOptions, ReconstructOptions
     from curverecon.pipeline import reconstruct
+
+    _refuse_overwriting_input(args)
 
     if not (math.isfinite(args.point_sigma) and args.point_sigma > 0):
         raise CurveReconError("--point-sigma must be a positive number")
@@ -232,6 +288,8 @@ def _cmd_reconstruct(args: argparse.Namespace) -> int:
         curve=CurveOptions(bundle=args.curve_bundle == "on"),
         progress=sys.stderr.isatty() and not args.quiet,
     )
+    if options.progress and isinstance(obs, RigidObservations) and _slow_camera_curve(obs):
+        print(SLOW_CAMERA_CURVE, file=sys.stderr)
     rec = reconstruct(obs, options=options)
     for w in rec.warnings:
         _warn(w)
@@ -453,6 +511,12 @@ def _cmd_trace(args: argparse.Namespace) -> int:
 
     if not (math.isfinite(args.width) and 1.0 <= args.width <= 100.0):
         raise CurveReconError("--width must be a number of pixels between 1 and 100")
+    documents = [p for p in args.inputs if p.lower().endswith(".json")]
+    if documents:
+        raise CurveReconError(
+            f"{documents[0]}: trace reads images or a video; a JSON document of observations "
+            "goes to `curverecon reconstruct`"
+        )
     options = TraceOptions(width=args.width, dark_curve=args.dark_curve)
     result = trace_inputs(
         args.inputs,
@@ -474,6 +538,7 @@ def _cmd_trace(args: argparse.Namespace) -> int:
 def _cmd_match_flat(args: argparse.Namespace) -> int:
     from curverecon.solvers.flat import run_match_flat
 
+    _refuse_overwriting_input(args)
     run_match_flat(args.input, args.output)
     return 0
 

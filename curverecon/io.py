@@ -38,6 +38,22 @@ RECONSTRUCTION_FORMAT = "curverecon.reconstruction/1"
 TRUTH_FORMAT = "curverecon.truth/1"
 
 
+FORMAT_HINTS = {
+    OBSERVATIONS_FORMAT: "observations: give them to `curverecon reconstruct`",
+    RECONSTRUCTION_FORMAT: "the answer `curverecon reconstruct` writes, not its input",
+    TRUTH_FORMAT: "the truth `simulate --truth` writes: give reconstruct the scene of `-o`",
+    "curverecon.flat-views/1": "two views of a planar curve: give them to `curverecon match-flat`",
+    "curverecon.matches/1": "the answer `curverecon match-flat` writes, not its input",
+}
+"""What each of the project's document kinds is, for the message refusing it elsewhere."""
+
+
+def format_hint(fmt: Any) -> str:
+    """``": <what the document is>"`` for a known format tag of the wrong kind, else ``""``."""
+    hint = FORMAT_HINTS.get(fmt) if isinstance(fmt, str) else None
+    return f": {hint}" if hint else ""
+
+
 def _first_non_finite(x: Any, where: str = "") -> str | None:
     """The path (``frames[3].A[0]``) of the first NaN or infinite number in parsed JSON, or None."""
     if isinstance(x, float) and not math.isfinite(x):
@@ -54,19 +70,26 @@ def read_json(path: str | Path) -> Any:
     """Parse a JSON file; NaN / Infinity literals (named with their place, e.g.
     ``frames[3].A[0]``) and unreadable files are errors."""
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = Path(path).read_text(encoding="utf-8-sig")  # a byte-order mark (Notepad) is fine
+    except FileNotFoundError as exc:
+        here = "" if Path(path).is_absolute() else f" (looked in {Path.cwd()})"
+        raise CurveReconError(f"cannot read {path}: {exc.strerror or exc}{here}") from exc
     except OSError as exc:
         raise CurveReconError(f"cannot read {path}: {exc.strerror or exc}") from exc
     except UnicodeDecodeError as exc:
-        raise CurveReconError(f"{path} is not UTF-8 text") from exc
+        raise CurveReconError(
+            f"{path} is not UTF-8 text (an image or a video? `curverecon trace` reads those)"
+        ) from exc
     seen: list[str] = []
     try:
         data = json.loads(text, parse_constant=lambda name: seen.append(name) or float(name))
     except RecursionError as exc:  # the decoder recurses once per nesting level
         raise CurveReconError(f"JSON in {path} is nested too deeply") from exc
     except json.JSONDecodeError as exc:
+        before = exc.doc[: exc.pos].rstrip()
+        hint = "; JSON allows no comma before ] or }" if before.endswith(",") else ""
         raise CurveReconError(
-            f"malformed JSON in {path}: {exc.msg} (line {exc.lineno} column {exc.colno})"
+            f"malformed JSON in {path}: {exc.msg} (line {exc.lineno} column {exc.colno}){hint}"
         ) from exc
     if seen:  # only then walk the document: a large file is not walked twice
         try:
@@ -157,7 +180,9 @@ def observations_from_dict(data: Any) -> Observations | RigidObservations:
     if fmt is None:
         raise CurveReconError(f'missing key "format" (expected "{OBSERVATIONS_FORMAT}")')
     if fmt != OBSERVATIONS_FORMAT:
-        raise CurveReconError(f'wrong format tag "{fmt}" (expected "{OBSERVATIONS_FORMAT}")')
+        raise CurveReconError(
+            f'wrong format tag "{fmt}" (expected "{OBSERVATIONS_FORMAT}"){format_hint(fmt)}'
+        )
     projection = data.get("projection", "orthographic")
     if not isinstance(projection, str) or projection not in PROJECTIONS:
         raise CurveReconError(
@@ -188,8 +213,73 @@ def observations_from_dict(data: Any) -> Observations | RigidObservations:
     if projection == "orthographic" and motion == "free" and not names:
         if "motion" in data and frames and not _any_tangents_or_curve(frames):
             raise CurveReconError(motion_determined("free", 2, False) or "")
-        return _paper_observations(data, frames)
-    return _rigid_observations(data, frames, motion, times, names)
+        return _require_image_scale(_paper_observations(data, frames))
+    return _require_image_scale(_rigid_observations(data, frames, motion, times, names))
+
+
+MAX_IMAGE_COORDINATE = 1e6
+"""Image coordinates (points and polylines, input units) beyond this in magnitude are refused:
+no image is a million pixels across, and the estimation is not scale-free in floating point
+(examples/wire.json scaled by 1e4, coordinates to 3.7e6, with --point-sigma scaled alike gives
+the same angles; scaled by 1e6 it warns, wrongly, that the shape is not determined; by 1e12 its
+angles are off by 8 degrees)."""
+
+MAX_FIELD_FOCAL_LENGTHS = 10.0
+"""A pinhole image point farther than this many focal lengths from the principal point (a ray
+84 degrees off the optical axis) is refused: an undistorted image reaches a few focal lengths at
+most, so the camera and the points are in different units (e.g. a camera in normalised
+coordinates, focal_px 1, with points in pixels)."""
+
+
+def _require_image_scale(obs: Observations | RigidObservations) -> Observations | RigidObservations:
+    """``obs`` itself, after refusing coordinates beyond ``MAX_IMAGE_COORDINATE`` and pinhole
+    points beyond ``MAX_FIELD_FOCAL_LENGTHS`` from the principal point (one line naming the
+    frame, the worst value and what to check)."""
+    if isinstance(obs, Observations):
+        views = [(np.stack([obs.a, obs.b], axis=1), obs.curves, None)]
+    else:
+        cfg = obs.configuration
+        cams = [cfg.camera, None] if cfg.rig is None else [cfg.rig.camera0, cfg.rig.camera1]
+        views = [(obs.points, obs.curves, cams[0])]
+        if obs.view1 is not None:
+            views.append((obs.view1.points, obs.view1.curves, cams[1]))
+    for k, (points, curves, camera) in enumerate(views):
+        where = f"camera {k}: " if len(views) > 1 else ""
+        n = len(points)
+        xy = np.asarray(points, float).reshape(n, -1, 2)
+        frame = np.repeat(np.arange(n), xy.shape[1])
+        xy = xy.reshape(-1, 2)
+        if curves is not None and n:
+            frame = np.concatenate([frame, np.repeat(np.arange(n), [len(c) for c in curves])])
+            xy = np.vstack([xy, *curves])
+        if not len(xy):
+            continue
+        size = np.abs(xy).max(axis=1)
+        if size.max() > MAX_IMAGE_COORDINATE:
+            i = _first_frame(frame, size > MAX_IMAGE_COORDINATE)
+            raise CurveReconError(
+                f"{where}frame {frame[i]}: an image coordinate of {size[i]:.3g}, beyond "
+                f"{MAX_IMAGE_COORDINATE:.0e}: image points are expected in pixels (or units "
+                "of that size); scale them down (the answer's lengths scale with them)"
+            )
+        if camera is None:
+            continue
+        off = np.hypot(*(xy - np.asarray(camera.principal_point)).T) / camera.focal_px
+        if off.max() > MAX_FIELD_FOCAL_LENGTHS:
+            i = _first_frame(frame, off > MAX_FIELD_FOCAL_LENGTHS)
+            raise CurveReconError(
+                f"{where}frame {frame[i]}: an image point {off[i]:.3g} focal lengths from the "
+                f"principal point (more than {MAX_FIELD_FOCAL_LENGTHS:g}): the points and the "
+                "camera are in different units? focal_px, principal_point and the points are "
+                "all in pixels"
+            )
+    return obs
+
+
+def _first_frame(frame: np.ndarray, bad: np.ndarray) -> int:
+    """The index of the first of the ``bad`` entries in frame order (``frame``: each entry's)."""
+    hits = np.flatnonzero(bad)
+    return int(hits[np.argmin(frame[hits])])
 
 
 def _require_projection_keys(data: dict, projection: str) -> None:
@@ -403,7 +493,7 @@ def _stereo_observations(
         raise CurveReconError("tangents must be given in both cameras' views or in neither")
     if (first.curves is None) != (second.curves is None):
         raise CurveReconError("polylines must be given in both cameras' views or in neither")
-    obs = _assemble(data, motion, times, names, first, second)
+    obs = _require_image_scale(_assemble(data, motion, times, names, first, second))
     _require_in_front(obs.configuration.rig, first.points, second.points, ("A", "B", *names))
     return obs
 

@@ -445,6 +445,56 @@ def _image_panel(ax, obs, f, view, label, drawn) -> None:
     ax.tick_params(labelsize=6)
 
 
+#: The 3-D panel gets an enlarged view of the curve when the curve spans less than this fraction
+#: of what that panel shows (a body a tenth of its distance across is a few pixels wide there).
+ZOOM_BELOW = 0.3
+
+
+def _curve_points(rec) -> np.ndarray:
+    """The answer's 3-D curve and frame 0's named points (finite rows only), (M, 3)."""
+    shown = [np.zeros((0, 3))]
+    if rec.curve3d is not None:
+        shown.append(np.asarray(rec.curve3d, float).reshape(-1, 3))
+    if rec.points3:
+        shown.append(np.array(list(rec.points3[0].values()), dtype=float).reshape(-1, 3))
+    allp = np.concatenate(shown)
+    return allp[np.all(np.isfinite(allp), axis=1)]
+
+
+def _needs_zoom(rec, obs) -> bool:
+    """Whether the curve spans less than ``ZOOM_BELOW`` of the 3-D panel's extent (the curve and
+    every camera drawn, as :func:`_camera_3d_panel` frames them)."""
+    pts = _curve_points(rec)
+    if len(pts) < 3:  # A and B alone: two dots, nothing to enlarge
+        return False
+    frustums = camera_frustums(rec, obs, _scene_depth(rec, obs))
+    allp = np.concatenate([pts] + [np.vstack([f["centre"], f["corners"]]) for f in frustums])
+    allp = allp[np.all(np.isfinite(allp), axis=1)]
+    return float(np.ptp(pts, axis=0).max()) < ZOOM_BELOW * float(np.ptp(allp, axis=0).max())
+
+
+def _curve_zoom_panel(ax3, rec) -> None:
+    """The curve and frame 0's named points alone, enlarged; equal axes, y down."""
+    if rec.curve3d is not None:
+        ax3.plot(*np.asarray(rec.curve3d, float).T, color="C1", lw=1.8)
+    if rec.points3:
+        for name, x in rec.points3[0].items():
+            ax3.scatter(*np.asarray(x, float), color="C3", s=12)
+            ax3.text(*np.asarray(x, float), f" {name}", fontsize=7, color="C3")
+    pts = _curve_points(rec)
+    span = float(np.ptp(pts, axis=0).max()) or 1.0
+    centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+    for setlim, m in zip((ax3.set_xlim, ax3.set_ylim, ax3.set_zlim), centre, strict=True):
+        setlim(m - 0.55 * span, m + 0.55 * span)
+    ax3.set_box_aspect((1, 1, 1))
+    ax3.invert_yaxis()
+    ax3.set_xlabel("x")
+    ax3.set_ylabel("y")
+    ax3.set_zlabel("z (depth)")
+    ax3.set_title("the curve enlarged (same coordinates)", fontsize=9)
+    ax3.tick_params(labelsize=6)
+
+
 def plot_camera_file(path: str, rec, obs) -> None:
     """Draw a perspective or stereo reconstruction to a PNG file: per frame (a few, evenly
     chosen) and per camera the observed polyline and points with the answer's reprojection
@@ -473,15 +523,21 @@ def plot_camera_file(path: str, rec, obs) -> None:
     height = max(4.2, 2.8 * nrows + 0.6)
     fig = Figure(figsize=(4.5 + 2.6 * ncols, height), dpi=100)
     gs = fig.add_gridspec(nrows, ncols + 2, width_ratios=[1.8, 0.1] + [1.0] * ncols)
-    _camera_3d_panel(fig.add_subplot(gs[:, 0], projection="3d"), rec, obs)
+    if _needs_zoom(rec, obs):  # the overview above, the curve enlarged below
+        left = gs[:, 0].subgridspec(2, 1, height_ratios=[1.5, 1.0], hspace=0.25)
+        _camera_3d_panel(fig.add_subplot(left[0], projection="3d"), rec, obs)
+        _curve_zoom_panel(fig.add_subplot(left[1], projection="3d"), rec)
+    else:
+        _camera_3d_panel(fig.add_subplot(gs[:, 0], projection="3d"), rec, obs)
     for slot, (f, v) in enumerate(panels):
         ax = fig.add_subplot(gs[slot // ncols, 2 + slot % ncols])
         _image_panel(ax, obs, f, v, views[v][0], drawn[f])
         if slot == 0:
             ax.legend(fontsize=6, loc="best")
     cfg = obs.configuration
+    motion = (rec.configuration or {}).get("motion", cfg.motion)  # auto: the chosen model
     fig.suptitle(
-        f"Reconstruction ({cfg.projection}, motion {cfg.motion}): {obs.n_frames} frame"
+        f"Reconstruction ({cfg.projection}, motion {motion}): {obs.n_frames} frame"
         + ("s" if obs.n_frames != 1 else "")
         + (f" (showing {len(frames)})" if len(frames) < obs.n_frames else ""),
         fontsize=10,

@@ -52,6 +52,9 @@ PERSPECTIVE_MODULES = (
 CPU-seconds more, which would double the warm-up of ``make demo``; without it a perspective
 uniform-rotation or fixed-axis reconstruction compiles them on first use)."""
 
+PERSPECTIVE_ONLY = frozenset({"curverecon.solvers.homotopy.track_workspace"})
+"""Kernels of shared modules that only the perspective solvers call (with ``--perspective``)."""
+
 TABLE_TRACKER = frozenset(
     f"curverecon.solvers.homotopy.{name}"
     for name in (
@@ -108,7 +111,10 @@ def _warmed(name: str, perspective: bool) -> bool:
     """Whether the warm-up compiles kernel ``module.name`` (with ``--perspective`` or not)."""
     if name in TABLE_TRACKER or name in UNCALLED:
         return False
-    return perspective or not name.startswith(tuple(m + "." for m in PERSPECTIVE_MODULES))
+    perspective_only = name in PERSPECTIVE_ONLY or name.startswith(
+        tuple(m + "." for m in PERSPECTIVE_MODULES)
+    )
+    return perspective or not perspective_only
 
 
 def run_scenes() -> None:

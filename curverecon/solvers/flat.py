@@ -501,13 +501,14 @@ def run_match_flat(in_path: str, out_path: str) -> None:
 
     Raises ``CurveReconError`` (one-line message) for unreadable or invalid input.
     """
-    from curverecon.io import read_json, write_json
+    from curverecon.io import format_hint, read_json, write_json
 
     doc = read_json(in_path)  # unreadable, malformed, too deeply nested, NaN: one-line errors
     if not isinstance(doc, dict):
         raise _error(f"{in_path}: expected a JSON object")
     if doc.get("format") != FORMAT_IN:
-        raise _error(f"{in_path}: format must be {FORMAT_IN!r}, got {doc.get('format')!r}")
+        fmt = doc.get("format")
+        raise _error(f"{in_path}: format must be {FORMAT_IN!r}, got {fmt!r}{format_hint(fmt)}")
     projection = doc.get("projection")
     views = doc.get("views")
     if not isinstance(views, list):
