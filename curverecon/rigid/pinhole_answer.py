@@ -22,6 +22,8 @@ from curverecon.model.reconstruction import Alternative, Reconstruction, alterna
 from curverecon.options import ReconstructOptions
 from curverecon.rigid.answer import (
     chord_std,
+    curve_frame,
+    decompose,
     fit_warnings,
     motion_parameters,
     paper_answer,
@@ -89,6 +91,15 @@ def curve_stage(obs: RigidObservations, poses, p3: np.ndarray, idx, sigma: float
         return None, None, [CURVE_MISSING]
 
 
+def paper_pose_rows(poses: np.ndarray, a0: np.ndarray, b0: np.ndarray) -> np.ndarray:
+    """(N, 5) the paper's poses (delta, tau, theta, x, y) of frame poses (N, 3, 4) [R_f | T_f]
+    whose curve frame in frame 0 is A ``a0``, B ``b0`` and, with no tangents, the viewing axis
+    (as ``answer.paper_answer``): R_f [e1 e2 e3] decomposed, and A's image R_f A_0 + T_f."""
+    frame = curve_frame(np.asarray(b0, float) - a0, np.array([0.0, 0.0, 1.0]))
+    angles = decompose(np.einsum("fij,jk->fik", poses[:, :, :3], frame))
+    return np.column_stack([angles, (poses[:, :, :3] @ a0 + poses[:, :, 3])[:, :2]])
+
+
 def _motion(layout: Layout, fit: RigidFit, data: RigidData, scale: float) -> dict:
     """``motion_parameters`` in the answer's units (the force field's 3-D parabola scaled)."""
     mp = motion_parameters(layout, fit, data)
@@ -147,6 +158,8 @@ def pinhole_answer(
     shape, paper_poses = paper_answer(layout, full, data.times, tangents3)
     shape[0] *= scale
     paper_poses[:, 3:5] *= scale
+    if free and curve3d is not None:  # the turns the curve was fused with, not the fit's
+        paper_poses[idx] = paper_pose_rows(poses[idx], p3[0, 0], p3[0, 1])
     cov = widened_covariance(fit, others)  # reaches every valley that fits about as well
     std = np.array([chord_std(layout, state, cov) * scale, np.nan, np.nan, np.nan])
     warnings += fit_warnings(layout, float(fit.chi2), inliers, float(shape[0]), float(std[0]))
