@@ -438,8 +438,8 @@ def _checked_poses(polylines0, polylines1, frame_poses) -> np.ndarray:
 def _align_turns(frames, poses: np.ndarray, chord: np.ndarray) -> None:
     """Every frame's pose turned about the chord (A, B in frame 0's coordinates, in place):
     first each curve laid on the best-determined frame's (least median std), then each on the
-    frames fused, and all turned back together by frame 0's turn (frame 0's pose is the
-    gauge: its curve fixes the turn of the whole)."""
+    frames fused, and all turned back together by frame 0's turn (a start for ``_placed``,
+    which places the whole in frame 0 by frame 0's images)."""
     a0 = np.asarray(chord[0], float)
     axis = np.asarray(chord[1], float) - a0
     norm = float(np.linalg.norm(axis))
@@ -484,12 +484,14 @@ def _fused_frames(frames, poses: np.ndarray):
 
 
 def _placed(rig: StereoRig, frames, poses: np.ndarray, views, sigma: float):
-    """(curve (M, 3) in frame 0's camera-0 coordinates, std (M,), poses): the fused shape
-    placed in every frame by its reprojection onto that frame's two polylines
+    """(curve (M, 3) in frame 0's camera-0 coordinates, std (M,), poses (N, 3, 4)): the fused
+    shape placed in every frame by its reprojection onto that frame's two polylines
     (``curve.stereo_place``), the frames fused again on these placements, ``_PLACEMENTS``
-    times; the answer is the shape placed in frame 0 the same way (no frame's triangulated
-    points, however badly its curve lies along the epipolar lines, place the whole), its std
-    the fused std and that placement's together, the poses relative to frame 0's placement."""
+    times; the answer is the shape placed in frame 0 the same way (not through frame 0's
+    triangulated points, which run far off where its curve lies along the epipolar lines),
+    its std the fused std and that placement's together, the poses relative to frame 0's
+    placement (frame 0 keeps the pose given, ``poses[0]``: the identity unless the first
+    frame given is another)."""
     placed = poses.copy()
     for _ in range(_PLACEMENTS):
         shape = _fused_frames(frames, placed)[0]
@@ -526,13 +528,17 @@ def stereo_curve_and_poses(
     smooth: bool = True,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`stereo_curve3d` and the frame poses it used: with ``chord`` ((2, 3) A and B in
-    frame 0's camera-0 coordinates) each frame's turn about the chord is taken from its curve
-    (the turn that lays its triangulated curve on frame 0's, then on the fused curve; a global
-    search, then closest points), for poses whose turn the points leave free (A and B alone),
-    and the std of frame 0's A and B (which place the shape in frame 0) is added to every
-    point's (interpolated along the curve); without it the poses as given.  ``smooth``: the
-    fused points smoothed along the curve (``curve.stereo_smooth``).  Returns (curve3d (M, 3),
-    std (M,), poses (N, 3, 4))."""
+    frame 0's camera-0 coordinates), for poses whose turn about the chord the points leave free
+    (A and B alone), each frame's turn is first taken from its curve (a global search laying
+    its triangulated curve on the best-seen frame's, then closest points on the fused curve),
+    then the fused shape is placed in every frame by its reprojection onto that frame's two
+    polylines (``curve.stereo_place``; a frame that triangulates its curve badly, running along
+    its epipolar lines, still places a known shape well) and the frames fused again on those
+    placements; the curve returned is the shape placed in frame 0 (the first frame given: its
+    pose is kept), its std the fused std and that placement's together, and the poses are the
+    placements relative to frame 0's.  Without ``chord`` the poses as given.  ``smooth``: each
+    frame's points smoothed along the curve (``curve.stereo_smooth``).  Returns (curve3d
+    (M, 3), std (M,), poses (N, 3, 4))."""
     poses = _checked_poses(polylines0, polylines1, frame_poses)
     frames = []
     for f in range(len(poses)):

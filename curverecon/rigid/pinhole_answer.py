@@ -7,7 +7,11 @@ the rig's t.  ``frame_poses`` (N, 3, 4) are [R_f | T_f] with X_f = R_f X_0 + T_f
 camera coordinates to frame f's; camera 0's for stereo); ``points3`` are every point in every
 frame's camera coordinates with its depth.  With polylines the curve stage runs on the fitted
 poses: ``curve.pinhole.curve_on_pinhole_poses`` (perspective) or ``curve.stereo.stereo_curve3d``
-(stereo), where this build has them.
+(stereo), where this build has them.  Stereo with A and B alone leaves each frame's turn about
+AB free: the curve stage fixes it and places every frame by the curve, and the answer's
+``frame_poses`` and paper poses are those (one set of poses, the curve's); ``points3`` stay the
+fit's A and B (under the curve's poses A and B move within their std:
+tests/test_stereo_curve_place.py).
 """
 
 from __future__ import annotations
