@@ -494,12 +494,15 @@ def _placed(rig: StereoRig, frames, poses: np.ndarray, views, sigma: float):
     frame given is another)."""
     placed = poses.copy()
     for _ in range(_PLACEMENTS):
-        shape = _fused_frames(frames, placed)[0]
+        shape, std, _ = _fused_frames(frames, placed)
         placed = np.array(
-            [place_shape(rig, shape, placed[f], views[f], sigma)[0] for f in range(len(frames))]
+            [
+                place_shape(rig, shape, placed[f], views[f], sigma, std)[0]
+                for f in range(len(frames))
+            ]
         )
     shape, std, _ = _fused_frames(frames, placed)
-    placed[0], std0 = place_shape(rig, shape, placed[0], views[0], sigma)
+    placed[0], std0 = place_shape(rig, shape, placed[0], views[0], sigma, std)
     # the answer's coordinates are frame 0's: X_first = G X_0 with G the first frame's pose
     to_shape = _compose(_inverse(placed[0]), poses[0])  # X_0 -> Y
     for f in range(len(frames)):
