@@ -163,3 +163,22 @@ def test_answer_poses_are_the_curves(badly_seen):
         (np.trace(p[:, :3] @ r.T) - 1) / 2 for p, r in zip(rec.frame_poses, true_rot, strict=True)
     ]
     assert np.degrees(np.arccos(np.clip(cos, -1, 1))).max() <= 3.0
+
+
+def test_placement_bad_input():
+    from curverecon.errors import CurveReconError
+
+    rng = np.random.default_rng(33)
+    shape, truth, views = _shape_and_views(rng, 0.5)
+    with pytest.raises(CurveReconError, match="M >= 3"):
+        place_shape(_rig(), shape[:2], truth, views, 0.5)
+    with pytest.raises(CurveReconError, match=r"\(3, 4\)"):
+        place_shape(_rig(), shape, truth[:, :3], views, 0.5)
+    with pytest.raises(CurveReconError, match="two polylines"):
+        place_shape(_rig(), shape, truth, views[:1], 0.5)
+    with pytest.raises(CurveReconError, match="point_sigma"):
+        place_shape(_rig(), shape, truth, views, 0.0)
+    bad = views[0].copy()
+    bad[4, 1] = np.nan
+    with pytest.raises(CurveReconError, match="non-finite"):
+        place_shape(_rig(), shape, truth, (bad, views[1]), 0.5)

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from curverecon.curve.stereo_turn import rotation_about
+from curverecon.errors import CurveReconError
 from curverecon.solvers.camera import Camera, StereoRig
 
 #: Most Gauss-Newton steps of a placement (stopped when a step moves no point by more than
@@ -93,6 +94,21 @@ def _view_rows(camera: Camera, rot, t, x, shape_std, polyline, centre):
     )
 
 
+def _check(shape: np.ndarray, pose: np.ndarray, polylines, point_sigma: float) -> None:
+    """CurveReconError unless the shape, pose, polylines and noise can be placed."""
+    shape, pose = np.asarray(shape, float), np.asarray(pose, float)
+    if shape.ndim != 2 or shape.shape[1] != 3 or len(shape) < 3 or pose.shape != (3, 4):
+        raise CurveReconError(
+            f"stereo placement: a shape of shape {shape.shape} (expected (M >= 3, 3)) and a "
+            f"pose of shape {pose.shape} (expected (3, 4))"
+        )
+    if len(polylines) != 2 or any(np.shape(p)[1:] != (2,) or len(p) < 3 for p in polylines):
+        raise CurveReconError("stereo placement: two polylines of at least 3 (x, y) points")
+    finite = [np.all(np.isfinite(a)) for a in (shape, pose, *polylines)]
+    if not (all(finite) and np.isfinite(point_sigma) and point_sigma > 0):
+        raise CurveReconError("stereo placement: non-finite input or point_sigma not positive")
+
+
 def place_shape(
     rig: StereoRig,
     shape: np.ndarray,
@@ -109,6 +125,7 @@ def place_shape(
     weighing them by it placed the bench's seed 8 at 1.2 % instead of 0.7 %); None: the shape
     exact.  Returns (pose (3, 4), per-point std (M,) of the placed shape from the motion's
     covariance, units of t)."""
+    _check(shape, pose, polylines, point_sigma)
     rot, t = pose[:, :3].copy(), pose[:, 3].copy()
     views = ((rig.camera0, np.eye(3), np.zeros(3)), (rig.camera1, np.asarray(rig.R, float), None))
     size = float(np.ptp(shape, axis=0).max())
