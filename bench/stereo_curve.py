@@ -4,11 +4,14 @@ Scenes: ``curverecon.simulate.simulate_camera_configuration("stereo", "free", "A
 noise_px=0.5, with_curve=True)`` (its own 3-D construction: a Bezier curve of chord 100-300
 1000 units in front of camera 0, camera 1 a quarter of that to the right, turned towards the
 body, 150 polyline points per view).  The answer is ``reconstruct_rigid`` (what ``curverecon
-reconstruct`` writes); the oracle is ``stereo_curve3d`` on the true frame poses.  Errors against
-the truth's ``curve3d`` (frame 0's camera-0 coordinates): ``error`` is bench/persp_curve.py's
-``curve_error`` (symmetric mean distance / true length), ``max_error`` the largest distance of a
-returned point from the true curve / true length; ``coverage`` the share of returned points
-whose distance from the true curve is within three of their ``curve3d_normal_std``.
+reconstruct`` writes); the oracle is ``stereo_curve3d`` on the true frame poses; the
+placement oracle is the true curve placed in frame 0 by frame 0's polylines alone (the least an
+answer in frame 0's coordinates pays: under free motion no other frame places the shape there).
+Errors against the truth's ``curve3d`` (frame 0's camera-0 coordinates): ``error`` is
+bench/persp_curve.py's ``curve_error`` (symmetric mean distance / true length), ``max_error``
+the largest distance of a returned point from the true curve / true length; ``coverage`` the
+share of returned points whose distance from the true curve is within three of their
+``curve3d_normal_std``.
 
 Keys: ``config_stereo_free_curve_within_1pct_rate`` (target >= 0.95; 20 frames, 0.5 px),
 ``..._oracle_within_1pct_rate``, the medians of the errors, the coverage, seconds per scene.
@@ -88,7 +91,20 @@ def scene_row(seed: int, frames: int = FRAMES, sigma: float = SIGMA_PX) -> dict:
     cfg = obs.configuration
     o_curve, o_std = stereo_curve3d(cfg.rig, obs.curves, obs.view1.curves, poses, sigma)
     row.update({f"oracle_{k}": v for k, v in measure(o_curve, o_std, truth_curve).items()})
+    row.update({f"placed_{k}": v for k, v in placement_oracle(obs, truth_curve, sigma).items()})
     return row
+
+
+def placement_oracle(obs, truth_curve: np.ndarray, sigma: float) -> dict:
+    """The true curve placed in frame 0 by frame 0's two polylines alone (from the truth,
+    ``curve.stereo_place``): with free motion nothing else places the shape in frame 0, so
+    this is what any answer in frame 0's coordinates pays at least."""
+    from curverecon.curve.stereo_place import place_shape
+
+    views = (np.asarray(obs.curves[0], float), np.asarray(obs.view1.curves[0], float))
+    start = np.column_stack([np.eye(3), np.zeros(3)])
+    pose, std = place_shape(obs.configuration.rig, truth_curve, start, views, sigma)
+    return measure(truth_curve @ pose[:, :3].T + pose[:, 3], std, truth_curve)
 
 
 def _rate(rows: list[dict], key: str) -> float:
@@ -116,6 +132,8 @@ def run(seed: int = 0, scenes: int = 20, frames: int = FRAMES, workers: int = 1)
         f"{name}_oracle_within_1pct_rate": _rate(rows, "oracle_error"),
         f"{name}_error_median": _median(rows, "error"),
         f"{name}_oracle_error_median": _median(rows, "oracle_error"),
+        f"{name}_placement_oracle_within_1pct_rate": _rate(rows, "placed_error"),
+        f"{name}_placement_oracle_error_median": _median(rows, "placed_error"),
         f"{name}_max_error_median": _median(rows, "max_error"),
         f"{name}_oracle_max_error_median": _median(rows, "oracle_max_error"),
         f"{name}_std_coverage_3sigma_median": _median(rows, "coverage"),

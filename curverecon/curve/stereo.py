@@ -34,8 +34,10 @@ from collections.abc import Sequence
 import numpy as np
 
 from curverecon.curve.polyline import arc_length, as_polyline, noise_level
+from curverecon.curve.stereo_place import pixel_jacobian as _jacobian
+from curverecon.curve.stereo_place import place_shape
 from curverecon.curve.stereo_smooth import smooth_curve
-from curverecon.curve.stereo_turn import best_motion, best_turn, moved_pose, turned_pose
+from curverecon.curve.stereo_turn import best_turn, turned_pose
 from curverecon.errors import CurveReconError
 from curverecon.solvers.camera import Camera, StereoRig
 
@@ -53,6 +55,9 @@ _TURN_PENALTY = 100.0
 #: Half-width of the local fits giving a noisy curve's direction, in multiples of its
 #: measured noise: chosen on the 0.5 px scenes of tests/test_stereo_curve.py (std coverage).
 _FIT_NOISE_WIDTHS = 12.0
+
+#: Rounds of placing the fused shape in every frame by its reprojection and fusing again.
+_PLACEMENTS = 2
 
 #: Points of a long fused curve whose feet are searched at a time (memory).
 _CHUNK = 256
@@ -168,17 +173,6 @@ def _refine(spline: _Spline, lines: np.ndarray, s_grid: np.ndarray, order, turn0
     s1 = np.where(crossing, s1, 0.5 * (a + b))
     s1[0], s1[-1] = 0.0, spline.length
     return np.maximum.accumulate(s1)
-
-
-def _jacobian(camera: Camera, x: np.ndarray) -> np.ndarray:
-    """(..., 2, 3) derivative of the pixel position by the camera-coordinate point."""
-    f = float(camera.focal_px)
-    z = x[..., 2]
-    jac = np.zeros(x.shape[:-1] + (2, 3))
-    jac[..., 0, 0] = jac[..., 1, 1] = f / z
-    jac[..., 0, 2] = -f * x[..., 0] / z**2
-    jac[..., 1, 2] = -f * x[..., 1] / z**2
-    return jac
 
 
 def _on_ray0(rig: StereoRig, p0: np.ndarray, p1: np.ndarray) -> np.ndarray:
@@ -444,8 +438,8 @@ def _checked_poses(polylines0, polylines1, frame_poses) -> np.ndarray:
 def _align_turns(frames, poses: np.ndarray, chord: np.ndarray) -> None:
     """Every frame's pose turned about the chord (A, B in frame 0's coordinates, in place):
     first each curve laid on the best-determined frame's (least median std), then each on the
-    frames fused, and all turned back together by frame 0's turn (frame 0's pose is the
-    gauge: its curve fixes the turn of the whole)."""
+    frames fused, and all turned back together by frame 0's turn (a start for ``_placed``,
+    which places the whole in frame 0 by frame 0's images)."""
     a0 = np.asarray(chord[0], float)
     axis = np.asarray(chord[1], float) - a0
     norm = float(np.linalg.norm(axis))
@@ -469,27 +463,6 @@ def _align_turns(frames, poses: np.ndarray, chord: np.ndarray) -> None:
         reference = _fused_frames(frames, poses)[0]
     for f in range(len(frames)):
         poses[f] = turned_pose(given[f], a0, axis, total[f] - total[0])
-    _align_motions(frames, poses)
-
-
-def _align_motions(frames, poses: np.ndarray) -> None:
-    """Every frame's whole rigid motion onto the frames fused (the fit's A and B in a frame
-    are far less certain in depth than its whole curve), twice, then all moved back together
-    by frame 0's motion (frame 0's pose is the gauge), in place."""
-    given = poses.copy()
-    motions = [(np.eye(3), np.zeros(3)) for _ in frames]
-    for _ in range(2):
-        reference = _fused_frames(frames, poses)[0]
-        for f, (x, std, _) in enumerate(frames):
-            rot, t = motions[f]
-            moved = (x - poses[f, :, 3]) @ poses[f, :, :3]
-            step_rot, step_t = best_motion(moved, std, reference)
-            motions[f] = (step_rot @ rot, step_rot @ t + step_t)
-            poses[f] = moved_pose(given[f], *motions[f])
-    back_rot, back_t = motions[0][0].T, -motions[0][0].T @ motions[0][1]
-    for f in range(len(frames)):
-        rot, t = motions[f]
-        poses[f] = moved_pose(given[f], back_rot @ rot, back_rot @ t + back_t)
 
 
 def _fused_frames(frames, poses: np.ndarray):
@@ -510,6 +483,44 @@ def _fused_frames(frames, poses: np.ndarray):
     return fused, std, np.linspace(0.0, 1.0, m)
 
 
+def _placed(rig: StereoRig, frames, poses: np.ndarray, views, sigma: float):
+    """(curve (M, 3) in frame 0's camera-0 coordinates, std (M,), poses (N, 3, 4)): the fused
+    shape placed in every frame by its reprojection onto that frame's two polylines
+    (``curve.stereo_place``), the frames fused again on these placements, ``_PLACEMENTS``
+    times; the answer is the shape placed in frame 0 the same way (not through frame 0's
+    triangulated points, which run far off where its curve lies along the epipolar lines),
+    its std the fused std and that placement's together, the poses relative to frame 0's
+    placement (frame 0 keeps the pose given, ``poses[0]``: the identity unless the first
+    frame given is another)."""
+    placed = poses.copy()
+    for _ in range(_PLACEMENTS):
+        shape, std, _ = _fused_frames(frames, placed)
+        placed = np.array(
+            [
+                place_shape(rig, shape, placed[f], views[f], sigma, std)[0]
+                for f in range(len(frames))
+            ]
+        )
+    shape, std, _ = _fused_frames(frames, placed)
+    placed[0], std0 = place_shape(rig, shape, placed[0], views[0], sigma, std)
+    # the answer's coordinates are frame 0's: X_first = G X_0 with G the first frame's pose
+    to_shape = _compose(_inverse(placed[0]), poses[0])  # X_0 -> Y
+    for f in range(len(frames)):
+        poses[f] = _compose(placed[f], to_shape)
+    back = _inverse(to_shape)
+    return shape @ back[:, :3].T + back[:, 3], np.hypot(std, std0), poses
+
+
+def _compose(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(3, 4) pose of x -> a(b(x)) for (3, 4) poses [R | T] (x -> R x + T)."""
+    return np.column_stack([a[:, :3] @ b[:, :3], a[:, :3] @ b[:, 3] + a[:, 3]])
+
+
+def _inverse(a: np.ndarray) -> np.ndarray:
+    """(3, 4) pose of the inverse motion of [R | T]: [R^T | -R^T T]."""
+    return np.column_stack([a[:, :3].T, -a[:, :3].T @ a[:, 3]])
+
+
 def stereo_curve_and_poses(
     rig: StereoRig,
     polylines0: Sequence[np.ndarray],
@@ -520,13 +531,17 @@ def stereo_curve_and_poses(
     smooth: bool = True,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """:func:`stereo_curve3d` and the frame poses it used: with ``chord`` ((2, 3) A and B in
-    frame 0's camera-0 coordinates) each frame's turn about the chord is taken from its curve
-    (the turn that lays its triangulated curve on frame 0's, then on the fused curve; a global
-    search, then closest points), for poses whose turn the points leave free (A and B alone),
-    and the std of frame 0's A and B (which place the shape in frame 0) is added to every
-    point's (interpolated along the curve); without it the poses as given.  ``smooth``: the
-    fused points smoothed along the curve (``curve.stereo_smooth``).  Returns (curve3d (M, 3),
-    std (M,), poses (N, 3, 4))."""
+    frame 0's camera-0 coordinates), for poses whose turn about the chord the points leave free
+    (A and B alone), each frame's turn is first taken from its curve (a global search laying
+    its triangulated curve on the best-seen frame's, then closest points on the fused curve),
+    then the fused shape is placed in every frame by its reprojection onto that frame's two
+    polylines (``curve.stereo_place``; a frame that triangulates its curve badly, running along
+    its epipolar lines, still places a known shape well) and the frames fused again on those
+    placements; the curve returned is the shape placed in frame 0 (the first frame given: its
+    pose is kept), its std the fused std and that placement's together, and the poses are the
+    placements relative to frame 0's.  Without ``chord`` the poses as given.  ``smooth``: each
+    frame's points smoothed along the curve (``curve.stereo_smooth``).  Returns (curve3d
+    (M, 3), std (M,), poses (N, 3, 4))."""
     poses = _checked_poses(polylines0, polylines1, frame_poses)
     frames = []
     for f in range(len(poses)):
@@ -536,14 +551,15 @@ def stereo_curve_and_poses(
         if smooth:  # each frame's own scatter, before the frames' poses and fusion
             x, std = smooth_curve(u, x, std)
         frames.append((x, std, u))
-    if chord is not None and len(frames) > 1:
-        _align_turns(frames, poses, np.asarray(chord, float))
-    curve, std, u = _fused_frames(frames, poses)
-    if chord is not None and len(frames) > 1:
-        # the fused shape is placed in frame 0 through the fit's A and B there, which frame 0
-        # alone sees: their std (frame 0's triangulated ends') adds, interpolated along the curve
-        ends = frames[0][1][[0, -1]]
-        std = np.hypot(std, (1.0 - u) * ends[0] + u * ends[1])
+    if chord is None or len(frames) == 1:
+        curve, std, _ = _fused_frames(frames, poses)
+        return curve, std, poses
+    _align_turns(frames, poses, np.asarray(chord, float))
+    views = [
+        (np.asarray(a, float), np.asarray(b, float))
+        for a, b in zip(polylines0, polylines1, strict=True)
+    ]
+    curve, std, poses = _placed(rig, frames, poses, views, float(point_sigma))
     return curve, std, poses
 
 

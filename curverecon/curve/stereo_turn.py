@@ -22,9 +22,6 @@ _CAP = 25.0
 #: takes them all).
 _SEARCH_POINTS = 60
 
-#: Closest-point steps of a frame's whole rigid motion onto the fused curve.
-_MOTION_STEPS = 15
-
 #: Most closest-point refinements of the turn after the global search (each gains a fixed
 #: fraction where the turn slides the curve along itself; stopped when the turn stays within
 #: ``_TOLERANCE`` radians).
@@ -105,34 +102,6 @@ def best_turn(points, std, reference, a0, axis, search: bool = True) -> float:
     return angle
 
 
-def best_motion(points, std, reference) -> tuple[np.ndarray, np.ndarray]:
-    """(R, t): the rigid motion y -> R y + t bringing ``points`` (K, 3; std (K,)) closest to
-    the polyline ``reference`` from where they are: closest points, each step the weighted
-    least-squares motion in closed form (Kabsch, weights 1 / std^2, points beyond the capped
-    cost left out), ``_MOTION_STEPS`` steps."""
-    w = 1.0 / np.maximum(std, 1e-300) ** 2
-    rot, t = np.eye(3), np.zeros(3)
-    for _ in range(_MOTION_STEPS):
-        now = points @ rot.T + t
-        near, d2 = _feet(now, reference)
-        keep = d2 * w <= _CAP
-        wk = w[keep] / w[keep].sum()
-        p, q = points[keep], near[keep]
-        pm, qm = wk @ p, wk @ q
-        u, _, vt = np.linalg.svd(((p - pm) * wk[:, None]).T @ (q - qm))
-        d = np.sign(np.linalg.det(vt.T @ u.T))
-        rot = vt.T @ np.diag([1.0, 1.0, d]) @ u.T
-        t = qm - rot @ pm
-    return rot, t
-
-
-def moved_pose(pose: np.ndarray, rot: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """The pose under which frame f's points, moved to frame 0, come out moved further by
-    y -> rot y + t: [R_f rot^T | T_f - R_f rot^T t]."""
-    r = pose[:, :3] @ rot.T
-    return np.column_stack([r, pose[:, 3] - r @ t])
-
-
 def turned_pose(pose: np.ndarray, a0: np.ndarray, axis: np.ndarray, angle: float) -> np.ndarray:
     """The pose under which frame f's points, moved to frame 0, come out turned by ``angle``
     about the axis through ``a0`` (Q = ``rotation_about(axis, angle)``):
@@ -142,4 +111,4 @@ def turned_pose(pose: np.ndarray, a0: np.ndarray, axis: np.ndarray, angle: float
     return np.column_stack([rot @ qt, tr + rot @ (a0 - qt @ a0)])
 
 
-__all__ = ["best_motion", "best_turn", "moved_pose", "rotation_about", "turned_pose"]
+__all__ = ["best_turn", "rotation_about", "turned_pose"]

@@ -7,7 +7,11 @@ the rig's t.  ``frame_poses`` (N, 3, 4) are [R_f | T_f] with X_f = R_f X_0 + T_f
 camera coordinates to frame f's; camera 0's for stereo); ``points3`` are every point in every
 frame's camera coordinates with its depth.  With polylines the curve stage runs on the fitted
 poses: ``curve.pinhole.curve_on_pinhole_poses`` (perspective) or ``curve.stereo.stereo_curve3d``
-(stereo), where this build has them.
+(stereo), where this build has them.  Stereo with A and B alone leaves each frame's turn about
+AB free: the curve stage fixes it and places every frame by the curve, and the answer's
+``frame_poses`` and paper poses are those (one set of poses, the curve's); ``points3`` stay the
+fit's A and B (under the curve's poses A and B move within their std:
+tests/test_stereo_curve_place.py).
 """
 
 from __future__ import annotations
@@ -23,6 +27,8 @@ from curverecon.options import ReconstructOptions
 from curverecon.rigid.answer import (
     chord_std,
     configuration_answer,
+    curve_frame,
+    decompose,
     inlier_frame_chi2,
     motion_parameters,
     paper_answer,
@@ -100,6 +106,15 @@ def curve_stage(obs: RigidObservations, poses, p3: np.ndarray, idx, sigma: float
         return None, None, [f"motion {cfg.motion}: no curve fits its poses ({exc}){CURVE_HINT}"]
 
 
+def paper_pose_rows(poses: np.ndarray, a0: np.ndarray, b0: np.ndarray) -> np.ndarray:
+    """(N, 5) the paper's poses (delta, tau, theta, x, y) of frame poses (N, 3, 4) [R_f | T_f]
+    whose curve frame in frame 0 is A ``a0``, B ``b0`` and, with no tangents, the viewing axis
+    (as ``answer.paper_answer``): R_f [e1 e2 e3] decomposed, and A's image R_f A_0 + T_f."""
+    frame = curve_frame(np.asarray(b0, float) - a0, np.array([0.0, 0.0, 1.0]))
+    angles = decompose(np.einsum("fij,jk->fik", poses[:, :, :3], frame))
+    return np.column_stack([angles, (poses[:, :, :3] @ a0 + poses[:, :, 3])[:, :2]])
+
+
 def _motion(layout: Layout, fit: RigidFit, data: RigidData, scale: float) -> dict:
     """``motion_parameters`` in the answer's units (the force field's 3-D parabola scaled)."""
     mp = motion_parameters(layout, fit, data)
@@ -161,6 +176,8 @@ def pinhole_answer(
     shape, paper_poses = paper_answer(layout, full, data.times, tangents3)
     shape[0] *= scale
     paper_poses[:, 3:5] *= scale
+    if free and curve3d is not None:  # the turns the curve was fused with, not the fit's
+        paper_poses[idx] = paper_pose_rows(poses[idx], p3[0, 0], p3[0, 1])
     cov = widened_covariance(fit, others)  # reaches every valley that fits about as well
     std = np.array([chord_std(layout, state, cov) * scale, np.nan, np.nan, np.nan])
     alternatives = [valley(obs, layout, alt, data.times[idx]) for alt in others]
