@@ -731,6 +731,7 @@ def fixed_axis_record() -> PolynomialSystem:
         "msolve's, then tracked to these parameters near a real scene, whose plane normals "
         "have unit length); curverecon.solvers.homotopy tracks them to any frames' rays.",
         facts=chart.facts,
+        horner=tuple(unknowns[i] for i in (0, 1, 4, 5, 2, 3)),
     )
 
 

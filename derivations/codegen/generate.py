@@ -770,6 +770,11 @@ def system_kernels(
             f[a] += w_syms[i] * umon(k)
             ft[a] += wt_syms[i] * umon(k)
     jac = sp.Matrix(n_eq, n_u, lambda a, v: sp.expand(sp.diff(f[a], unknowns[v])))
+    if record.horner:  # nested in the record's order of unknowns (see its ``horner``)
+        gens = record.horner
+        f = [sp.horner(e, *gens) if e.free_symbols & set(gens) else e for e in f]
+        ft = [sp.horner(e, *gens) if e.free_symbols & set(gens) else e for e in ft]
+        jac = jac.applyfunc(lambda e: sp.horner(e, *gens) if e.free_symbols & set(gens) else e)
     kernels = (
         print_array_kernel(
             "coefficients",

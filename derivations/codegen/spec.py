@@ -69,3 +69,7 @@ class PolynomialSystem:
     start_solutions: tuple[tuple[complex, ...], ...]
     doc: str
     facts: dict[str, object] = field(default_factory=dict)
+    horner: tuple[sp.Symbol, ...] = ()
+    """Unknowns in the order the residual kernels nest F, F_x and F_t in (Horner form, before
+    the common-subexpression pass: fewer multiplications where each equation is a sum of many
+    monomials of few unknowns); empty: the expanded sums."""
