@@ -732,6 +732,7 @@ def fixed_axis_record() -> PolynomialSystem:
         "have unit length); curverecon.solvers.homotopy tracks them to any frames' rays.",
         facts=chart.facts,
         horner=tuple(unknowns[i] for i in (0, 1, 4, 5, 2, 3)),
+        sparse_solve=True,
     )
 
 

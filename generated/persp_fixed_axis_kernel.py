@@ -3394,120 +3394,23 @@ def solve_one(a, b, out):  # type: ignore[no-untyped-def]
             m0_5,
             g0,
         )
-    mag = abs(m3_0.real) + abs(m3_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m3_0, m3_1, m3_2, m3_3, m3_4, m3_5, g3 = (
-            m3_0,
-            m3_1,
-            m3_2,
-            m3_3,
-            m3_4,
-            m3_5,
-            g3,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-        )
-    mag = abs(m4_0.real) + abs(m4_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m4_0, m4_1, m4_2, m4_3, m4_4, m4_5, g4 = (
-            m4_0,
-            m4_1,
-            m4_2,
-            m4_3,
-            m4_4,
-            m4_5,
-            g4,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-        )
-    mag = abs(m5_0.real) + abs(m5_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m5_0, m5_1, m5_2, m5_3, m5_4, m5_5, g5 = (
-            m5_0,
-            m5_1,
-            m5_2,
-            m5_3,
-            m5_4,
-            m5_5,
-            g5,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-        )
     if best == 0.0 or not np.isfinite(best):
         return False
     dd = 1.0 / (m0_0.real * m0_0.real + m0_0.imag * m0_0.imag)
     u0 = complex(m0_0.real * dd, -m0_0.imag * dd)
     fac = m1_0 * u0
-    m1_1 = m1_1 - fac * m0_1
     m1_2 = m1_2 - fac * m0_2
     m1_3 = m1_3 - fac * m0_3
     m1_4 = m1_4 - fac * m0_4
     m1_5 = m1_5 - fac * m0_5
     g1 = g1 - fac * g0
     fac = m2_0 * u0
-    m2_1 = m2_1 - fac * m0_1
     m2_2 = m2_2 - fac * m0_2
     m2_3 = m2_3 - fac * m0_3
     m2_4 = m2_4 - fac * m0_4
     m2_5 = m2_5 - fac * m0_5
     g2 = g2 - fac * g0
-    fac = m3_0 * u0
-    m3_1 = m3_1 - fac * m0_1
-    m3_2 = m3_2 - fac * m0_2
-    m3_3 = m3_3 - fac * m0_3
-    m3_4 = m3_4 - fac * m0_4
-    m3_5 = m3_5 - fac * m0_5
-    g3 = g3 - fac * g0
-    fac = m4_0 * u0
-    m4_1 = m4_1 - fac * m0_1
-    m4_2 = m4_2 - fac * m0_2
-    m4_3 = m4_3 - fac * m0_3
-    m4_4 = m4_4 - fac * m0_4
-    m4_5 = m4_5 - fac * m0_5
-    g4 = g4 - fac * g0
-    fac = m5_0 * u0
-    m5_1 = m5_1 - fac * m0_1
-    m5_2 = m5_2 - fac * m0_2
-    m5_3 = m5_3 - fac * m0_3
-    m5_4 = m5_4 - fac * m0_4
-    m5_5 = m5_5 - fac * m0_5
-    g5 = g5 - fac * g0
     best = abs(m1_1.real) + abs(m1_1.imag)
-    mag = abs(m2_1.real) + abs(m2_1.imag)
-    if mag > best:
-        best = mag
-        m1_1, m1_2, m1_3, m1_4, m1_5, g1, m2_1, m2_2, m2_3, m2_4, m2_5, g2 = (
-            m2_1,
-            m2_2,
-            m2_3,
-            m2_4,
-            m2_5,
-            g2,
-            m1_1,
-            m1_2,
-            m1_3,
-            m1_4,
-            m1_5,
-            g1,
-        )
     mag = abs(m3_1.real) + abs(m3_1.imag)
     if mag > best:
         best = mag
@@ -3563,12 +3466,6 @@ def solve_one(a, b, out):  # type: ignore[no-untyped-def]
         return False
     dd = 1.0 / (m1_1.real * m1_1.real + m1_1.imag * m1_1.imag)
     u1 = complex(m1_1.real * dd, -m1_1.imag * dd)
-    fac = m2_1 * u1
-    m2_2 = m2_2 - fac * m1_2
-    m2_3 = m2_3 - fac * m1_3
-    m2_4 = m2_4 - fac * m1_4
-    m2_5 = m2_5 - fac * m1_5
-    g2 = g2 - fac * g1
     fac = m3_1 * u1
     m3_2 = m3_2 - fac * m1_2
     m3_3 = m3_3 - fac * m1_3
@@ -3695,7 +3592,7 @@ def solve_one(a, b, out):  # type: ignore[no-untyped-def]
     x3 = (g3 - m3_4 * x4 - m3_5 * x5) * u3
     x2 = (g2 - m2_3 * x3 - m2_4 * x4 - m2_5 * x5) * u2
     x1 = (g1 - m1_2 * x2 - m1_3 * x3 - m1_4 * x4 - m1_5 * x5) * u1
-    x0 = (g0 - m0_1 * x1 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4 - m0_5 * x5) * u0
+    x0 = (g0 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4 - m0_5 * x5) * u0
     out[4] = x0
     out[5] = x1
     out[0] = x2
@@ -3804,75 +3701,11 @@ def solve_pair(a, b, c, out, out2, m, r, r2, plan, two):  # type: ignore[no-unty
             g0,
             e0,
         )
-    mag = abs(m3_0.real) + abs(m3_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m3_0, m3_1, m3_2, m3_3, m3_4, m3_5, g3, e3 = (
-            m3_0,
-            m3_1,
-            m3_2,
-            m3_3,
-            m3_4,
-            m3_5,
-            g3,
-            e3,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-            e0,
-        )
-    mag = abs(m4_0.real) + abs(m4_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m4_0, m4_1, m4_2, m4_3, m4_4, m4_5, g4, e4 = (
-            m4_0,
-            m4_1,
-            m4_2,
-            m4_3,
-            m4_4,
-            m4_5,
-            g4,
-            e4,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-            e0,
-        )
-    mag = abs(m5_0.real) + abs(m5_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m5_0, m5_1, m5_2, m5_3, m5_4, m5_5, g5, e5 = (
-            m5_0,
-            m5_1,
-            m5_2,
-            m5_3,
-            m5_4,
-            m5_5,
-            g5,
-            e5,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-            e0,
-        )
     if best == 0.0 or not np.isfinite(best):
         return False
     dd = 1.0 / (m0_0.real * m0_0.real + m0_0.imag * m0_0.imag)
     u0 = complex(m0_0.real * dd, -m0_0.imag * dd)
     fac = m1_0 * u0
-    m1_1 = m1_1 - fac * m0_1
     m1_2 = m1_2 - fac * m0_2
     m1_3 = m1_3 - fac * m0_3
     m1_4 = m1_4 - fac * m0_4
@@ -3880,57 +3713,13 @@ def solve_pair(a, b, c, out, out2, m, r, r2, plan, two):  # type: ignore[no-unty
     g1 = g1 - fac * g0
     e1 = e1 - fac * e0
     fac = m2_0 * u0
-    m2_1 = m2_1 - fac * m0_1
     m2_2 = m2_2 - fac * m0_2
     m2_3 = m2_3 - fac * m0_3
     m2_4 = m2_4 - fac * m0_4
     m2_5 = m2_5 - fac * m0_5
     g2 = g2 - fac * g0
     e2 = e2 - fac * e0
-    fac = m3_0 * u0
-    m3_1 = m3_1 - fac * m0_1
-    m3_2 = m3_2 - fac * m0_2
-    m3_3 = m3_3 - fac * m0_3
-    m3_4 = m3_4 - fac * m0_4
-    m3_5 = m3_5 - fac * m0_5
-    g3 = g3 - fac * g0
-    e3 = e3 - fac * e0
-    fac = m4_0 * u0
-    m4_1 = m4_1 - fac * m0_1
-    m4_2 = m4_2 - fac * m0_2
-    m4_3 = m4_3 - fac * m0_3
-    m4_4 = m4_4 - fac * m0_4
-    m4_5 = m4_5 - fac * m0_5
-    g4 = g4 - fac * g0
-    e4 = e4 - fac * e0
-    fac = m5_0 * u0
-    m5_1 = m5_1 - fac * m0_1
-    m5_2 = m5_2 - fac * m0_2
-    m5_3 = m5_3 - fac * m0_3
-    m5_4 = m5_4 - fac * m0_4
-    m5_5 = m5_5 - fac * m0_5
-    g5 = g5 - fac * g0
-    e5 = e5 - fac * e0
     best = abs(m1_1.real) + abs(m1_1.imag)
-    mag = abs(m2_1.real) + abs(m2_1.imag)
-    if mag > best:
-        best = mag
-        m1_1, m1_2, m1_3, m1_4, m1_5, g1, e1, m2_1, m2_2, m2_3, m2_4, m2_5, g2, e2 = (
-            m2_1,
-            m2_2,
-            m2_3,
-            m2_4,
-            m2_5,
-            g2,
-            e2,
-            m1_1,
-            m1_2,
-            m1_3,
-            m1_4,
-            m1_5,
-            g1,
-            e1,
-        )
     mag = abs(m3_1.real) + abs(m3_1.imag)
     if mag > best:
         best = mag
@@ -3992,13 +3781,6 @@ def solve_pair(a, b, c, out, out2, m, r, r2, plan, two):  # type: ignore[no-unty
         return False
     dd = 1.0 / (m1_1.real * m1_1.real + m1_1.imag * m1_1.imag)
     u1 = complex(m1_1.real * dd, -m1_1.imag * dd)
-    fac = m2_1 * u1
-    m2_2 = m2_2 - fac * m1_2
-    m2_3 = m2_3 - fac * m1_3
-    m2_4 = m2_4 - fac * m1_4
-    m2_5 = m2_5 - fac * m1_5
-    g2 = g2 - fac * g1
-    e2 = e2 - fac * e1
     fac = m3_1 * u1
     m3_2 = m3_2 - fac * m1_2
     m3_3 = m3_3 - fac * m1_3
@@ -4167,8 +3949,8 @@ def solve_pair(a, b, c, out, out2, m, r, r2, plan, two):  # type: ignore[no-unty
     y2 = (e2 - m2_3 * y3 - m2_4 * y4 - m2_5 * y5) * u2
     x1 = (g1 - m1_2 * x2 - m1_3 * x3 - m1_4 * x4 - m1_5 * x5) * u1
     y1 = (e1 - m1_2 * y2 - m1_3 * y3 - m1_4 * y4 - m1_5 * y5) * u1
-    x0 = (g0 - m0_1 * x1 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4 - m0_5 * x5) * u0
-    y0 = (e0 - m0_1 * y1 - m0_2 * y2 - m0_3 * y3 - m0_4 * y4 - m0_5 * y5) * u0
+    x0 = (g0 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4 - m0_5 * x5) * u0
+    y0 = (e0 - m0_2 * y2 - m0_3 * y3 - m0_4 * y4 - m0_5 * y5) * u0
     out[4] = x0
     out[5] = x1
     out[0] = x2
