@@ -18,7 +18,8 @@ m_f), the rays turned by a complex rotation (``COMPLEX_CHART``: the axis chart
 n = (n1, n2, 1) then misses one real direction only), from the start nearest the scene among
 start parameters near real scenes (``_starts``: short paths).  Before, three solves in the real
 Cayley chart were merged (each frame the reference once, for the half turns): 0.12 s of CPU a
-solve against 0.011 s now (docs/accuracy.md).
+solve against 0.007 s now (docs/accuracy.md; F, F_x and F_t are generated in Horner form and the
+linear solve without the Jacobian's structural zeros, ``sparse_solve``).
 """
 
 from __future__ import annotations
