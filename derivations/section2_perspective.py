@@ -731,6 +731,8 @@ def fixed_axis_record() -> PolynomialSystem:
         "msolve's, then tracked to these parameters near a real scene, whose plane normals "
         "have unit length); curverecon.solvers.homotopy tracks them to any frames' rays.",
         facts=chart.facts,
+        horner=tuple(unknowns[i] for i in (0, 1, 4, 5, 2, 3)),
+        sparse_solve=True,
     )
 
 
@@ -1050,7 +1052,8 @@ SOLVERS = {
     "spaced times",
     "fixed_axis_3pt": "parameter homotopy, 84 paths, one solve in a chart with no real motion "
     "at infinity: mu_f = m_f / (1 + zeta_f m_f), zeta_f not real (a half turn is finite), the "
-    "rays turned by a complex rotation (`persp_fixed_axis_3pt.py`)",
+    "rays turned by a complex rotation (`persp_fixed_axis_3pt.py`); kernels in Horner form, "
+    "the solve without F_x's structural zeros (`horner`, `sparse_solve`)",
     "free_4pt": "none practical: overdetermined by one; the square relaxation has 1,280 "
     "solutions (`persp_free_4pt.py` says why)",
     "force_field": "none practical: 33 quadrics in 33 unknowns (`persp_force_field.py` says why)",

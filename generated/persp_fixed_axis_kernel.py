@@ -2665,620 +2665,134 @@ def residual_jacobian(x: np.ndarray, w: np.ndarray, f: np.ndarray, jac: np.ndarr
     w117 = w[117]
     w118 = w[118]
     w119 = w[119]
-    _tmp0 = m1 * w11
-    _tmp1 = n1 * w6
-    _tmp2 = n2 * w3
-    _tmp3 = m1 * m1
-    _tmp4 = b0 * w16
-    _tmp5 = m1 * n1
-    _tmp6 = b0 * w13
-    _tmp7 = m1 * n2
-    _tmp8 = _tmp3 * w12
-    _tmp9 = _tmp3 * n1
-    _tmp10 = _tmp3 * n2
-    _tmp11 = _tmp9 * w17
-    _tmp12 = _tmp10 * w14
-    _tmp13 = _tmp9 * n2
-    _tmp14 = n1 * n1
-    _tmp15 = _tmp14 * _tmp3
-    _tmp16 = n2 * n2
-    _tmp17 = _tmp16 * _tmp3
-    _tmp18 = _tmp13 * w18
-    _tmp19 = _tmp15 * w19
-    _tmp20 = _tmp17 * w15
-    _tmp21 = m1 * w31
-    _tmp22 = n1 * w26
-    _tmp23 = n2 * w23
-    _tmp24 = c0 * w36
-    _tmp25 = c0 * w33
-    _tmp26 = _tmp3 * w32
-    _tmp27 = _tmp9 * w37
-    _tmp28 = _tmp10 * w34
-    _tmp29 = _tmp13 * w38
-    _tmp30 = _tmp15 * w39
-    _tmp31 = _tmp17 * w35
-    _tmp32 = m1 * w51
-    _tmp33 = m1 * w41
-    _tmp34 = b0 * w56
-    _tmp35 = b0 * w53
-    _tmp36 = c0 * w46
-    _tmp37 = c0 * w43
-    _tmp38 = _tmp3 * w52
-    _tmp39 = _tmp3 * w42
-    _tmp40 = _tmp9 * w57
-    _tmp41 = _tmp10 * w54
-    _tmp42 = _tmp9 * w47
-    _tmp43 = _tmp10 * w44
-    _tmp44 = _tmp13 * w58
-    _tmp45 = _tmp13 * w48
-    _tmp46 = _tmp15 * w59
-    _tmp47 = _tmp17 * w55
-    _tmp48 = _tmp15 * w49
-    _tmp49 = _tmp17 * w45
-    _tmp50 = m2 * w71
-    _tmp51 = n1 * w66
-    _tmp52 = n2 * w63
-    _tmp53 = m2 * m2
-    _tmp54 = b0 * w76
-    _tmp55 = m2 * n1
-    _tmp56 = b0 * w73
-    _tmp57 = m2 * n2
-    _tmp58 = _tmp53 * w72
-    _tmp59 = _tmp53 * n1
-    _tmp60 = _tmp53 * n2
-    _tmp61 = _tmp59 * w77
-    _tmp62 = _tmp60 * w74
-    _tmp63 = _tmp59 * n2
-    _tmp64 = _tmp14 * _tmp53
-    _tmp65 = _tmp16 * _tmp53
-    _tmp66 = _tmp63 * w78
-    _tmp67 = _tmp64 * w79
-    _tmp68 = _tmp65 * w75
-    _tmp69 = m2 * w91
-    _tmp70 = n1 * w86
-    _tmp71 = n2 * w83
-    _tmp72 = c0 * w96
-    _tmp73 = c0 * w93
-    _tmp74 = _tmp53 * w92
-    _tmp75 = _tmp59 * w97
-    _tmp76 = _tmp60 * w94
-    _tmp77 = _tmp63 * w98
-    _tmp78 = _tmp64 * w99
-    _tmp79 = _tmp65 * w95
-    _tmp80 = m2 * w111
-    _tmp81 = m2 * w101
-    _tmp82 = b0 * w116
-    _tmp83 = b0 * w113
-    _tmp84 = c0 * w106
-    _tmp85 = c0 * w103
-    _tmp86 = _tmp53 * w112
-    _tmp87 = _tmp53 * w102
-    _tmp88 = _tmp59 * w117
-    _tmp89 = _tmp60 * w114
-    _tmp90 = _tmp59 * w107
-    _tmp91 = _tmp60 * w104
-    _tmp92 = _tmp63 * w118
-    _tmp93 = _tmp63 * w108
-    _tmp94 = _tmp64 * w119
-    _tmp95 = _tmp65 * w115
-    _tmp96 = _tmp64 * w109
-    _tmp97 = _tmp65 * w105
-    _tmp98 = m1 * w7
-    _tmp99 = b0 * m1
-    _tmp100 = 2 * _tmp5
-    _tmp101 = b0 * w18
-    _tmp102 = _tmp100 * b0
-    _tmp103 = m1 * w4
-    _tmp104 = _tmp5 * w8
-    _tmp105 = 2 * _tmp7
-    _tmp106 = _tmp105 * b0
-    _tmp107 = 2 * m1
-    _tmp108 = 2 * _tmp99
-    _tmp109 = 2 * n1
-    _tmp110 = 2 * n2
-    _tmp111 = _tmp107 * _tmp14
-    _tmp112 = _tmp107 * _tmp16
-    _tmp113 = _tmp100 * n2
-    _tmp114 = _tmp108 * _tmp14
-    _tmp115 = _tmp108 * _tmp16
-    _tmp116 = m1 * w27
-    _tmp117 = c0 * m1
-    _tmp118 = c0 * w38
-    _tmp119 = _tmp100 * c0
-    _tmp120 = m1 * w24
-    _tmp121 = _tmp5 * w28
-    _tmp122 = _tmp105 * c0
-    _tmp123 = _tmp107 * c0
-    _tmp124 = _tmp111 * c0
-    _tmp125 = _tmp112 * c0
-    _tmp126 = b0 * w58
-    _tmp127 = c0 * w48
-    _tmp128 = m2 * w67
-    _tmp129 = b0 * m2
-    _tmp130 = 2 * _tmp55
-    _tmp131 = b0 * w78
-    _tmp132 = _tmp130 * b0
-    _tmp133 = m2 * w64
-    _tmp134 = _tmp55 * w68
-    _tmp135 = 2 * _tmp57
-    _tmp136 = _tmp131 * _tmp55
-    _tmp137 = _tmp135 * b0
-    _tmp138 = 2 * m2
-    _tmp139 = 2 * _tmp129
-    _tmp140 = _tmp138 * _tmp14
-    _tmp141 = _tmp138 * _tmp16
-    _tmp142 = _tmp139 * _tmp14
-    _tmp143 = _tmp139 * _tmp16
-    _tmp144 = m2 * w87
-    _tmp145 = c0 * m2
-    _tmp146 = c0 * w98
-    _tmp147 = _tmp130 * c0
-    _tmp148 = m2 * w84
-    _tmp149 = _tmp55 * w88
-    _tmp150 = _tmp146 * _tmp55
-    _tmp151 = _tmp135 * c0
-    _tmp152 = _tmp138 * c0
-    _tmp153 = _tmp140 * c0
-    _tmp154 = _tmp141 * c0
-    _tmp155 = b0 * w118
-    _tmp156 = c0 * w108
-    _tmp157 = _tmp155 * _tmp55
-    _tmp158 = _tmp156 * _tmp55
-    f[0] = (
-        _tmp0 * b0
-        + _tmp1 * m1
-        + _tmp10 * w4
-        + _tmp11 * b0
-        + _tmp12 * b0
-        + _tmp13 * w8
-        + _tmp15 * w9
-        + _tmp17 * w5
-        + _tmp18 * b0
-        + _tmp19 * b0
-        + _tmp2 * m1
-        + _tmp20 * b0
-        + _tmp3 * w2
-        + _tmp4 * _tmp5
-        + _tmp6 * _tmp7
-        + _tmp8 * b0
-        + _tmp9 * w7
-        + b0 * w10
-        + m1 * w1
-        + w0
-    )
-    f[1] = (
-        _tmp10 * w24
-        + _tmp13 * w28
-        + _tmp15 * w29
-        + _tmp17 * w25
-        + _tmp21 * c0
-        + _tmp22 * m1
-        + _tmp23 * m1
-        + _tmp24 * _tmp5
-        + _tmp25 * _tmp7
-        + _tmp26 * c0
-        + _tmp27 * c0
-        + _tmp28 * c0
-        + _tmp29 * c0
-        + _tmp3 * w22
-        + _tmp30 * c0
-        + _tmp31 * c0
-        + _tmp9 * w27
-        + c0 * w30
-        + m1 * w21
-        + w20
-    )
-    f[2] = (
-        _tmp32 * b0
-        + _tmp33 * c0
-        + _tmp34 * _tmp5
-        + _tmp35 * _tmp7
-        + _tmp36 * _tmp5
-        + _tmp37 * _tmp7
-        + _tmp38 * b0
-        + _tmp39 * c0
-        + _tmp40 * b0
-        + _tmp41 * b0
-        + _tmp42 * c0
-        + _tmp43 * c0
-        + _tmp44 * b0
-        + _tmp45 * c0
-        + _tmp46 * b0
-        + _tmp47 * b0
-        + _tmp48 * c0
-        + _tmp49 * c0
-        + b0 * w50
-        + c0 * w40
-    )
-    f[3] = (
-        _tmp50 * b0
-        + _tmp51 * m2
-        + _tmp52 * m2
-        + _tmp53 * w62
-        + _tmp54 * _tmp55
-        + _tmp56 * _tmp57
-        + _tmp58 * b0
-        + _tmp59 * w67
-        + _tmp60 * w64
-        + _tmp61 * b0
-        + _tmp62 * b0
-        + _tmp63 * w68
-        + _tmp64 * w69
-        + _tmp65 * w65
-        + _tmp66 * b0
-        + _tmp67 * b0
-        + _tmp68 * b0
-        + b0 * w70
-        + m2 * w61
-        + w60
-    )
-    f[4] = (
-        _tmp53 * w82
-        + _tmp55 * _tmp72
-        + _tmp57 * _tmp73
-        + _tmp59 * w87
-        + _tmp60 * w84
-        + _tmp63 * w88
-        + _tmp64 * w89
-        + _tmp65 * w85
-        + _tmp69 * c0
-        + _tmp70 * m2
-        + _tmp71 * m2
-        + _tmp74 * c0
-        + _tmp75 * c0
-        + _tmp76 * c0
-        + _tmp77 * c0
-        + _tmp78 * c0
-        + _tmp79 * c0
-        + c0 * w90
-        + m2 * w81
-        + w80
-    )
-    f[5] = (
-        _tmp55 * _tmp82
-        + _tmp55 * _tmp84
-        + _tmp57 * _tmp83
-        + _tmp57 * _tmp85
-        + _tmp80 * b0
-        + _tmp81 * c0
-        + _tmp86 * b0
-        + _tmp87 * c0
-        + _tmp88 * b0
-        + _tmp89 * b0
-        + _tmp90 * c0
-        + _tmp91 * c0
-        + _tmp92 * b0
-        + _tmp93 * c0
-        + _tmp94 * b0
-        + _tmp95 * b0
-        + _tmp96 * c0
-        + _tmp97 * c0
-        + b0 * w110
-        + c0 * w100
-    )
-    jac[0, 0] = (
-        _tmp0 + _tmp11 + _tmp12 + _tmp18 + _tmp19 + _tmp20 + _tmp5 * w16 + _tmp7 * w13 + _tmp8 + w10
-    )
+    _tmp0 = n2 * w5
+    _tmp1 = n1 * w9
+    _tmp2 = n2 * w8 + w7
+    _tmp3 = m1 * (n1 * (_tmp1 + _tmp2) + n2 * (_tmp0 + w4) + w2)
+    _tmp4 = n1 * w6 + n2 * w3 + w1
+    _tmp5 = n2 * w15
+    _tmp6 = n1 * w19
+    _tmp7 = n2 * w18 + w17
+    _tmp8 = m1 * (n1 * (_tmp6 + _tmp7) + n2 * (_tmp5 + w14) + w12)
+    _tmp9 = n1 * w16 + n2 * w13 + w11
+    _tmp10 = m1 * (_tmp8 + _tmp9) + w10
+    _tmp11 = n2 * w25
+    _tmp12 = n1 * w29
+    _tmp13 = n2 * w28 + w27
+    _tmp14 = m1 * (n1 * (_tmp12 + _tmp13) + n2 * (_tmp11 + w24) + w22)
+    _tmp15 = n1 * w26 + n2 * w23 + w21
+    _tmp16 = n2 * w35
+    _tmp17 = n1 * w39
+    _tmp18 = n2 * w38 + w37
+    _tmp19 = m1 * (n1 * (_tmp17 + _tmp18) + n2 * (_tmp16 + w34) + w32)
+    _tmp20 = n1 * w36 + n2 * w33 + w31
+    _tmp21 = m1 * (_tmp19 + _tmp20) + w30
+    _tmp22 = n2 * w55
+    _tmp23 = n1 * w59
+    _tmp24 = n2 * w58 + w57
+    _tmp25 = m1 * (n1 * (_tmp23 + _tmp24) + n2 * (_tmp22 + w54) + w52)
+    _tmp26 = n1 * w56 + n2 * w53 + w51
+    _tmp27 = m1 * (_tmp25 + _tmp26) + w50
+    _tmp28 = n2 * w45
+    _tmp29 = n1 * w49
+    _tmp30 = n2 * w48 + w47
+    _tmp31 = m1 * (n1 * (_tmp29 + _tmp30) + n2 * (_tmp28 + w44) + w42)
+    _tmp32 = n1 * w46 + n2 * w43 + w41
+    _tmp33 = m1 * (_tmp31 + _tmp32) + w40
+    _tmp34 = n2 * w65
+    _tmp35 = n1 * w69
+    _tmp36 = n2 * w68 + w67
+    _tmp37 = m2 * (n1 * (_tmp35 + _tmp36) + n2 * (_tmp34 + w64) + w62)
+    _tmp38 = n1 * w66 + n2 * w63 + w61
+    _tmp39 = n2 * w75
+    _tmp40 = n1 * w79
+    _tmp41 = n2 * w78 + w77
+    _tmp42 = m2 * (n1 * (_tmp40 + _tmp41) + n2 * (_tmp39 + w74) + w72)
+    _tmp43 = n1 * w76 + n2 * w73 + w71
+    _tmp44 = m2 * (_tmp42 + _tmp43) + w70
+    _tmp45 = n2 * w85
+    _tmp46 = n1 * w89
+    _tmp47 = n2 * w88 + w87
+    _tmp48 = m2 * (n1 * (_tmp46 + _tmp47) + n2 * (_tmp45 + w84) + w82)
+    _tmp49 = n1 * w86 + n2 * w83 + w81
+    _tmp50 = n2 * w95
+    _tmp51 = n1 * w99
+    _tmp52 = n2 * w98 + w97
+    _tmp53 = m2 * (n1 * (_tmp51 + _tmp52) + n2 * (_tmp50 + w94) + w92)
+    _tmp54 = n1 * w96 + n2 * w93 + w91
+    _tmp55 = m2 * (_tmp53 + _tmp54) + w90
+    _tmp56 = n2 * w115
+    _tmp57 = n1 * w119
+    _tmp58 = n2 * w118 + w117
+    _tmp59 = m2 * (n1 * (_tmp57 + _tmp58) + n2 * (_tmp56 + w114) + w112)
+    _tmp60 = n1 * w116 + n2 * w113 + w111
+    _tmp61 = m2 * (_tmp59 + _tmp60) + w110
+    _tmp62 = n2 * w105
+    _tmp63 = n1 * w109
+    _tmp64 = n2 * w108 + w107
+    _tmp65 = m2 * (n1 * (_tmp63 + _tmp64) + n2 * (_tmp62 + w104) + w102)
+    _tmp66 = n1 * w106 + n2 * w103 + w101
+    _tmp67 = m2 * (_tmp65 + _tmp66) + w100
+    f[0] = _tmp10 * b0 + m1 * (_tmp3 + _tmp4) + w0
+    f[1] = _tmp21 * c0 + m1 * (_tmp14 + _tmp15) + w20
+    f[2] = _tmp27 * b0 + _tmp33 * c0
+    f[3] = _tmp44 * b0 + m2 * (_tmp37 + _tmp38) + w60
+    f[4] = _tmp55 * c0 + m2 * (_tmp48 + _tmp49) + w80
+    f[5] = _tmp61 * b0 + _tmp67 * c0
+    jac[0, 0] = _tmp10
     jac[0, 1] = 0.0
-    jac[0, 2] = m1 * (
-        _tmp100 * w9
-        + _tmp101 * _tmp7
-        + _tmp102 * w19
-        + _tmp4
-        + _tmp7 * w8
-        + _tmp98
-        + _tmp99 * w17
-        + w6
-    )
+    jac[0, 2] = m1 * (b0 * (m1 * (2 * _tmp6 + _tmp7) + w16) + m1 * (2 * _tmp1 + _tmp2) + w6)
     jac[0, 3] = m1 * (
-        _tmp101 * _tmp5
-        + _tmp103
-        + _tmp104
-        + _tmp105 * w5
-        + _tmp106 * w15
-        + _tmp6
-        + _tmp99 * w14
-        + w3
+        b0 * (m1 * (2 * _tmp5 + n1 * w18 + w14) + w13) + m1 * (2 * _tmp0 + n1 * w8 + w4) + w3
     )
-    jac[0, 4] = (
-        _tmp1
-        + _tmp101 * _tmp113
-        + _tmp102 * w17
-        + _tmp103 * _tmp110
-        + _tmp104 * _tmp110
-        + _tmp106 * w14
-        + _tmp107 * w2
-        + _tmp108 * w12
-        + _tmp109 * _tmp98
-        + _tmp111 * w9
-        + _tmp112 * w5
-        + _tmp114 * w19
-        + _tmp115 * w15
-        + _tmp2
-        + _tmp4 * n1
-        + _tmp6 * n2
-        + b0 * w11
-        + w1
-    )
+    jac[0, 4] = 2 * _tmp3 + _tmp4 + b0 * (2 * _tmp8 + _tmp9)
     jac[0, 5] = 0.0
     jac[1, 0] = 0.0
-    jac[1, 1] = (
-        _tmp21
-        + _tmp26
-        + _tmp27
-        + _tmp28
-        + _tmp29
-        + _tmp30
-        + _tmp31
-        + _tmp5 * w36
-        + _tmp7 * w33
-        + w30
-    )
-    jac[1, 2] = m1 * (
-        _tmp100 * w29
-        + _tmp116
-        + _tmp117 * w37
-        + _tmp118 * _tmp7
-        + _tmp119 * w39
-        + _tmp24
-        + _tmp7 * w28
-        + w26
-    )
+    jac[1, 1] = _tmp21
+    jac[1, 2] = m1 * (c0 * (m1 * (2 * _tmp17 + _tmp18) + w36) + m1 * (2 * _tmp12 + _tmp13) + w26)
     jac[1, 3] = m1 * (
-        _tmp105 * w25
-        + _tmp117 * w34
-        + _tmp118 * _tmp5
-        + _tmp120
-        + _tmp121
-        + _tmp122 * w35
-        + _tmp25
-        + w23
+        c0 * (m1 * (2 * _tmp16 + n1 * w38 + w34) + w33) + m1 * (2 * _tmp11 + n1 * w28 + w24) + w23
     )
-    jac[1, 4] = (
-        _tmp107 * w22
-        + _tmp109 * _tmp116
-        + _tmp110 * _tmp120
-        + _tmp110 * _tmp121
-        + _tmp111 * w29
-        + _tmp112 * w25
-        + _tmp113 * _tmp118
-        + _tmp119 * w37
-        + _tmp122 * w34
-        + _tmp123 * w32
-        + _tmp124 * w39
-        + _tmp125 * w35
-        + _tmp22
-        + _tmp23
-        + _tmp24 * n1
-        + _tmp25 * n2
-        + c0 * w31
-        + w21
-    )
+    jac[1, 4] = 2 * _tmp14 + _tmp15 + c0 * (2 * _tmp19 + _tmp20)
     jac[1, 5] = 0.0
-    jac[2, 0] = (
-        _tmp32
-        + _tmp38
-        + _tmp40
-        + _tmp41
-        + _tmp44
-        + _tmp46
-        + _tmp47
-        + _tmp5 * w56
-        + _tmp7 * w53
-        + w50
-    )
-    jac[2, 1] = (
-        _tmp33
-        + _tmp39
-        + _tmp42
-        + _tmp43
-        + _tmp45
-        + _tmp48
-        + _tmp49
-        + _tmp5 * w46
-        + _tmp7 * w43
-        + w40
-    )
+    jac[2, 0] = _tmp27
+    jac[2, 1] = _tmp33
     jac[2, 2] = m1 * (
-        _tmp102 * w59
-        + _tmp117 * w47
-        + _tmp119 * w49
-        + _tmp126 * _tmp7
-        + _tmp127 * _tmp7
-        + _tmp34
-        + _tmp36
-        + _tmp99 * w57
+        b0 * (m1 * (2 * _tmp23 + _tmp24) + w56) + c0 * (m1 * (2 * _tmp29 + _tmp30) + w46)
     )
     jac[2, 3] = m1 * (
-        _tmp106 * w55
-        + _tmp117 * w44
-        + _tmp122 * w45
-        + _tmp126 * _tmp5
-        + _tmp127 * _tmp5
-        + _tmp35
-        + _tmp37
-        + _tmp99 * w54
+        b0 * (m1 * (2 * _tmp22 + n1 * w58 + w54) + w53)
+        + c0 * (m1 * (2 * _tmp28 + n1 * w48 + w44) + w43)
     )
-    jac[2, 4] = (
-        _tmp102 * w57
-        + _tmp106 * w54
-        + _tmp108 * w52
-        + _tmp113 * _tmp126
-        + _tmp113 * _tmp127
-        + _tmp114 * w59
-        + _tmp115 * w55
-        + _tmp119 * w47
-        + _tmp122 * w44
-        + _tmp123 * w42
-        + _tmp124 * w49
-        + _tmp125 * w45
-        + _tmp34 * n1
-        + _tmp35 * n2
-        + _tmp36 * n1
-        + _tmp37 * n2
-        + b0 * w51
-        + c0 * w41
-    )
+    jac[2, 4] = b0 * (2 * _tmp25 + _tmp26) + c0 * (2 * _tmp31 + _tmp32)
     jac[2, 5] = 0.0
-    jac[3, 0] = (
-        _tmp50
-        + _tmp55 * w76
-        + _tmp57 * w73
-        + _tmp58
-        + _tmp61
-        + _tmp62
-        + _tmp66
-        + _tmp67
-        + _tmp68
-        + w70
-    )
+    jac[3, 0] = _tmp44
     jac[3, 1] = 0.0
-    jac[3, 2] = m2 * (
-        _tmp128
-        + _tmp129 * w77
-        + _tmp130 * w69
-        + _tmp131 * _tmp57
-        + _tmp132 * w79
-        + _tmp54
-        + _tmp57 * w68
-        + w66
-    )
+    jac[3, 2] = m2 * (b0 * (m2 * (2 * _tmp40 + _tmp41) + w76) + m2 * (2 * _tmp35 + _tmp36) + w66)
     jac[3, 3] = m2 * (
-        _tmp129 * w74 + _tmp133 + _tmp134 + _tmp135 * w65 + _tmp136 + _tmp137 * w75 + _tmp56 + w63
+        b0 * (m2 * (2 * _tmp39 + n1 * w78 + w74) + w73) + m2 * (2 * _tmp34 + n1 * w68 + w64) + w63
     )
     jac[3, 4] = 0.0
-    jac[3, 5] = (
-        _tmp109 * _tmp128
-        + _tmp110 * _tmp133
-        + _tmp110 * _tmp134
-        + _tmp110 * _tmp136
-        + _tmp132 * w77
-        + _tmp137 * w74
-        + _tmp138 * w62
-        + _tmp139 * w72
-        + _tmp140 * w69
-        + _tmp141 * w65
-        + _tmp142 * w79
-        + _tmp143 * w75
-        + _tmp51
-        + _tmp52
-        + _tmp54 * n1
-        + _tmp56 * n2
-        + b0 * w71
-        + w61
-    )
+    jac[3, 5] = 2 * _tmp37 + _tmp38 + b0 * (2 * _tmp42 + _tmp43)
     jac[4, 0] = 0.0
-    jac[4, 1] = (
-        _tmp55 * w96
-        + _tmp57 * w93
-        + _tmp69
-        + _tmp74
-        + _tmp75
-        + _tmp76
-        + _tmp77
-        + _tmp78
-        + _tmp79
-        + w90
-    )
-    jac[4, 2] = m2 * (
-        _tmp130 * w89
-        + _tmp144
-        + _tmp145 * w97
-        + _tmp146 * _tmp57
-        + _tmp147 * w99
-        + _tmp57 * w88
-        + _tmp72
-        + w86
-    )
+    jac[4, 1] = _tmp55
+    jac[4, 2] = m2 * (c0 * (m2 * (2 * _tmp51 + _tmp52) + w96) + m2 * (2 * _tmp46 + _tmp47) + w86)
     jac[4, 3] = m2 * (
-        _tmp135 * w85 + _tmp145 * w94 + _tmp148 + _tmp149 + _tmp150 + _tmp151 * w95 + _tmp73 + w83
+        c0 * (m2 * (2 * _tmp50 + n1 * w98 + w94) + w93) + m2 * (2 * _tmp45 + n1 * w88 + w84) + w83
     )
     jac[4, 4] = 0.0
-    jac[4, 5] = (
-        _tmp109 * _tmp144
-        + _tmp110 * _tmp148
-        + _tmp110 * _tmp149
-        + _tmp110 * _tmp150
-        + _tmp138 * w82
-        + _tmp140 * w89
-        + _tmp141 * w85
-        + _tmp147 * w97
-        + _tmp151 * w94
-        + _tmp152 * w92
-        + _tmp153 * w99
-        + _tmp154 * w95
-        + _tmp70
-        + _tmp71
-        + _tmp72 * n1
-        + _tmp73 * n2
-        + c0 * w91
-        + w81
-    )
-    jac[5, 0] = (
-        _tmp55 * w116
-        + _tmp57 * w113
-        + _tmp80
-        + _tmp86
-        + _tmp88
-        + _tmp89
-        + _tmp92
-        + _tmp94
-        + _tmp95
-        + w110
-    )
-    jac[5, 1] = (
-        _tmp55 * w106
-        + _tmp57 * w103
-        + _tmp81
-        + _tmp87
-        + _tmp90
-        + _tmp91
-        + _tmp93
-        + _tmp96
-        + _tmp97
-        + w100
-    )
+    jac[4, 5] = 2 * _tmp48 + _tmp49 + c0 * (2 * _tmp53 + _tmp54)
+    jac[5, 0] = _tmp61
+    jac[5, 1] = _tmp67
     jac[5, 2] = m2 * (
-        _tmp129 * w117
-        + _tmp132 * w119
-        + _tmp145 * w107
-        + _tmp147 * w109
-        + _tmp155 * _tmp57
-        + _tmp156 * _tmp57
-        + _tmp82
-        + _tmp84
+        b0 * (m2 * (2 * _tmp57 + _tmp58) + w116) + c0 * (m2 * (2 * _tmp63 + _tmp64) + w106)
     )
     jac[5, 3] = m2 * (
-        _tmp129 * w114
-        + _tmp137 * w115
-        + _tmp145 * w104
-        + _tmp151 * w105
-        + _tmp157
-        + _tmp158
-        + _tmp83
-        + _tmp85
+        b0 * (m2 * (2 * _tmp56 + n1 * w118 + w114) + w113)
+        + c0 * (m2 * (2 * _tmp62 + n1 * w108 + w104) + w103)
     )
     jac[5, 4] = 0.0
-    jac[5, 5] = (
-        _tmp110 * _tmp157
-        + _tmp110 * _tmp158
-        + _tmp132 * w117
-        + _tmp137 * w114
-        + _tmp139 * w112
-        + _tmp142 * w119
-        + _tmp143 * w115
-        + _tmp147 * w107
-        + _tmp151 * w104
-        + _tmp152 * w102
-        + _tmp153 * w109
-        + _tmp154 * w105
-        + _tmp82 * n1
-        + _tmp83 * n2
-        + _tmp84 * n1
-        + _tmp85 * n2
-        + b0 * w111
-        + c0 * w101
-    )
+    jac[5, 5] = b0 * (2 * _tmp59 + _tmp60) + c0 * (2 * _tmp65 + _tmp66)
 
 
 @numba.njit(**_JIT)
@@ -3535,783 +3049,255 @@ def residual_jacobian_t(
     wt117 = wt[117]
     wt118 = wt[118]
     wt119 = wt[119]
-    _tmp0 = m1 * w11
-    _tmp1 = n1 * w6
-    _tmp2 = n2 * w3
-    _tmp3 = m1 * m1
-    _tmp4 = b0 * w16
-    _tmp5 = m1 * n1
-    _tmp6 = b0 * w13
-    _tmp7 = m1 * n2
-    _tmp8 = _tmp3 * w12
-    _tmp9 = _tmp3 * n1
-    _tmp10 = _tmp3 * n2
-    _tmp11 = _tmp9 * w17
-    _tmp12 = _tmp10 * w14
-    _tmp13 = _tmp9 * n2
-    _tmp14 = n1 * n1
-    _tmp15 = _tmp14 * _tmp3
-    _tmp16 = n2 * n2
-    _tmp17 = _tmp16 * _tmp3
-    _tmp18 = _tmp13 * w18
-    _tmp19 = _tmp15 * w19
-    _tmp20 = _tmp17 * w15
-    _tmp21 = m1 * w31
-    _tmp22 = n1 * w26
-    _tmp23 = n2 * w23
-    _tmp24 = c0 * w36
-    _tmp25 = c0 * w33
-    _tmp26 = _tmp3 * w32
-    _tmp27 = _tmp9 * w37
-    _tmp28 = _tmp10 * w34
-    _tmp29 = _tmp13 * w38
-    _tmp30 = _tmp15 * w39
-    _tmp31 = _tmp17 * w35
-    _tmp32 = m1 * w51
-    _tmp33 = m1 * w41
-    _tmp34 = b0 * w56
-    _tmp35 = b0 * w53
-    _tmp36 = c0 * w46
-    _tmp37 = c0 * w43
-    _tmp38 = _tmp3 * w52
-    _tmp39 = _tmp3 * w42
-    _tmp40 = _tmp9 * w57
-    _tmp41 = _tmp10 * w54
-    _tmp42 = _tmp9 * w47
-    _tmp43 = _tmp10 * w44
-    _tmp44 = _tmp13 * w58
-    _tmp45 = _tmp13 * w48
-    _tmp46 = _tmp15 * w59
-    _tmp47 = _tmp17 * w55
-    _tmp48 = _tmp15 * w49
-    _tmp49 = _tmp17 * w45
-    _tmp50 = m2 * w71
-    _tmp51 = n1 * w66
-    _tmp52 = n2 * w63
-    _tmp53 = m2 * m2
-    _tmp54 = b0 * w76
-    _tmp55 = m2 * n1
-    _tmp56 = b0 * w73
-    _tmp57 = m2 * n2
-    _tmp58 = _tmp53 * w72
-    _tmp59 = _tmp53 * n1
-    _tmp60 = _tmp53 * n2
-    _tmp61 = _tmp59 * w77
-    _tmp62 = _tmp60 * w74
-    _tmp63 = _tmp59 * n2
-    _tmp64 = _tmp14 * _tmp53
-    _tmp65 = _tmp16 * _tmp53
-    _tmp66 = _tmp63 * w78
-    _tmp67 = _tmp64 * w79
-    _tmp68 = _tmp65 * w75
-    _tmp69 = m2 * w91
-    _tmp70 = n1 * w86
-    _tmp71 = n2 * w83
-    _tmp72 = c0 * w96
-    _tmp73 = c0 * w93
-    _tmp74 = _tmp53 * w92
-    _tmp75 = _tmp59 * w97
-    _tmp76 = _tmp60 * w94
-    _tmp77 = _tmp63 * w98
-    _tmp78 = _tmp64 * w99
-    _tmp79 = _tmp65 * w95
-    _tmp80 = m2 * w111
-    _tmp81 = m2 * w101
-    _tmp82 = b0 * w116
-    _tmp83 = b0 * w113
-    _tmp84 = c0 * w106
-    _tmp85 = c0 * w103
-    _tmp86 = _tmp53 * w112
-    _tmp87 = _tmp53 * w102
-    _tmp88 = _tmp59 * w117
-    _tmp89 = _tmp60 * w114
-    _tmp90 = _tmp59 * w107
-    _tmp91 = _tmp60 * w104
-    _tmp92 = _tmp63 * w118
-    _tmp93 = _tmp63 * w108
-    _tmp94 = _tmp64 * w119
-    _tmp95 = _tmp65 * w115
-    _tmp96 = _tmp64 * w109
-    _tmp97 = _tmp65 * w105
-    _tmp98 = m1 * w7
-    _tmp99 = b0 * m1
-    _tmp100 = 2 * _tmp5
-    _tmp101 = b0 * w18
-    _tmp102 = _tmp100 * b0
-    _tmp103 = m1 * w4
-    _tmp104 = _tmp5 * w8
-    _tmp105 = 2 * _tmp7
-    _tmp106 = _tmp105 * b0
-    _tmp107 = 2 * m1
-    _tmp108 = 2 * _tmp99
-    _tmp109 = 2 * n1
-    _tmp110 = 2 * n2
-    _tmp111 = _tmp107 * _tmp14
-    _tmp112 = _tmp107 * _tmp16
-    _tmp113 = _tmp100 * n2
-    _tmp114 = _tmp108 * _tmp14
-    _tmp115 = _tmp108 * _tmp16
-    _tmp116 = m1 * w27
-    _tmp117 = c0 * m1
-    _tmp118 = c0 * w38
-    _tmp119 = _tmp100 * c0
-    _tmp120 = m1 * w24
-    _tmp121 = _tmp5 * w28
-    _tmp122 = _tmp105 * c0
-    _tmp123 = _tmp107 * c0
-    _tmp124 = _tmp111 * c0
-    _tmp125 = _tmp112 * c0
-    _tmp126 = b0 * w58
-    _tmp127 = c0 * w48
-    _tmp128 = m2 * w67
-    _tmp129 = b0 * m2
-    _tmp130 = 2 * _tmp55
-    _tmp131 = b0 * w78
-    _tmp132 = _tmp130 * b0
-    _tmp133 = m2 * w64
-    _tmp134 = _tmp55 * w68
-    _tmp135 = 2 * _tmp57
-    _tmp136 = _tmp131 * _tmp55
-    _tmp137 = _tmp135 * b0
-    _tmp138 = 2 * m2
-    _tmp139 = 2 * _tmp129
-    _tmp140 = _tmp138 * _tmp14
-    _tmp141 = _tmp138 * _tmp16
-    _tmp142 = _tmp139 * _tmp14
-    _tmp143 = _tmp139 * _tmp16
-    _tmp144 = m2 * w87
-    _tmp145 = c0 * m2
-    _tmp146 = c0 * w98
-    _tmp147 = _tmp130 * c0
-    _tmp148 = m2 * w84
-    _tmp149 = _tmp55 * w88
-    _tmp150 = _tmp146 * _tmp55
-    _tmp151 = _tmp135 * c0
-    _tmp152 = _tmp138 * c0
-    _tmp153 = _tmp140 * c0
-    _tmp154 = _tmp141 * c0
-    _tmp155 = b0 * w118
-    _tmp156 = c0 * w108
-    _tmp157 = _tmp155 * _tmp55
-    _tmp158 = _tmp156 * _tmp55
-    _tmp159 = _tmp5 * b0
-    _tmp160 = _tmp7 * b0
-    _tmp161 = _tmp3 * b0
-    _tmp162 = _tmp9 * b0
-    _tmp163 = _tmp10 * b0
-    _tmp164 = _tmp13 * b0
-    _tmp165 = _tmp15 * b0
-    _tmp166 = _tmp17 * b0
-    _tmp167 = _tmp5 * c0
-    _tmp168 = _tmp7 * c0
-    _tmp169 = _tmp3 * c0
-    _tmp170 = _tmp9 * c0
-    _tmp171 = _tmp10 * c0
-    _tmp172 = _tmp13 * c0
-    _tmp173 = _tmp15 * c0
-    _tmp174 = _tmp17 * c0
-    _tmp175 = _tmp55 * b0
-    _tmp176 = _tmp57 * b0
-    _tmp177 = _tmp53 * b0
-    _tmp178 = _tmp59 * b0
-    _tmp179 = _tmp60 * b0
-    _tmp180 = _tmp63 * b0
-    _tmp181 = _tmp64 * b0
-    _tmp182 = _tmp65 * b0
-    _tmp183 = _tmp55 * c0
-    _tmp184 = _tmp57 * c0
-    _tmp185 = _tmp53 * c0
-    _tmp186 = _tmp59 * c0
-    _tmp187 = _tmp60 * c0
-    _tmp188 = _tmp63 * c0
-    _tmp189 = _tmp64 * c0
-    _tmp190 = _tmp65 * c0
-    f[0] = (
-        _tmp0 * b0
-        + _tmp1 * m1
-        + _tmp10 * w4
-        + _tmp11 * b0
-        + _tmp12 * b0
-        + _tmp13 * w8
-        + _tmp15 * w9
-        + _tmp17 * w5
-        + _tmp18 * b0
-        + _tmp19 * b0
-        + _tmp2 * m1
-        + _tmp20 * b0
-        + _tmp3 * w2
-        + _tmp4 * _tmp5
-        + _tmp6 * _tmp7
-        + _tmp8 * b0
-        + _tmp9 * w7
-        + b0 * w10
-        + m1 * w1
-        + w0
-    )
-    f[1] = (
-        _tmp10 * w24
-        + _tmp13 * w28
-        + _tmp15 * w29
-        + _tmp17 * w25
-        + _tmp21 * c0
-        + _tmp22 * m1
-        + _tmp23 * m1
-        + _tmp24 * _tmp5
-        + _tmp25 * _tmp7
-        + _tmp26 * c0
-        + _tmp27 * c0
-        + _tmp28 * c0
-        + _tmp29 * c0
-        + _tmp3 * w22
-        + _tmp30 * c0
-        + _tmp31 * c0
-        + _tmp9 * w27
-        + c0 * w30
-        + m1 * w21
-        + w20
-    )
-    f[2] = (
-        _tmp32 * b0
-        + _tmp33 * c0
-        + _tmp34 * _tmp5
-        + _tmp35 * _tmp7
-        + _tmp36 * _tmp5
-        + _tmp37 * _tmp7
-        + _tmp38 * b0
-        + _tmp39 * c0
-        + _tmp40 * b0
-        + _tmp41 * b0
-        + _tmp42 * c0
-        + _tmp43 * c0
-        + _tmp44 * b0
-        + _tmp45 * c0
-        + _tmp46 * b0
-        + _tmp47 * b0
-        + _tmp48 * c0
-        + _tmp49 * c0
-        + b0 * w50
-        + c0 * w40
-    )
-    f[3] = (
-        _tmp50 * b0
-        + _tmp51 * m2
-        + _tmp52 * m2
-        + _tmp53 * w62
-        + _tmp54 * _tmp55
-        + _tmp56 * _tmp57
-        + _tmp58 * b0
-        + _tmp59 * w67
-        + _tmp60 * w64
-        + _tmp61 * b0
-        + _tmp62 * b0
-        + _tmp63 * w68
-        + _tmp64 * w69
-        + _tmp65 * w65
-        + _tmp66 * b0
-        + _tmp67 * b0
-        + _tmp68 * b0
-        + b0 * w70
-        + m2 * w61
-        + w60
-    )
-    f[4] = (
-        _tmp53 * w82
-        + _tmp55 * _tmp72
-        + _tmp57 * _tmp73
-        + _tmp59 * w87
-        + _tmp60 * w84
-        + _tmp63 * w88
-        + _tmp64 * w89
-        + _tmp65 * w85
-        + _tmp69 * c0
-        + _tmp70 * m2
-        + _tmp71 * m2
-        + _tmp74 * c0
-        + _tmp75 * c0
-        + _tmp76 * c0
-        + _tmp77 * c0
-        + _tmp78 * c0
-        + _tmp79 * c0
-        + c0 * w90
-        + m2 * w81
-        + w80
-    )
-    f[5] = (
-        _tmp55 * _tmp82
-        + _tmp55 * _tmp84
-        + _tmp57 * _tmp83
-        + _tmp57 * _tmp85
-        + _tmp80 * b0
-        + _tmp81 * c0
-        + _tmp86 * b0
-        + _tmp87 * c0
-        + _tmp88 * b0
-        + _tmp89 * b0
-        + _tmp90 * c0
-        + _tmp91 * c0
-        + _tmp92 * b0
-        + _tmp93 * c0
-        + _tmp94 * b0
-        + _tmp95 * b0
-        + _tmp96 * c0
-        + _tmp97 * c0
-        + b0 * w110
-        + c0 * w100
-    )
-    jac[0, 0] = (
-        _tmp0 + _tmp11 + _tmp12 + _tmp18 + _tmp19 + _tmp20 + _tmp5 * w16 + _tmp7 * w13 + _tmp8 + w10
-    )
+    _tmp0 = n2 * w5
+    _tmp1 = n1 * w9
+    _tmp2 = n2 * w8 + w7
+    _tmp3 = m1 * (n1 * (_tmp1 + _tmp2) + n2 * (_tmp0 + w4) + w2)
+    _tmp4 = n1 * w6 + n2 * w3 + w1
+    _tmp5 = n2 * w15
+    _tmp6 = n1 * w19
+    _tmp7 = n2 * w18 + w17
+    _tmp8 = m1 * (n1 * (_tmp6 + _tmp7) + n2 * (_tmp5 + w14) + w12)
+    _tmp9 = n1 * w16 + n2 * w13 + w11
+    _tmp10 = m1 * (_tmp8 + _tmp9) + w10
+    _tmp11 = n2 * w25
+    _tmp12 = n1 * w29
+    _tmp13 = n2 * w28 + w27
+    _tmp14 = m1 * (n1 * (_tmp12 + _tmp13) + n2 * (_tmp11 + w24) + w22)
+    _tmp15 = n1 * w26 + n2 * w23 + w21
+    _tmp16 = n2 * w35
+    _tmp17 = n1 * w39
+    _tmp18 = n2 * w38 + w37
+    _tmp19 = m1 * (n1 * (_tmp17 + _tmp18) + n2 * (_tmp16 + w34) + w32)
+    _tmp20 = n1 * w36 + n2 * w33 + w31
+    _tmp21 = m1 * (_tmp19 + _tmp20) + w30
+    _tmp22 = n2 * w55
+    _tmp23 = n1 * w59
+    _tmp24 = n2 * w58 + w57
+    _tmp25 = m1 * (n1 * (_tmp23 + _tmp24) + n2 * (_tmp22 + w54) + w52)
+    _tmp26 = n1 * w56 + n2 * w53 + w51
+    _tmp27 = m1 * (_tmp25 + _tmp26) + w50
+    _tmp28 = n2 * w45
+    _tmp29 = n1 * w49
+    _tmp30 = n2 * w48 + w47
+    _tmp31 = m1 * (n1 * (_tmp29 + _tmp30) + n2 * (_tmp28 + w44) + w42)
+    _tmp32 = n1 * w46 + n2 * w43 + w41
+    _tmp33 = m1 * (_tmp31 + _tmp32) + w40
+    _tmp34 = n2 * w65
+    _tmp35 = n1 * w69
+    _tmp36 = n2 * w68 + w67
+    _tmp37 = m2 * (n1 * (_tmp35 + _tmp36) + n2 * (_tmp34 + w64) + w62)
+    _tmp38 = n1 * w66 + n2 * w63 + w61
+    _tmp39 = n2 * w75
+    _tmp40 = n1 * w79
+    _tmp41 = n2 * w78 + w77
+    _tmp42 = m2 * (n1 * (_tmp40 + _tmp41) + n2 * (_tmp39 + w74) + w72)
+    _tmp43 = n1 * w76 + n2 * w73 + w71
+    _tmp44 = m2 * (_tmp42 + _tmp43) + w70
+    _tmp45 = n2 * w85
+    _tmp46 = n1 * w89
+    _tmp47 = n2 * w88 + w87
+    _tmp48 = m2 * (n1 * (_tmp46 + _tmp47) + n2 * (_tmp45 + w84) + w82)
+    _tmp49 = n1 * w86 + n2 * w83 + w81
+    _tmp50 = n2 * w95
+    _tmp51 = n1 * w99
+    _tmp52 = n2 * w98 + w97
+    _tmp53 = m2 * (n1 * (_tmp51 + _tmp52) + n2 * (_tmp50 + w94) + w92)
+    _tmp54 = n1 * w96 + n2 * w93 + w91
+    _tmp55 = m2 * (_tmp53 + _tmp54) + w90
+    _tmp56 = n2 * w115
+    _tmp57 = n1 * w119
+    _tmp58 = n2 * w118 + w117
+    _tmp59 = m2 * (n1 * (_tmp57 + _tmp58) + n2 * (_tmp56 + w114) + w112)
+    _tmp60 = n1 * w116 + n2 * w113 + w111
+    _tmp61 = m2 * (_tmp59 + _tmp60) + w110
+    _tmp62 = n2 * w105
+    _tmp63 = n1 * w109
+    _tmp64 = n2 * w108 + w107
+    _tmp65 = m2 * (n1 * (_tmp63 + _tmp64) + n2 * (_tmp62 + w104) + w102)
+    _tmp66 = n1 * w106 + n2 * w103 + w101
+    _tmp67 = m2 * (_tmp65 + _tmp66) + w100
+    f[0] = _tmp10 * b0 + m1 * (_tmp3 + _tmp4) + w0
+    f[1] = _tmp21 * c0 + m1 * (_tmp14 + _tmp15) + w20
+    f[2] = _tmp27 * b0 + _tmp33 * c0
+    f[3] = _tmp44 * b0 + m2 * (_tmp37 + _tmp38) + w60
+    f[4] = _tmp55 * c0 + m2 * (_tmp48 + _tmp49) + w80
+    f[5] = _tmp61 * b0 + _tmp67 * c0
+    jac[0, 0] = _tmp10
     jac[0, 1] = 0.0
-    jac[0, 2] = m1 * (
-        _tmp100 * w9
-        + _tmp101 * _tmp7
-        + _tmp102 * w19
-        + _tmp4
-        + _tmp7 * w8
-        + _tmp98
-        + _tmp99 * w17
-        + w6
-    )
+    jac[0, 2] = m1 * (b0 * (m1 * (2 * _tmp6 + _tmp7) + w16) + m1 * (2 * _tmp1 + _tmp2) + w6)
     jac[0, 3] = m1 * (
-        _tmp101 * _tmp5
-        + _tmp103
-        + _tmp104
-        + _tmp105 * w5
-        + _tmp106 * w15
-        + _tmp6
-        + _tmp99 * w14
-        + w3
+        b0 * (m1 * (2 * _tmp5 + n1 * w18 + w14) + w13) + m1 * (2 * _tmp0 + n1 * w8 + w4) + w3
     )
-    jac[0, 4] = (
-        _tmp1
-        + _tmp101 * _tmp113
-        + _tmp102 * w17
-        + _tmp103 * _tmp110
-        + _tmp104 * _tmp110
-        + _tmp106 * w14
-        + _tmp107 * w2
-        + _tmp108 * w12
-        + _tmp109 * _tmp98
-        + _tmp111 * w9
-        + _tmp112 * w5
-        + _tmp114 * w19
-        + _tmp115 * w15
-        + _tmp2
-        + _tmp4 * n1
-        + _tmp6 * n2
-        + b0 * w11
-        + w1
-    )
+    jac[0, 4] = 2 * _tmp3 + _tmp4 + b0 * (2 * _tmp8 + _tmp9)
     jac[0, 5] = 0.0
     jac[1, 0] = 0.0
-    jac[1, 1] = (
-        _tmp21
-        + _tmp26
-        + _tmp27
-        + _tmp28
-        + _tmp29
-        + _tmp30
-        + _tmp31
-        + _tmp5 * w36
-        + _tmp7 * w33
-        + w30
-    )
-    jac[1, 2] = m1 * (
-        _tmp100 * w29
-        + _tmp116
-        + _tmp117 * w37
-        + _tmp118 * _tmp7
-        + _tmp119 * w39
-        + _tmp24
-        + _tmp7 * w28
-        + w26
-    )
+    jac[1, 1] = _tmp21
+    jac[1, 2] = m1 * (c0 * (m1 * (2 * _tmp17 + _tmp18) + w36) + m1 * (2 * _tmp12 + _tmp13) + w26)
     jac[1, 3] = m1 * (
-        _tmp105 * w25
-        + _tmp117 * w34
-        + _tmp118 * _tmp5
-        + _tmp120
-        + _tmp121
-        + _tmp122 * w35
-        + _tmp25
-        + w23
+        c0 * (m1 * (2 * _tmp16 + n1 * w38 + w34) + w33) + m1 * (2 * _tmp11 + n1 * w28 + w24) + w23
     )
-    jac[1, 4] = (
-        _tmp107 * w22
-        + _tmp109 * _tmp116
-        + _tmp110 * _tmp120
-        + _tmp110 * _tmp121
-        + _tmp111 * w29
-        + _tmp112 * w25
-        + _tmp113 * _tmp118
-        + _tmp119 * w37
-        + _tmp122 * w34
-        + _tmp123 * w32
-        + _tmp124 * w39
-        + _tmp125 * w35
-        + _tmp22
-        + _tmp23
-        + _tmp24 * n1
-        + _tmp25 * n2
-        + c0 * w31
-        + w21
-    )
+    jac[1, 4] = 2 * _tmp14 + _tmp15 + c0 * (2 * _tmp19 + _tmp20)
     jac[1, 5] = 0.0
-    jac[2, 0] = (
-        _tmp32
-        + _tmp38
-        + _tmp40
-        + _tmp41
-        + _tmp44
-        + _tmp46
-        + _tmp47
-        + _tmp5 * w56
-        + _tmp7 * w53
-        + w50
-    )
-    jac[2, 1] = (
-        _tmp33
-        + _tmp39
-        + _tmp42
-        + _tmp43
-        + _tmp45
-        + _tmp48
-        + _tmp49
-        + _tmp5 * w46
-        + _tmp7 * w43
-        + w40
-    )
+    jac[2, 0] = _tmp27
+    jac[2, 1] = _tmp33
     jac[2, 2] = m1 * (
-        _tmp102 * w59
-        + _tmp117 * w47
-        + _tmp119 * w49
-        + _tmp126 * _tmp7
-        + _tmp127 * _tmp7
-        + _tmp34
-        + _tmp36
-        + _tmp99 * w57
+        b0 * (m1 * (2 * _tmp23 + _tmp24) + w56) + c0 * (m1 * (2 * _tmp29 + _tmp30) + w46)
     )
     jac[2, 3] = m1 * (
-        _tmp106 * w55
-        + _tmp117 * w44
-        + _tmp122 * w45
-        + _tmp126 * _tmp5
-        + _tmp127 * _tmp5
-        + _tmp35
-        + _tmp37
-        + _tmp99 * w54
+        b0 * (m1 * (2 * _tmp22 + n1 * w58 + w54) + w53)
+        + c0 * (m1 * (2 * _tmp28 + n1 * w48 + w44) + w43)
     )
-    jac[2, 4] = (
-        _tmp102 * w57
-        + _tmp106 * w54
-        + _tmp108 * w52
-        + _tmp113 * _tmp126
-        + _tmp113 * _tmp127
-        + _tmp114 * w59
-        + _tmp115 * w55
-        + _tmp119 * w47
-        + _tmp122 * w44
-        + _tmp123 * w42
-        + _tmp124 * w49
-        + _tmp125 * w45
-        + _tmp34 * n1
-        + _tmp35 * n2
-        + _tmp36 * n1
-        + _tmp37 * n2
-        + b0 * w51
-        + c0 * w41
-    )
+    jac[2, 4] = b0 * (2 * _tmp25 + _tmp26) + c0 * (2 * _tmp31 + _tmp32)
     jac[2, 5] = 0.0
-    jac[3, 0] = (
-        _tmp50
-        + _tmp55 * w76
-        + _tmp57 * w73
-        + _tmp58
-        + _tmp61
-        + _tmp62
-        + _tmp66
-        + _tmp67
-        + _tmp68
-        + w70
-    )
+    jac[3, 0] = _tmp44
     jac[3, 1] = 0.0
-    jac[3, 2] = m2 * (
-        _tmp128
-        + _tmp129 * w77
-        + _tmp130 * w69
-        + _tmp131 * _tmp57
-        + _tmp132 * w79
-        + _tmp54
-        + _tmp57 * w68
-        + w66
-    )
+    jac[3, 2] = m2 * (b0 * (m2 * (2 * _tmp40 + _tmp41) + w76) + m2 * (2 * _tmp35 + _tmp36) + w66)
     jac[3, 3] = m2 * (
-        _tmp129 * w74 + _tmp133 + _tmp134 + _tmp135 * w65 + _tmp136 + _tmp137 * w75 + _tmp56 + w63
+        b0 * (m2 * (2 * _tmp39 + n1 * w78 + w74) + w73) + m2 * (2 * _tmp34 + n1 * w68 + w64) + w63
     )
     jac[3, 4] = 0.0
-    jac[3, 5] = (
-        _tmp109 * _tmp128
-        + _tmp110 * _tmp133
-        + _tmp110 * _tmp134
-        + _tmp110 * _tmp136
-        + _tmp132 * w77
-        + _tmp137 * w74
-        + _tmp138 * w62
-        + _tmp139 * w72
-        + _tmp140 * w69
-        + _tmp141 * w65
-        + _tmp142 * w79
-        + _tmp143 * w75
-        + _tmp51
-        + _tmp52
-        + _tmp54 * n1
-        + _tmp56 * n2
-        + b0 * w71
-        + w61
-    )
+    jac[3, 5] = 2 * _tmp37 + _tmp38 + b0 * (2 * _tmp42 + _tmp43)
     jac[4, 0] = 0.0
-    jac[4, 1] = (
-        _tmp55 * w96
-        + _tmp57 * w93
-        + _tmp69
-        + _tmp74
-        + _tmp75
-        + _tmp76
-        + _tmp77
-        + _tmp78
-        + _tmp79
-        + w90
-    )
-    jac[4, 2] = m2 * (
-        _tmp130 * w89
-        + _tmp144
-        + _tmp145 * w97
-        + _tmp146 * _tmp57
-        + _tmp147 * w99
-        + _tmp57 * w88
-        + _tmp72
-        + w86
-    )
+    jac[4, 1] = _tmp55
+    jac[4, 2] = m2 * (c0 * (m2 * (2 * _tmp51 + _tmp52) + w96) + m2 * (2 * _tmp46 + _tmp47) + w86)
     jac[4, 3] = m2 * (
-        _tmp135 * w85 + _tmp145 * w94 + _tmp148 + _tmp149 + _tmp150 + _tmp151 * w95 + _tmp73 + w83
+        c0 * (m2 * (2 * _tmp50 + n1 * w98 + w94) + w93) + m2 * (2 * _tmp45 + n1 * w88 + w84) + w83
     )
     jac[4, 4] = 0.0
-    jac[4, 5] = (
-        _tmp109 * _tmp144
-        + _tmp110 * _tmp148
-        + _tmp110 * _tmp149
-        + _tmp110 * _tmp150
-        + _tmp138 * w82
-        + _tmp140 * w89
-        + _tmp141 * w85
-        + _tmp147 * w97
-        + _tmp151 * w94
-        + _tmp152 * w92
-        + _tmp153 * w99
-        + _tmp154 * w95
-        + _tmp70
-        + _tmp71
-        + _tmp72 * n1
-        + _tmp73 * n2
-        + c0 * w91
-        + w81
-    )
-    jac[5, 0] = (
-        _tmp55 * w116
-        + _tmp57 * w113
-        + _tmp80
-        + _tmp86
-        + _tmp88
-        + _tmp89
-        + _tmp92
-        + _tmp94
-        + _tmp95
-        + w110
-    )
-    jac[5, 1] = (
-        _tmp55 * w106
-        + _tmp57 * w103
-        + _tmp81
-        + _tmp87
-        + _tmp90
-        + _tmp91
-        + _tmp93
-        + _tmp96
-        + _tmp97
-        + w100
-    )
+    jac[4, 5] = 2 * _tmp48 + _tmp49 + c0 * (2 * _tmp53 + _tmp54)
+    jac[5, 0] = _tmp61
+    jac[5, 1] = _tmp67
     jac[5, 2] = m2 * (
-        _tmp129 * w117
-        + _tmp132 * w119
-        + _tmp145 * w107
-        + _tmp147 * w109
-        + _tmp155 * _tmp57
-        + _tmp156 * _tmp57
-        + _tmp82
-        + _tmp84
+        b0 * (m2 * (2 * _tmp57 + _tmp58) + w116) + c0 * (m2 * (2 * _tmp63 + _tmp64) + w106)
     )
     jac[5, 3] = m2 * (
-        _tmp129 * w114
-        + _tmp137 * w115
-        + _tmp145 * w104
-        + _tmp151 * w105
-        + _tmp157
-        + _tmp158
-        + _tmp83
-        + _tmp85
+        b0 * (m2 * (2 * _tmp56 + n1 * w118 + w114) + w113)
+        + c0 * (m2 * (2 * _tmp62 + n1 * w108 + w104) + w103)
     )
     jac[5, 4] = 0.0
-    jac[5, 5] = (
-        _tmp110 * _tmp157
-        + _tmp110 * _tmp158
-        + _tmp132 * w117
-        + _tmp137 * w114
-        + _tmp139 * w112
-        + _tmp142 * w119
-        + _tmp143 * w115
-        + _tmp147 * w107
-        + _tmp151 * w104
-        + _tmp152 * w102
-        + _tmp153 * w109
-        + _tmp154 * w105
-        + _tmp82 * n1
-        + _tmp83 * n2
-        + _tmp84 * n1
-        + _tmp85 * n2
-        + b0 * w111
-        + c0 * w101
-    )
+    jac[5, 5] = b0 * (2 * _tmp59 + _tmp60) + c0 * (2 * _tmp65 + _tmp66)
     ft[0] = (
-        _tmp10 * wt4
-        + _tmp13 * wt8
-        + _tmp15 * wt9
-        + _tmp159 * wt16
-        + _tmp160 * wt13
-        + _tmp161 * wt12
-        + _tmp162 * wt17
-        + _tmp163 * wt14
-        + _tmp164 * wt18
-        + _tmp165 * wt19
-        + _tmp166 * wt15
-        + _tmp17 * wt5
-        + _tmp3 * wt2
-        + _tmp5 * wt6
-        + _tmp7 * wt3
-        + _tmp9 * wt7
-        + _tmp99 * wt11
-        + b0 * wt10
-        + m1 * wt1
+        b0
+        * (
+            m1
+            * (
+                m1 * (n1 * (n1 * wt19 + n2 * wt18 + wt17) + n2 * (n2 * wt15 + wt14) + wt12)
+                + n1 * wt16
+                + n2 * wt13
+                + wt11
+            )
+            + wt10
+        )
+        + m1
+        * (
+            m1 * (n1 * (n1 * wt9 + n2 * wt8 + wt7) + n2 * (n2 * wt5 + wt4) + wt2)
+            + n1 * wt6
+            + n2 * wt3
+            + wt1
+        )
         + wt0
     )
     ft[1] = (
-        _tmp10 * wt24
-        + _tmp117 * wt31
-        + _tmp13 * wt28
-        + _tmp15 * wt29
-        + _tmp167 * wt36
-        + _tmp168 * wt33
-        + _tmp169 * wt32
-        + _tmp17 * wt25
-        + _tmp170 * wt37
-        + _tmp171 * wt34
-        + _tmp172 * wt38
-        + _tmp173 * wt39
-        + _tmp174 * wt35
-        + _tmp3 * wt22
-        + _tmp5 * wt26
-        + _tmp7 * wt23
-        + _tmp9 * wt27
-        + c0 * wt30
-        + m1 * wt21
+        c0
+        * (
+            m1
+            * (
+                m1 * (n1 * (n1 * wt39 + n2 * wt38 + wt37) + n2 * (n2 * wt35 + wt34) + wt32)
+                + n1 * wt36
+                + n2 * wt33
+                + wt31
+            )
+            + wt30
+        )
+        + m1
+        * (
+            m1 * (n1 * (n1 * wt29 + n2 * wt28 + wt27) + n2 * (n2 * wt25 + wt24) + wt22)
+            + n1 * wt26
+            + n2 * wt23
+            + wt21
+        )
         + wt20
     )
-    ft[2] = (
-        _tmp117 * wt41
-        + _tmp159 * wt56
-        + _tmp160 * wt53
-        + _tmp161 * wt52
-        + _tmp162 * wt57
-        + _tmp163 * wt54
-        + _tmp164 * wt58
-        + _tmp165 * wt59
-        + _tmp166 * wt55
-        + _tmp167 * wt46
-        + _tmp168 * wt43
-        + _tmp169 * wt42
-        + _tmp170 * wt47
-        + _tmp171 * wt44
-        + _tmp172 * wt48
-        + _tmp173 * wt49
-        + _tmp174 * wt45
-        + _tmp99 * wt51
-        + b0 * wt50
-        + c0 * wt40
+    ft[2] = b0 * (
+        m1
+        * (
+            m1 * (n1 * (n1 * wt59 + n2 * wt58 + wt57) + n2 * (n2 * wt55 + wt54) + wt52)
+            + n1 * wt56
+            + n2 * wt53
+            + wt51
+        )
+        + wt50
+    ) + c0 * (
+        m1
+        * (
+            m1 * (n1 * (n1 * wt49 + n2 * wt48 + wt47) + n2 * (n2 * wt45 + wt44) + wt42)
+            + n1 * wt46
+            + n2 * wt43
+            + wt41
+        )
+        + wt40
     )
     ft[3] = (
-        _tmp129 * wt71
-        + _tmp175 * wt76
-        + _tmp176 * wt73
-        + _tmp177 * wt72
-        + _tmp178 * wt77
-        + _tmp179 * wt74
-        + _tmp180 * wt78
-        + _tmp181 * wt79
-        + _tmp182 * wt75
-        + _tmp53 * wt62
-        + _tmp55 * wt66
-        + _tmp57 * wt63
-        + _tmp59 * wt67
-        + _tmp60 * wt64
-        + _tmp63 * wt68
-        + _tmp64 * wt69
-        + _tmp65 * wt65
-        + b0 * wt70
-        + m2 * wt61
+        b0
+        * (
+            m2
+            * (
+                m2 * (n1 * (n1 * wt79 + n2 * wt78 + wt77) + n2 * (n2 * wt75 + wt74) + wt72)
+                + n1 * wt76
+                + n2 * wt73
+                + wt71
+            )
+            + wt70
+        )
+        + m2
+        * (
+            m2 * (n1 * (n1 * wt69 + n2 * wt68 + wt67) + n2 * (n2 * wt65 + wt64) + wt62)
+            + n1 * wt66
+            + n2 * wt63
+            + wt61
+        )
         + wt60
     )
     ft[4] = (
-        _tmp145 * wt91
-        + _tmp183 * wt96
-        + _tmp184 * wt93
-        + _tmp185 * wt92
-        + _tmp186 * wt97
-        + _tmp187 * wt94
-        + _tmp188 * wt98
-        + _tmp189 * wt99
-        + _tmp190 * wt95
-        + _tmp53 * wt82
-        + _tmp55 * wt86
-        + _tmp57 * wt83
-        + _tmp59 * wt87
-        + _tmp60 * wt84
-        + _tmp63 * wt88
-        + _tmp64 * wt89
-        + _tmp65 * wt85
-        + c0 * wt90
-        + m2 * wt81
+        c0
+        * (
+            m2
+            * (
+                m2 * (n1 * (n1 * wt99 + n2 * wt98 + wt97) + n2 * (n2 * wt95 + wt94) + wt92)
+                + n1 * wt96
+                + n2 * wt93
+                + wt91
+            )
+            + wt90
+        )
+        + m2
+        * (
+            m2 * (n1 * (n1 * wt89 + n2 * wt88 + wt87) + n2 * (n2 * wt85 + wt84) + wt82)
+            + n1 * wt86
+            + n2 * wt83
+            + wt81
+        )
         + wt80
     )
-    ft[5] = (
-        _tmp129 * wt111
-        + _tmp145 * wt101
-        + _tmp175 * wt116
-        + _tmp176 * wt113
-        + _tmp177 * wt112
-        + _tmp178 * wt117
-        + _tmp179 * wt114
-        + _tmp180 * wt118
-        + _tmp181 * wt119
-        + _tmp182 * wt115
-        + _tmp183 * wt106
-        + _tmp184 * wt103
-        + _tmp185 * wt102
-        + _tmp186 * wt107
-        + _tmp187 * wt104
-        + _tmp188 * wt108
-        + _tmp189 * wt109
-        + _tmp190 * wt105
-        + b0 * wt110
-        + c0 * wt100
+    ft[5] = b0 * (
+        m2
+        * (
+            m2 * (n1 * (n1 * wt119 + n2 * wt118 + wt117) + n2 * (n2 * wt115 + wt114) + wt112)
+            + n1 * wt116
+            + n2 * wt113
+            + wt111
+        )
+        + wt110
+    ) + c0 * (
+        m2
+        * (
+            m2 * (n1 * (n1 * wt109 + n2 * wt108 + wt107) + n2 * (n2 * wt105 + wt104) + wt102)
+            + n1 * wt106
+            + n2 * wt103
+            + wt101
+        )
+        + wt100
     )
 
 
@@ -4408,120 +3394,23 @@ def solve_one(a, b, out):  # type: ignore[no-untyped-def]
             m0_5,
             g0,
         )
-    mag = abs(m3_0.real) + abs(m3_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m3_0, m3_1, m3_2, m3_3, m3_4, m3_5, g3 = (
-            m3_0,
-            m3_1,
-            m3_2,
-            m3_3,
-            m3_4,
-            m3_5,
-            g3,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-        )
-    mag = abs(m4_0.real) + abs(m4_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m4_0, m4_1, m4_2, m4_3, m4_4, m4_5, g4 = (
-            m4_0,
-            m4_1,
-            m4_2,
-            m4_3,
-            m4_4,
-            m4_5,
-            g4,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-        )
-    mag = abs(m5_0.real) + abs(m5_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, m5_0, m5_1, m5_2, m5_3, m5_4, m5_5, g5 = (
-            m5_0,
-            m5_1,
-            m5_2,
-            m5_3,
-            m5_4,
-            m5_5,
-            g5,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-        )
     if best == 0.0 or not np.isfinite(best):
         return False
     dd = 1.0 / (m0_0.real * m0_0.real + m0_0.imag * m0_0.imag)
     u0 = complex(m0_0.real * dd, -m0_0.imag * dd)
     fac = m1_0 * u0
-    m1_1 = m1_1 - fac * m0_1
     m1_2 = m1_2 - fac * m0_2
     m1_3 = m1_3 - fac * m0_3
     m1_4 = m1_4 - fac * m0_4
     m1_5 = m1_5 - fac * m0_5
     g1 = g1 - fac * g0
     fac = m2_0 * u0
-    m2_1 = m2_1 - fac * m0_1
     m2_2 = m2_2 - fac * m0_2
     m2_3 = m2_3 - fac * m0_3
     m2_4 = m2_4 - fac * m0_4
     m2_5 = m2_5 - fac * m0_5
     g2 = g2 - fac * g0
-    fac = m3_0 * u0
-    m3_1 = m3_1 - fac * m0_1
-    m3_2 = m3_2 - fac * m0_2
-    m3_3 = m3_3 - fac * m0_3
-    m3_4 = m3_4 - fac * m0_4
-    m3_5 = m3_5 - fac * m0_5
-    g3 = g3 - fac * g0
-    fac = m4_0 * u0
-    m4_1 = m4_1 - fac * m0_1
-    m4_2 = m4_2 - fac * m0_2
-    m4_3 = m4_3 - fac * m0_3
-    m4_4 = m4_4 - fac * m0_4
-    m4_5 = m4_5 - fac * m0_5
-    g4 = g4 - fac * g0
-    fac = m5_0 * u0
-    m5_1 = m5_1 - fac * m0_1
-    m5_2 = m5_2 - fac * m0_2
-    m5_3 = m5_3 - fac * m0_3
-    m5_4 = m5_4 - fac * m0_4
-    m5_5 = m5_5 - fac * m0_5
-    g5 = g5 - fac * g0
     best = abs(m1_1.real) + abs(m1_1.imag)
-    mag = abs(m2_1.real) + abs(m2_1.imag)
-    if mag > best:
-        best = mag
-        m1_1, m1_2, m1_3, m1_4, m1_5, g1, m2_1, m2_2, m2_3, m2_4, m2_5, g2 = (
-            m2_1,
-            m2_2,
-            m2_3,
-            m2_4,
-            m2_5,
-            g2,
-            m1_1,
-            m1_2,
-            m1_3,
-            m1_4,
-            m1_5,
-            g1,
-        )
     mag = abs(m3_1.real) + abs(m3_1.imag)
     if mag > best:
         best = mag
@@ -4577,12 +3466,6 @@ def solve_one(a, b, out):  # type: ignore[no-untyped-def]
         return False
     dd = 1.0 / (m1_1.real * m1_1.real + m1_1.imag * m1_1.imag)
     u1 = complex(m1_1.real * dd, -m1_1.imag * dd)
-    fac = m2_1 * u1
-    m2_2 = m2_2 - fac * m1_2
-    m2_3 = m2_3 - fac * m1_3
-    m2_4 = m2_4 - fac * m1_4
-    m2_5 = m2_5 - fac * m1_5
-    g2 = g2 - fac * g1
     fac = m3_1 * u1
     m3_2 = m3_2 - fac * m1_2
     m3_3 = m3_3 - fac * m1_3
@@ -4709,7 +3592,7 @@ def solve_one(a, b, out):  # type: ignore[no-untyped-def]
     x3 = (g3 - m3_4 * x4 - m3_5 * x5) * u3
     x2 = (g2 - m2_3 * x3 - m2_4 * x4 - m2_5 * x5) * u2
     x1 = (g1 - m1_2 * x2 - m1_3 * x3 - m1_4 * x4 - m1_5 * x5) * u1
-    x0 = (g0 - m0_1 * x1 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4 - m0_5 * x5) * u0
+    x0 = (g0 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4 - m0_5 * x5) * u0
     out[4] = x0
     out[5] = x1
     out[0] = x2
@@ -4818,75 +3701,11 @@ def solve_pair(a, b, c, out, out2, m, r, r2, plan, two):  # type: ignore[no-unty
             g0,
             e0,
         )
-    mag = abs(m3_0.real) + abs(m3_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m3_0, m3_1, m3_2, m3_3, m3_4, m3_5, g3, e3 = (
-            m3_0,
-            m3_1,
-            m3_2,
-            m3_3,
-            m3_4,
-            m3_5,
-            g3,
-            e3,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-            e0,
-        )
-    mag = abs(m4_0.real) + abs(m4_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m4_0, m4_1, m4_2, m4_3, m4_4, m4_5, g4, e4 = (
-            m4_0,
-            m4_1,
-            m4_2,
-            m4_3,
-            m4_4,
-            m4_5,
-            g4,
-            e4,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-            e0,
-        )
-    mag = abs(m5_0.real) + abs(m5_0.imag)
-    if mag > best:
-        best = mag
-        m0_0, m0_1, m0_2, m0_3, m0_4, m0_5, g0, e0, m5_0, m5_1, m5_2, m5_3, m5_4, m5_5, g5, e5 = (
-            m5_0,
-            m5_1,
-            m5_2,
-            m5_3,
-            m5_4,
-            m5_5,
-            g5,
-            e5,
-            m0_0,
-            m0_1,
-            m0_2,
-            m0_3,
-            m0_4,
-            m0_5,
-            g0,
-            e0,
-        )
     if best == 0.0 or not np.isfinite(best):
         return False
     dd = 1.0 / (m0_0.real * m0_0.real + m0_0.imag * m0_0.imag)
     u0 = complex(m0_0.real * dd, -m0_0.imag * dd)
     fac = m1_0 * u0
-    m1_1 = m1_1 - fac * m0_1
     m1_2 = m1_2 - fac * m0_2
     m1_3 = m1_3 - fac * m0_3
     m1_4 = m1_4 - fac * m0_4
@@ -4894,57 +3713,13 @@ def solve_pair(a, b, c, out, out2, m, r, r2, plan, two):  # type: ignore[no-unty
     g1 = g1 - fac * g0
     e1 = e1 - fac * e0
     fac = m2_0 * u0
-    m2_1 = m2_1 - fac * m0_1
     m2_2 = m2_2 - fac * m0_2
     m2_3 = m2_3 - fac * m0_3
     m2_4 = m2_4 - fac * m0_4
     m2_5 = m2_5 - fac * m0_5
     g2 = g2 - fac * g0
     e2 = e2 - fac * e0
-    fac = m3_0 * u0
-    m3_1 = m3_1 - fac * m0_1
-    m3_2 = m3_2 - fac * m0_2
-    m3_3 = m3_3 - fac * m0_3
-    m3_4 = m3_4 - fac * m0_4
-    m3_5 = m3_5 - fac * m0_5
-    g3 = g3 - fac * g0
-    e3 = e3 - fac * e0
-    fac = m4_0 * u0
-    m4_1 = m4_1 - fac * m0_1
-    m4_2 = m4_2 - fac * m0_2
-    m4_3 = m4_3 - fac * m0_3
-    m4_4 = m4_4 - fac * m0_4
-    m4_5 = m4_5 - fac * m0_5
-    g4 = g4 - fac * g0
-    e4 = e4 - fac * e0
-    fac = m5_0 * u0
-    m5_1 = m5_1 - fac * m0_1
-    m5_2 = m5_2 - fac * m0_2
-    m5_3 = m5_3 - fac * m0_3
-    m5_4 = m5_4 - fac * m0_4
-    m5_5 = m5_5 - fac * m0_5
-    g5 = g5 - fac * g0
-    e5 = e5 - fac * e0
     best = abs(m1_1.real) + abs(m1_1.imag)
-    mag = abs(m2_1.real) + abs(m2_1.imag)
-    if mag > best:
-        best = mag
-        m1_1, m1_2, m1_3, m1_4, m1_5, g1, e1, m2_1, m2_2, m2_3, m2_4, m2_5, g2, e2 = (
-            m2_1,
-            m2_2,
-            m2_3,
-            m2_4,
-            m2_5,
-            g2,
-            e2,
-            m1_1,
-            m1_2,
-            m1_3,
-            m1_4,
-            m1_5,
-            g1,
-            e1,
-        )
     mag = abs(m3_1.real) + abs(m3_1.imag)
     if mag > best:
         best = mag
@@ -5006,13 +3781,6 @@ def solve_pair(a, b, c, out, out2, m, r, r2, plan, two):  # type: ignore[no-unty
         return False
     dd = 1.0 / (m1_1.real * m1_1.real + m1_1.imag * m1_1.imag)
     u1 = complex(m1_1.real * dd, -m1_1.imag * dd)
-    fac = m2_1 * u1
-    m2_2 = m2_2 - fac * m1_2
-    m2_3 = m2_3 - fac * m1_3
-    m2_4 = m2_4 - fac * m1_4
-    m2_5 = m2_5 - fac * m1_5
-    g2 = g2 - fac * g1
-    e2 = e2 - fac * e1
     fac = m3_1 * u1
     m3_2 = m3_2 - fac * m1_2
     m3_3 = m3_3 - fac * m1_3
@@ -5181,8 +3949,8 @@ def solve_pair(a, b, c, out, out2, m, r, r2, plan, two):  # type: ignore[no-unty
     y2 = (e2 - m2_3 * y3 - m2_4 * y4 - m2_5 * y5) * u2
     x1 = (g1 - m1_2 * x2 - m1_3 * x3 - m1_4 * x4 - m1_5 * x5) * u1
     y1 = (e1 - m1_2 * y2 - m1_3 * y3 - m1_4 * y4 - m1_5 * y5) * u1
-    x0 = (g0 - m0_1 * x1 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4 - m0_5 * x5) * u0
-    y0 = (e0 - m0_1 * y1 - m0_2 * y2 - m0_3 * y3 - m0_4 * y4 - m0_5 * y5) * u0
+    x0 = (g0 - m0_2 * x2 - m0_3 * x3 - m0_4 * x4 - m0_5 * x5) * u0
+    y0 = (e0 - m0_2 * y2 - m0_3 * y3 - m0_4 * y4 - m0_5 * y5) * u0
     out[4] = x0
     out[5] = x1
     out[0] = x2

@@ -18,7 +18,8 @@ m_f), the rays turned by a complex rotation (``COMPLEX_CHART``: the axis chart
 n = (n1, n2, 1) then misses one real direction only), from the start nearest the scene among
 start parameters near real scenes (``_starts``: short paths).  Before, three solves in the real
 Cayley chart were merged (each frame the reference once, for the half turns): 0.12 s of CPU a
-solve against 0.011 s now (docs/accuracy.md).
+solve against 0.007 s now (docs/accuracy.md; F, F_x and F_t are generated in Horner form and the
+linear solve without the Jacobian's structural zeros, ``sparse_solve``).
 """
 
 from __future__ import annotations
@@ -90,26 +91,43 @@ def _w_polynomial(q0, q1, d, degree, w, wt):  # type: ignore[no-untyped-def]
 
 @numba.njit(cache=True, nogil=True, fastmath=True)
 def _poly_coefficients(q, w):  # type: ignore[no-untyped-def]
-    """W at t = q[0] from its polynomial (``_w_polynomial``; Horner)."""
-    tau = q[0]
+    """W at t = q[0] from its polynomial (``_w_polynomial``; Horner).  t is real (the detour
+    is inside the polynomial), so each step is two real multiplications, not a complex one."""
+    tau = q[0].real
     top = w.shape[0] // N_W - 1
+    if top == 3:  # a straight path: W = W_0 + t W_1 + t^2 W_2, unrolled
+        for i in range(N_W):
+            w[i] = (w[3 * N_W + i] * tau + w[2 * N_W + i]) * tau + w[N_W + i]
+        return
     for i in range(N_W):
-        acc = w[N_W * top + i]
+        c = w[N_W * top + i]
+        re, im = c.real, c.imag
         for b in range(top - 1, 0, -1):
-            acc = acc * tau + w[N_W * b + i]
-        w[i] = acc
+            c = w[N_W * b + i]
+            re = re * tau + c.real
+            im = im * tau + c.imag
+        w[i] = complex(re, im)
 
 
 @numba.njit(cache=True, nogil=True, fastmath=True)
 def _poly_rates(q, dq, wt):  # type: ignore[no-untyped-def]
-    """dW/dt at t = q[0] (dq[0] = dt/dt = 1) from the polynomial in ``wt``."""
-    tau = q[0]
+    """dW/dt at t = q[0] (dq[0] = dt/dt = 1) from the polynomial in ``wt`` (real t, as
+    ``_poly_coefficients``)."""
+    tau = q[0].real
     top = wt.shape[0] // N_W - 1
+    if top == 3:  # a straight path: dW/dt = W_1 + 2 t W_2
+        scale = dq[0]
+        for i in range(N_W):
+            wt[i] = (2.0 * tau * wt[3 * N_W + i] + wt[2 * N_W + i]) * scale
+        return
     for i in range(N_W):
-        acc = (top - 1) * wt[N_W * top + i]
+        c = wt[N_W * top + i]
+        re, im = (top - 1) * c.real, (top - 1) * c.imag
         for b in range(top - 1, 1, -1):
-            acc = acc * tau + (b - 1) * wt[N_W * b + i]
-        wt[i] = acc * dq[0]
+            c = wt[N_W * b + i]
+            re = re * tau + (b - 1) * c.real
+            im = im * tau + (b - 1) * c.imag
+        wt[i] = complex(re, im) * dq[0]
 
 
 @numba.njit(cache=True, nogil=True)

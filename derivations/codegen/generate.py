@@ -614,7 +614,9 @@ class SystemKernelCode:
     empty) the tracker's own loop solve is used and the module says so."""
 
 
-def print_linear_solver(plan: Sequence[int], two: bool) -> tuple[str, ...]:
+def print_linear_solver(
+    plan: Sequence[int], two: bool, structure: np.ndarray | None = None
+) -> tuple[str, ...]:
     """The body of a straight-line ``solve_pair(a, b, c, out, out2, m, r, r2, plan, two)``:
     ``out = a^-1 b`` and (``two``) ``out2 = a^-1 c`` for one elimination plan, the arithmetic
     of ``curverecon.solvers.homotopy._solve_pair`` with the plan's loops unrolled and every
@@ -630,7 +632,13 @@ def print_linear_solver(plan: Sequence[int], two: bool) -> tuple[str, ...]:
     update reads the pivot row only).  Returns False if a pivot is zero or not finite.
 
     ``two``: the body of the two right-hand sides' solve (``e``, ``y`` the second's entries);
-    otherwise of ``solve_one(a, b, out)``, the first alone."""
+    otherwise of ``solve_one(a, b, out)``, the first alone.
+
+    ``structure``: (equations, unknowns) booleans, the entries of ``a`` that can be nonzero
+    (the others are exact zeros); the dense system's arithmetic on entries that stay zero is
+    left out (each row keeps the union of the rows a pivot search can swap into it): the same
+    results, fewer operations (the fixed-axis system's m_f occur in three rows each, so its
+    first two columns eliminate from two and three rows instead of five and four)."""
     plan = [int(v) for v in plan]
     n, n_pairs = plan[0], plan[1]
     pairs = [tuple(plan[2 + 3 * p : 5 + 3 * p]) for p in range(n_pairs)]
@@ -640,6 +648,15 @@ def print_linear_solver(plan: Sequence[int], two: bool) -> tuple[str, ...]:
     free = plan[cols + nd : cols + nd + n - 2 * n_pairs]
     lines: list[str] = []
     emit = lines.append
+    # columns (of the dense unknowns) each dense row can hold nonzero: all without a structure
+    nz = [set(range(nd)) for _ in range(nd)]
+    if structure is not None:
+        for i, row in enumerate(free):
+            nz[i] = {k for k, col in enumerate(dense) if structure[row, col]}
+        for p, (_, piv, oth) in enumerate(pairs):
+            nz[len(free) + p] = {
+                k for k, col in enumerate(dense) if structure[piv, col] or structure[oth, col]
+            }
     for i, row in enumerate(free):  # the dense system's rows: rows in no pair first
         for k, col in enumerate(dense):
             emit(f"m{i}_{k} = a[{row}, {col}]")
@@ -672,7 +689,11 @@ def print_linear_solver(plan: Sequence[int], two: bool) -> tuple[str, ...]:
             emit(f"e{i} = c[io] - fac * pt{p}")
     for j in range(nd):
         emit(f"best = abs(m{j}_{j}.real) + abs(m{j}_{j}.imag)")
-        for row in range(j + 1, nd):
+        swap = [row for row in range(j + 1, nd) if j in nz[row]]  # the others hold a zero
+        union = set().union(nz[j], *(nz[row] for row in swap))
+        for row in [j, *swap]:
+            nz[row] = set(union)
+        for row in swap:
             emit(f"mag = abs(m{row}_{j}.real) + abs(m{row}_{j}.imag)")
             emit("if mag > best:")
             emit("    best = mag")
@@ -683,18 +704,21 @@ def print_linear_solver(plan: Sequence[int], two: bool) -> tuple[str, ...]:
         emit("    return False")
         emit(f"dd = 1.0 / (m{j}_{j}.real * m{j}_{j}.real + m{j}_{j}.imag * m{j}_{j}.imag)")
         emit(f"u{j} = complex(m{j}_{j}.real * dd, -m{j}_{j}.imag * dd)")
-        for row in range(j + 1, nd):
+        for row in swap:
             emit(f"fac = m{row}_{j} * u{j}")
             for k in range(j + 1, nd):
-                emit(f"m{row}_{k} = m{row}_{k} - fac * m{j}_{k}")
+                if k in nz[j]:
+                    emit(f"m{row}_{k} = m{row}_{k} - fac * m{j}_{k}")
+                    nz[row].add(k)
             emit(f"g{row} = g{row} - fac * g{j}")
             if two:
                 emit(f"e{row} = e{row} - fac * e{j}")
     for j in range(nd - 1, -1, -1):  # back substitution
-        terms = " - ".join([f"g{j}"] + [f"m{j}_{k} * x{k}" for k in range(j + 1, nd)])
+        upper = [k for k in range(j + 1, nd) if k in nz[j]]
+        terms = " - ".join([f"g{j}"] + [f"m{j}_{k} * x{k}" for k in upper])
         emit(f"x{j} = ({terms}) * u{j}")
         if two:
-            terms = " - ".join([f"e{j}"] + [f"m{j}_{k} * y{k}" for k in range(j + 1, nd)])
+            terms = " - ".join([f"e{j}"] + [f"m{j}_{k} * y{k}" for k in upper])
             emit(f"y{j} = ({terms}) * u{j}")
     for p, (col, _, _) in enumerate(pairs):  # each pair's unknown from its pivot row
         terms = " - ".join([f"pr{p}"] + [f"p{p}_{k} * x{k}" for k in range(nd)])
@@ -770,6 +794,11 @@ def system_kernels(
             f[a] += w_syms[i] * umon(k)
             ft[a] += wt_syms[i] * umon(k)
     jac = sp.Matrix(n_eq, n_u, lambda a, v: sp.expand(sp.diff(f[a], unknowns[v])))
+    if record.horner:  # nested in the record's order of unknowns (see its ``horner``)
+        gens = record.horner
+        f = [sp.horner(e, *gens) if e.free_symbols & set(gens) else e for e in f]
+        ft = [sp.horner(e, *gens) if e.free_symbols & set(gens) else e for e in ft]
+        jac = jac.applyfunc(lambda e: sp.horner(e, *gens) if e.free_symbols & set(gens) else e)
     kernels = (
         print_array_kernel(
             "coefficients",
@@ -816,6 +845,9 @@ def system_kernels(
     table = np.array([(a, j, k) for a, j, k, _ in terms], dtype=np.int64).reshape(-1, 3)
     order = homotopy._column_order(exponents, table, n_eq)
     plan = homotopy._elimination_plan(exponents, table, n_eq, order)
+    structure = None
+    if record.sparse_solve:
+        structure = np.array([[jac[a, v] != 0 for v in range(n_u)] for a in range(n_eq)])
     return SystemKernelCode(
         unknowns_repr=repr(tuple(s.name for s in record.unknowns)),
         parameters_repr=repr(tuple(s.name for s in record.parameters)),
@@ -824,8 +856,8 @@ def system_kernels(
         coefficient_rows=tuple(_pack(rows, width)),
         kernels=kernels,
         elimination_repr=repr(tuple(int(v) for v in plan)),
-        solver_lines=print_linear_solver(plan, True) if unroll_solver else (),
-        solver_one_lines=print_linear_solver(plan, False) if unroll_solver else (),
+        solver_lines=print_linear_solver(plan, True, structure) if unroll_solver else (),
+        solver_one_lines=print_linear_solver(plan, False, structure) if unroll_solver else (),
         dense_unknowns=int(plan[0] - plan[1]),
     )
 

@@ -69,3 +69,10 @@ class PolynomialSystem:
     start_solutions: tuple[tuple[complex, ...], ...]
     doc: str
     facts: dict[str, object] = field(default_factory=dict)
+    horner: tuple[sp.Symbol, ...] = ()
+    """Unknowns in the order the residual kernels nest F, F_x and F_t in (Horner form, before
+    the common-subexpression pass: fewer multiplications where each equation is a sum of many
+    monomials of few unknowns); empty: the expanded sums."""
+    sparse_solve: bool = False
+    """The unrolled linear solve leaves out arithmetic on entries of F_x that are zero for
+    every x and q (``print_linear_solver``'s ``structure``)."""
