@@ -121,3 +121,41 @@ def test_a_force_field_that_turns_two_turns_is_read_as_one():
     assert scores["force-field"]["bic"] < scores["uniform-rotation"]["bic"]
     assert not any("force-field" in pair for pair in tests)
     assert rec.c == pytest.approx(truth["c"], rel=0.1)
+
+
+def _auto_with_curves(motion, seed, frames):
+    doc, truth = simulate_camera_configuration(
+        "perspective", motion, "AB", frames, seed, noise_px=0.5, with_curve=True, distance=400
+    )
+    doc["motion"] = "auto"
+    rec = reconstruct_rigid(observations_from_dict(doc), ReconstructOptions(point_sigma=0.5))
+    tests = {(t["simple"], t["complex"]): t for t in rec.motion_scores["tests"]}
+    return rec, truth, rec.motion_scores["scores"], tests
+
+
+def test_a_freely_moving_body_with_polylines_is_read_by_the_curve_bundle():
+    """One camera, A, B and a polyline in every frame (12 frames, 0.5 px, 400 units
+    away), the body moving freely: the rigid motions fail their test against free motion,
+    the curve bundle's saturated model on the points (every frame's A and B fitted exactly),
+    so free motion is chosen and the ordinary camera's bundle answers with the curve."""
+    from curverecon.rigid.select import LEVEL
+
+    rec, truth, scores, tests = _auto_with_curves("free", 3, 12)
+    assert rec.motion_scores["chosen"] == "free"
+    assert rec.configuration["motion"] == "free"
+    assert rec.estimator == "curve-bundle" and rec.curve3d is not None
+    assert scores["free"]["robust_chi2"] == 0.0
+    assert all(t["p"] < LEVEL for (s, c), t in tests.items() if c == "free")
+    assert rec.c == pytest.approx(truth["c"], rel=0.1)
+
+
+def test_a_rigid_motion_with_polylines_is_not_read_as_free():
+    """The same camera and polylines (eight frames), the body turning uniformly: the uniform
+    rotation passes its test against the curve bundle's free motion, so the bundle never runs."""
+    from curverecon.rigid.select import LEVEL
+
+    rec, truth, scores, tests = _auto_with_curves("uniform-rotation", 3, 8)
+    assert rec.motion_scores["chosen"] == "uniform-rotation"
+    assert rec.estimator == "ml"
+    assert tests[("uniform-rotation", "free")]["p"] > LEVEL
+    assert rec.c == pytest.approx(truth["c"], rel=0.1)

@@ -9,6 +9,12 @@ chi2_f is each frame's chi2 at the fit, T the outlier test's threshold for a fra
 model (``OutlierOptions.false_alarm``), k the number of free parameters (global plus every
 frame's own, the gauge's fixed ones not counted), n the number of measurements.
 
+One pinhole camera with fewer than four points and a polyline in every frame: free motion is
+the ordinary camera's curve bundle (``curve.pinhole``), whose free poses fit A and B (and C)
+exactly in every frame; on the points it is the saturated model (chi2 0, as many parameters as
+measurements).  Its tests against the rigid models are then each model's goodness of fit, and it
+is chosen only when every model it contains is rejected; its bundle runs only then.
+
 Nesting (``NESTS_IN``): rotation-free is a uniform rotation of rate zero, a uniform rotation a
 fixed axis whose angles grow with t, and every model a free motion; the force field (free
 rotations, the mass centre on a parabola) and the axis models (translations free) do not nest
@@ -247,6 +253,34 @@ def _nested_start(obs: RigidObservations, cands: dict, admitted: set, options) -
         cands["fixed-axis"] = got
 
 
+def _ordinary_camera(obs: RigidObservations, cands: dict, options: ReconstructOptions) -> None:
+    """Free motion through the ordinary camera's curve bundle (module docstring) when the
+    points alone do not determine it and every frame has a polyline: the saturated model on
+    the points (every frame's chi2 0, k = the number of measurements)."""
+    from curverecon.curve.pinhole import MIN_FRAMES
+
+    cfg = obs.configuration
+    if "free" in cands or cfg.projection != "perspective" or obs.curves is None:
+        return
+    if obs.n_points >= 4 or obs.n_frames < MIN_FRAMES or not cands:
+        return
+    n_meas = next(iter(cands.values())).n_measurements
+
+    def make() -> Reconstruction:
+        from curverecon.curve.pinhole import reconstruct_perspective_curve
+
+        return reconstruct_perspective_curve(obs.with_motion("free"), options)
+
+    cands["free"] = Candidate(
+        frame_chi2=np.zeros(obs.n_frames),
+        threshold=float("inf"),
+        k=n_meas,
+        n_local=n_meas // obs.n_frames,
+        n_measurements=n_meas,
+        make=make,
+    )
+
+
 def _admit(obs: RigidObservations, motion: str, options: ReconstructOptions) -> RigidObservations:
     """The observations under ``motion``; CurveReconError when the frames or the points
     cannot determine it."""
@@ -274,6 +308,7 @@ def reconstruct_auto(obs: RigidObservations, options: ReconstructOptions) -> Rec
         except CurveReconError as exc:
             scores[motion] = {"bic": None, "reason": str(exc)}
     _nested_start(obs, cands, admitted, options)
+    _ordinary_camera(obs, cands, options)
     if not cands:
         reasons = "; ".join(f"{m}: {s['reason']}" for m, s in scores.items())
         raise CurveReconError(f"motion auto: no model could be fitted ({reasons})")
