@@ -148,7 +148,8 @@ def _feet(
     grid = np.linspace(0.0, 1.0, (12 if coarse or len(frames) > 64 else 48) * basis.k)
     p, _, _ = _project(data.camera, np.einsum("fij,gj->fgi", rot, basis.values(grid) @ ctrl)
                        + tra[:, None], kap, z_ref[:, None])  # fmt: skip
-    d2 = ((q[:, :, None, :] - p[:, None]) ** 2).sum(-1)
+    # |q - p|^2 less |q|^2 (the same for every grid point): one matrix product
+    d2 = np.sum(p * p, axis=-1)[:, None, :] - 2.0 * np.matmul(q, p.transpose(0, 2, 1))
     u = grid[np.argmin(d2, axis=2)]
     for _ in range(4):
         shape = u.shape
@@ -767,6 +768,69 @@ def mirrored_state(data: _Data, ctrl, rot):
     )
 
 
+PLANAR_TURN = 0.05
+"""A fitted curve whose third singular value (of its points about their mean) is below this
+fraction of its first is nearly planar: every frame then has a second pose of almost the same
+image (turned over about the curve's plane, seen from the same place), which weak perspective
+does not tell apart, and :func:`_turned_over` tries them (bench/persp_curve.py seed 0 at 50
+times the depth variation: planarity 0.008, 16 of 19 frames turned over by the start)."""
+
+
+def _turn(ctrl, rot, tra, frames):
+    """Every frame of ``frames`` turned over: R_f <- M_f R_f S (S the reflection in the curve's
+    plane through its mean, M_f the reflection along frame f's ray to that mean), the same
+    image under weak perspective for a planar curve, the curve's mean held where it was seen:
+    (rot, tra) (the callers put A and B on their rays instead)."""
+    pts = Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 200)) @ ctrl
+    mid = pts.mean(axis=0)
+    normal = np.linalg.svd(pts - mid)[2][2]
+    s_ref = np.eye(3) - 2.0 * np.outer(normal, normal)
+    rot, tra = rot.copy(), tra.copy()
+    for f in frames:
+        seen = rot[f] @ mid + tra[f]
+        ray = seen / np.linalg.norm(seen)
+        rot[f] = (np.eye(3) - 2.0 * np.outer(ray, ray)) @ rot[f] @ s_ref
+        tra[f] = seen - rot[f] @ mid
+    return rot, tra
+
+
+def planarity(ctrl) -> float:
+    """The curve's third singular value over its first (its points about their mean)."""
+    pts = Basis(len(ctrl)).values(np.linspace(0.0, 1.0, 200)) @ ctrl
+    sv = np.linalg.svd(pts - pts.mean(axis=0), compute_uv=False)
+    return float(sv[2] / sv[0])
+
+
+def _turned_over(data: _Data, fit: PinholeFit) -> PinholeFit:
+    """A nearly planar curve's fit with every frame but frame 0 turned over (:func:`_turn`;
+    the start may turn most frames over, which the bundle then bends the curve to fit), the
+    bundle; then each frame's own turn-over refitted against the held curve and kept where it
+    fits its frame better, the bundle and the sweep (:func:`_swept`)."""
+    basis = Basis(len(fit.control))
+    ctrl, free = fit.control, _free(data.n)
+    rot = _turn(ctrl, fit.rot, fit.trans, range(1, data.n))[0]
+    tra = _translations(data.camera, rot, ctrl[0], ctrl[-1], data.a_px, data.b_px)
+    tra[0] = 0.0
+    new = bundle(data, ctrl, rot, tra, free)
+    ctrl, rot, tra = new.control, new.rot.copy(), new.trans.copy()
+    r, _, _ = _frame_rows(data, basis, ctrl, rot, tra)
+    own = np.sum(r**2, axis=1)
+    turned = _turn(ctrl, rot, tra, range(1, data.n))[0]
+    moved = False
+    for f in range(1, data.n):
+        t_f = _translations(data.camera, turned[f : f + 1], ctrl[0], ctrl[-1],
+                            data.a_px[f : f + 1], data.b_px[f : f + 1])[0]  # fmt: skip
+        try:
+            cand = _refine_pose(data, basis, ctrl, turned[f], t_f, f)
+        except CurveReconError:
+            continue
+        if cand[2] < own[f]:
+            rot[f], tra[f], moved = cand[0], cand[1], True
+    if moved:
+        new = bundle(data, ctrl, rot, tra, free)
+    return _swept(data, new)
+
+
 def reconstruct_perspective_curve(obs, options=None):
     """The ordinary camera beyond the Section 2 table: free motion, one calibrated pinhole
     camera, A and B (tangents optional) and a polyline of the curve in every frame.
@@ -776,9 +840,12 @@ def reconstruct_perspective_curve(obs, options=None):
     depth order weak perspective leaves open).  From each: every frame's pose, frame 0's too,
     searched against the start's curve (:func:`pose_search`, a regauge when frame 0's moves),
     the pinhole curve bundle (every frame's rotation, 3-D translation and the curve), then the
-    search and the bundle again while the cost drops (:func:`_swept`); the lower cost kept,
-    and its mirror image refitted (:func:`mirrored_state`): the cost gap between the two depth
-    orders is ``curve_bundle["mirror_dchi2"]``, the lower one the answer.
+    search and the bundle again while the cost drops (:func:`_swept`); for a nearly planar
+    curve (``PLANAR_TURN``) also its frames turned over (:func:`_turned_over`); the lowest
+    cost kept, and its mirror image refitted (:func:`mirrored_state`): the cost gap between the
+    two depth orders is ``curve_bundle["mirror_dchi2"]``, the lower one the answer; below
+    ``MIRROR_DCHI2`` the other is listed in ``alternatives`` (its shape and chi2) and its curve
+    in ``curve_bundle["mirror_curve3d"]`` (with ``"mirror_chi2"``).
 
     Args:
         obs: ``RigidObservations`` with projection "perspective", motion "free", curves.
@@ -807,6 +874,8 @@ def reconstruct_perspective_curve(obs, options=None):
         try:
             state = _searched(data, _start_state(data, curve, rots))
             fits.append(_swept(data, bundle(data, *state, _free(data.n))))
+            if planarity(fits[-1].control) < PLANAR_TURN:
+                fits.append(_turned_over(data, fits[-1]))
         except CurveReconError:
             continue
     if not fits:
@@ -818,8 +887,8 @@ def reconstruct_perspective_curve(obs, options=None):
     except CurveReconError:
         other, gap = None, np.inf
     if gap < 0:
-        best, gap = other, -gap
-    return _answer(obs, best, gap, data)
+        best, other, gap = other, best, -gap
+    return _answer(obs, best, gap, data, other if gap < MIRROR_DCHI2 else None)
 
 
 def _shape_std(fit: PinholeFit, length_ab: float | None) -> np.ndarray | None:
@@ -850,10 +919,35 @@ def _shape_std(fit: PinholeFit, length_ab: float | None) -> np.ndarray | None:
     return np.sqrt(np.maximum(np.diag(cov), 0.0))
 
 
-def _answer(obs, fit: PinholeFit, gap: float, data: _Data):
-    """The Reconstruction of a fitted pinhole bundle (see reconstruct_perspective_curve)."""
+def _shape_poses(fit: PinholeFit, factor: float, sigma: float):
+    """(shape, paper poses) of a fit, lengths times ``factor``, normalised."""
     from curverecon.curve.spline import BundleResult, shape_and_poses
     from curverecon.model.pose import normalise
+
+    br = BundleResult(fit.control * factor, fit.rot, fit.trans * factor, sigma, fit.rms,
+                      fit.cost, fit.cost, fit.iterations, fit.converged)  # fmt: skip
+    shape, poses, _ = shape_and_poses(br)
+    return normalise(shape, poses)
+
+
+def _mirror_alternative(fit: PinholeFit | None, length_ab: float | None, sigma: float):
+    """The mirror image's refit listed beside the answer (its depth order not decided):
+    ([Alternative], {"mirror_chi2", "mirror_curve3d"}), or ([], {}) without one."""
+    from curverecon.model.reconstruction import Alternative
+
+    if fit is None:
+        return [], {}
+    c_depth = float(np.linalg.norm(fit.control[-1] - fit.control[0]))
+    factor = 1.0 if length_ab is None else length_ab / c_depth
+    shape, poses = _shape_poses(fit, factor, sigma)
+    curve, _, _ = curve_points_and_std(fit, 200, length_ab)
+    alt = Alternative(shape, poses, float(fit.cost), _shape_std(fit, length_ab))
+    return [alt], {"mirror_chi2": float(fit.cost), "mirror_curve3d": curve.tolist()}
+
+
+def _answer(obs, fit: PinholeFit, gap: float, data: _Data, mirror: PinholeFit | None = None):
+    """The Reconstruction of a fitted pinhole bundle (see reconstruct_perspective_curve);
+    ``mirror``: its mirror image's refit, listed as an alternative when given."""
     from curverecon.rigid.answer import configuration_answer
 
     cfg = obs.configuration
@@ -862,10 +956,8 @@ def _answer(obs, fit: PinholeFit, gap: float, data: _Data):
     factor = 1.0 if cfg.length_ab is None else cfg.length_ab / c_depth
     curve3d, std, nstd = curve_points_and_std(fit, 200, cfg.length_ab)
     tra = fit.trans * factor
-    br = BundleResult(ctrl * factor, fit.rot, tra, data.sigma, fit.rms, fit.cost, fit.cost,
-                      fit.iterations, fit.converged)  # fmt: skip
-    shape, poses, _ = shape_and_poses(br)
-    shape, poses = normalise(shape, poses)
+    shape, poses = _shape_poses(fit, factor, data.sigma)
+    alternatives, mirror_keys = _mirror_alternative(mirror, cfg.length_ab, data.sigma)
     a_f = np.einsum("fij,j->fi", fit.rot, ctrl[0] * factor) + tra
     b_f = np.einsum("fij,j->fi", fit.rot, ctrl[-1] * factor) + tra
     # every frame's rows: its polyline samples and A', B'; the degrees of freedom count them
@@ -879,6 +971,7 @@ def _answer(obs, fit: PinholeFit, gap: float, data: _Data):
         "iterations": int(fit.iterations),
         "converged": bool(fit.converged),
         "mirror_dchi2": None if not np.isfinite(gap) else float(gap),
+        **mirror_keys,
     }
     return configuration_answer(
         cfg,
@@ -890,6 +983,7 @@ def _answer(obs, fit: PinholeFit, gap: float, data: _Data):
         chi2=fit.cost,
         frame_chi2=np.sum(rows**2, axis=1),
         dof=rows.size - int(fit.free.sum()),
+        alternatives=alternatives,
         estimator="curve-bundle",
         points3=np.stack([a_f, b_f], axis=1),
         names=("A", "B"),
@@ -908,8 +1002,8 @@ def _warnings(fit: PinholeFit, gap: float, data: _Data) -> list[str]:
     if gap < MIRROR_DCHI2:
         out.append(
             f"the perspective is too weak to tell the curve from its mirror image (depth order "
-            f"reversed; chi2 {gap:.2g} apart, {MIRROR_DCHI2:g} needed): the answer is the "
-            "orthographic one placed at the distance the image size gives, either mirror image"
+            f"reversed; chi2 {gap:.2g} apart, {MIRROR_DCHI2:g} needed): the mirror image is "
+            "listed in alternatives and curve_bundle.mirror_curve3d"
         )
     worst = float(np.max(fit.rms))
     if worst > 5.0 * data.sigma:
