@@ -12,7 +12,12 @@ pairs were chosen again, every parameter within 0.9 of its bound).
 :func:`choose_pairs` refits every frame's rotation from each pair with the globals held and
 keeps, per frame, the least chi2 (frame 0: the body from that frame's pair, every other
 rotation carried along); :func:`settle` alternates it with the fit over every frame until no
-frame changes.  Lengths in the fit's gauge (g0_z = 1), chi2 in units of the stated noise.
+frame changes.  :func:`walk` moves a settled fit along its weakest direction (the mass centre
+inside the body, every rotation with it), where the likelihood has minima of tiny residual
+apart from the truth.  The valleys settled in are remembered (:func:`remember`) and
+:func:`force_field_valleys` lists those that fit the answer's frames about as well.  At 1 px
+several valleys fit within the noise and the lowest is often not the truth's
+(docs/accuracy.md).  Lengths in the fit's gauge (g0_z = 1), chi2 in units of the stated noise.
 """
 
 from __future__ import annotations

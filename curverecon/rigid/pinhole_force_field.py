@@ -31,7 +31,9 @@ off it; E is smooth.  The search (as ``rigid.parabola``'s orthographic one):
 * ``CANDIDATES`` distinct minima are polished together and each becomes a state: the body from
   frame 0's best root pair, every frame's rotation from the triangle A, B, G of each of the
   four root pairs (``rigid.starts.kabsch``) refitted with the globals held, the pair of least
-  chi2 kept per frame; each state is refined over every frame.
+  chi2 kept per frame; each state is settled over every frame (``rigid.pinhole_branches``:
+  the frames' root pairs chosen again), the best ``WALKED`` walked along their weakest
+  direction.
 
 :func:`force_field_starts` returns the ``KEEP`` best for ``rigid.pinhole_starts``; the consensus
 fit and maximum likelihood over every frame's rotation follow.  The search's cost does not rank
