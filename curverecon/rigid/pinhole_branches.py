@@ -215,9 +215,10 @@ bench seed 1, scene 0: the truth 0.18 away from a minimum of chi2 3.5e-7 px^2 al
 
 
 def admit(layout: Layout, data: RigidData, fit: RigidFit) -> list:
-    """[(trimmed chi2, state, the globals' covariance)] of a settled fit, or [] when a point is
-    behind the camera (a pinhole images X and -X alike) or the information is singular (the
-    answer would be refused)."""
+    """[(singular, trimmed chi2, state, the globals' covariance or None)] of a settled fit, or
+    [] when a point is behind the camera (a pinhole images X and -X alike).  A singular
+    information (the answer would be refused) ranks after every regular fit: on scenes that
+    hardly determine the body (a small turn) it may be all there is."""
     from curverecon.rigid.model import points3
     from curverecon.rigid.refinement import information_inverse
     from curverecon.rigid.starts import trimmed_sum
@@ -227,10 +228,8 @@ def admit(layout: Layout, data: RigidData, fit: RigidFit) -> list:
     if np.min(points3(layout, fit.state, data.times)[..., 2]) <= 0.0:
         return []
     cov = information_inverse(layout, fit.state, data)[0]
-    if cov is None:
-        return []
     chi2 = np.where(np.isfinite(fit.frame_chi2), fit.frame_chi2, np.inf)
-    return [(float(trimmed_sum(chi2)), fit.state, cov)]
+    return [(cov is None, float(trimmed_sum(chi2)), fit.state, cov)]
 
 
 def walk(layout: Layout, data: RigidData, state: RigidState, cov: np.ndarray) -> list[RigidFit]:
@@ -238,8 +237,18 @@ def walk(layout: Layout, data: RigidData, state: RigidState, cov: np.ndarray) ->
     scaled to unit diagonal, its largest eigenvector) by each of ``STEPS`` times the body's
     norm.  The force field's weak direction moves the mass centre inside the body and every
     rotation with it; along it the likelihood has minima of tiny residual apart from the truth
-    (docs/accuracy.md), which a local fit does not leave."""
+    (docs/accuracy.md), which a local fit does not leave.  Not on a fit whose c's std is above
+    ``rigid.answer.UNDETERMINED_FRACTION`` of c (a small turn): its weak direction leads into
+    fits the information no longer determines (bench test scene: 180-300 degrees, c's std 300
+    times c, the walked fit refused as singular)."""
+    from curverecon.rigid.answer import UNDETERMINED_FRACTION, chord_std
     from curverecon.rigid.measurements import apply_step
+    from curverecon.rigid.model import body_vectors
+
+    q = body_vectors(layout, state)
+    c = float(np.linalg.norm(q[1] - q[0]))
+    if not chord_std(layout, state, cov) <= UNDETERMINED_FRACTION * c:
+        return []
 
     d = np.sqrt(np.maximum(np.diag(cov), 1e-300))
     v = np.linalg.eigh(cov / np.outer(d, d))[1][:, -1] * d

@@ -305,7 +305,8 @@ def force_field_starts(layout: Layout, data: RigidData) -> list[RigidState]:
     polished, each made a state (:func:`state_of`) and settled over every frame
     (``pinhole_branches.settle``: the frames' root pairs chosen again); the ``WALKED`` best
     walked along their weakest direction (``pinhole_branches.walk``); the ``KEEP`` of least
-    trimmed chi2 (``rigid.starts.trimmed_sum``: outlier frames do not decide).  Every settled
+    trimmed chi2 (``rigid.starts.trimmed_sum``: outlier frames do not decide), fits of a
+    singular information last.  Every settled
     valley is remembered for the answer's alternatives."""
     from curverecon.rigid.pinhole_branches import admit, remember, settle, walk
 
@@ -324,13 +325,14 @@ def force_field_starts(layout: Layout, data: RigidData) -> list[RigidState]:
                 scored += admit(layout, data, settle(layout, data, state_of(layout, data, row)))
         except (np.linalg.LinAlgError, ValueError, FloatingPointError):
             continue
-    scored.sort(key=lambda item: item[0])
-    for _, state, cov in list(scored[:WALKED]):
-        for fit in walk(layout, data, state, cov):
-            scored += admit(layout, data, fit)
-    scored.sort(key=lambda item: item[0])
-    remember(data, [st for _, st, _ in scored])
-    return [st for _, st, _ in scored[:KEEP]]
+    scored.sort(key=lambda item: item[:2])  # regular fits first, then by trimmed chi2
+    for singular, _, state, cov in list(scored[:WALKED]):
+        if not singular:
+            for fit in walk(layout, data, state, cov):
+                scored += admit(layout, data, fit)
+    scored.sort(key=lambda item: item[:2])
+    remember(data, [item[2] for item in scored if not item[0]])
+    return [item[2] for item in scored[:KEEP]]
 
 
 __all__ = ["force_field_starts", "search"]
