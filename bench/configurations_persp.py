@@ -370,7 +370,7 @@ def _summarise(groups: dict[str, list[dict]]) -> dict:
             out[pre + "rmse_over_crlb"] = round(float(per.max()), 3)
             out[pre + "rmse_over_crlb_median_param"] = round(float(np.median(per)), 3)
             out[pre + "std_coverage_3sigma"] = round(float(np.mean([r["covered"] for r in ok])), 4)
-        if ok and key == "persp_free_4pt":  # the one row with depth-reversed alternatives
+        if ok and key in ("persp_free_4pt", "persp_force_field"):  # rows with alternatives
             local = np.mean([r["covered_local"] for r in ok])
             out[pre + "std_coverage_3sigma_local"] = round(float(local), 4)
             alt = np.mean([r["alternatives"] > 0 for r in ok])

@@ -4,7 +4,7 @@ degrees over 30 frames, ``simulate.FORCE_FIELD_TURN_DEG``): noise-free scenes co
 The truth is ``simulate_camera_configuration``'s own 3-D construction (a curve's ends moved
 rigidly about its wire's centroid on a 3-D parabola, seen by a pinhole); the reconstruction
 knows only the pixels.  The search of ``rigid/pinhole_force_field.py`` finds the truth's basin
-on most such scenes, not all (docs/accuracy.md): the seeds here are two it finds.
+on most such scenes, not all (docs/accuracy.md): the seeds here are three it finds.
 """
 
 from __future__ import annotations
@@ -24,10 +24,13 @@ def _points(frames, names="AB") -> np.ndarray:
     return np.array([[f[k] for k in names] for f in frames])
 
 
-@pytest.mark.parametrize("seed", [0, 2])
+@pytest.mark.parametrize("seed", [0, 2, 110459265])
 def test_noise_free_determined_scene_is_exact(seed):
     """Every point of every frame within 1e-9 c of the simulated geometry (units of A's depth
-    in frame 0, as the truth's)."""
+    in frame 0, as the truth's).  Seed 110459265 (the bench's noise-free scene 0 of seed 1):
+    c 7e-9 off with the search alone, a minimum of chi2 3.5e-7 px^2 (c 0.4 % off) with the
+    frames' root pairs chosen again; exact once the settled candidates are walked along their
+    weakest direction (``pinhole_branches.walk``)."""
     doc, truth = simulate_camera_configuration("perspective", "force-field", "AB", 30, seed)
     rec = reconstruct_rigid(observations_from_dict(doc), ReconstructOptions(point_sigma=1e-6))
     want = _points([f["points3"] for f in truth["frames"]])

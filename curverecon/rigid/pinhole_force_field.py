@@ -31,7 +31,9 @@ off it; E is smooth.  The search (as ``rigid.parabola``'s orthographic one):
 * ``CANDIDATES`` distinct minima are polished together and each becomes a state: the body from
   frame 0's best root pair, every frame's rotation from the triangle A, B, G of each of the
   four root pairs (``rigid.starts.kabsch``) refitted with the globals held, the pair of least
-  chi2 kept per frame; each state is refined over every frame.
+  chi2 kept per frame; each state is settled over every frame (``rigid.pinhole_branches``:
+  the frames' root pairs chosen again), the best ``WALKED`` walked along their weakest
+  direction.
 
 :func:`force_field_starts` returns the ``KEEP`` best for ``rigid.pinhole_starts``; the consensus
 fit and maximum likelihood over every frame's rotation follow.  The search's cost does not rank
@@ -293,15 +295,20 @@ KEEP = 3
 """Refined candidates of least trimmed chi2 handed on as starts."""
 POLISH_ITERATIONS = 100
 """Gauss-Newton iterations polishing the candidates together."""
+WALKED = 2
+"""Settled candidates of least trimmed chi2 walked along their weakest direction."""
 
 
 def force_field_starts(layout: Layout, data: RigidData) -> list[RigidState]:
     """Start states of the perspective force field with A and B (no tangents: the search's
     equation has none; else an empty list): the search's ``CANDIDATES`` distinct minima,
-    polished, each made a state (:func:`state_of`) and refined over every frame; the ``KEEP``
-    of least trimmed chi2 (``rigid.starts.trimmed_sum``: outlier frames do not decide)."""
-    from curverecon.rigid.refinement import refine
-    from curverecon.rigid.starts import trimmed_sum
+    polished, each made a state (:func:`state_of`) and settled over every frame
+    (``pinhole_branches.settle``: the frames' root pairs chosen again); the ``WALKED`` best
+    walked along their weakest direction (``pinhole_branches.walk``); the ``KEEP`` of least
+    trimmed chi2 (``rigid.starts.trimmed_sum``: outlier frames do not decide), fits of a
+    singular information last.  Every settled
+    valley is remembered for the answer's alternatives."""
+    from curverecon.rigid.pinhole_branches import admit, remember, settle, walk
 
     if layout.tangents or layout.projection != "perspective" or len(layout.points) != 2:
         return []
@@ -311,18 +318,21 @@ def force_field_starts(layout: Layout, data: RigidData) -> list[RigidState]:
     if not found:
         return []
     rows = _gauss_newton(u, data.times, np.array([r for r, _ in found]), TRIM, POLISH_ITERATIONS)[0]
-    scored = []
+    scored: list = []
     for row in rows:
         try:
             with np.errstate(all="ignore"):
-                fit = refine(layout, state_of(layout, data, row), data, max_iter=200,
-                             covariance=False)  # fmt: skip
+                scored += admit(layout, data, settle(layout, data, state_of(layout, data, row)))
         except (np.linalg.LinAlgError, ValueError, FloatingPointError):
             continue
-        chi2 = np.where(np.isfinite(fit.frame_chi2), fit.frame_chi2, np.inf)
-        scored.append((float(trimmed_sum(chi2)), fit.state))
-    scored.sort(key=lambda item: item[0])
-    return [st for _, st in scored[:KEEP]]
+    scored.sort(key=lambda item: item[:2])  # regular fits first, then by trimmed chi2
+    for singular, _, state, cov in list(scored[:WALKED]):
+        if not singular:
+            for fit in walk(layout, data, state, cov):
+                scored += admit(layout, data, fit)
+    scored.sort(key=lambda item: item[:2])
+    remember(data, [item[2] for item in scored if not item[0]])
+    return [item[2] for item in scored[:KEEP]]
 
 
 __all__ = ["force_field_starts", "search"]

@@ -405,7 +405,12 @@ def answer_valleys(
 ) -> tuple[RigidFit, list]:
     """:func:`other_valleys` on the inlier frames ``idx`` of ``data`` (every frame): when the
     depth-reversed refit becomes the answer, its ``full_state`` carries the outlier frames
-    mirrored too (their parameters are the answer's last over every frame)."""
+    mirrored too (their parameters are the answer's last over every frame).  The force field:
+    the valleys its search settled in (``pinhole_branches.force_field_valleys``)."""
+    if layout.motion == "force-field":
+        from curverecon.rigid.pinhole_branches import force_field_valleys
+
+        return force_field_valleys(layout, data, fit, idx)
     best, alts = other_valleys(layout, data.subset(idx), fit)
     if best is fit:
         return fit, alts
@@ -420,15 +425,25 @@ def answer_valleys(
 def widened_covariance(fit: RigidFit, alternatives: list) -> np.ndarray | None:
     """The globals' covariance with every alternative's body offset d added (cov + d d^T): the
     answer's std then reaches each valley that fits about as well (free motion: the globals
-    are the body)."""
+    are the body; the force field: the body and the parabola)."""
     if fit.covariance is None:
         return None
     cov = np.array(fit.covariance, float)
     n = fit.state.body.size
+    if fit.state.parabola is not None:  # the force field: the parabola follows the body
+        n += fit.state.parabola.size
     for alt in alternatives:
-        d = (np.asarray(alt.state.body) - np.asarray(fit.state.body)).ravel()
+        d = _globals_of(alt.state) - _globals_of(fit.state)
         cov[:n, :n] += np.outer(d, d)
     return cov
+
+
+def _globals_of(state: RigidState) -> np.ndarray:
+    """The body, then the force field's parabola (the globals' order of the fit)."""
+    parts = [np.ravel(state.body)]
+    if state.parabola is not None:
+        parts.append(np.ravel(state.parabola))
+    return np.concatenate(parts)
 
 
 __all__ = [
