@@ -173,7 +173,7 @@ def force_field_valleys(layout: Layout, data: RigidData, fit: RigidFit, idx: np.
     valley's over every frame), the others within ``ALTERNATIVE_DCHI2`` whose globals differ
     from the answer's by more than its std are alternatives (``pinhole_search
     .widened_covariance`` widens the std to reach them)."""
-    from curverecon.rigid.estimate import _expand
+    from curverecon.rigid.estimate import expand_state
     from curverecon.rigid.model import with_frames
 
     stored = _CACHE.get(_key(data), [])
@@ -189,7 +189,7 @@ def force_field_valleys(layout: Layout, data: RigidData, fit: RigidFit, idx: np.
             continue
         if alt.covariance is None or not np.isfinite(alt.chi2):
             continue
-        alt.full_state = _expand(layout, alt.state, idx, state)
+        alt.full_state = expand_state(layout, alt.state, idx, state)
         fits.append(alt)
     best = min(fits, key=lambda f: f.chi2)
     sd = np.sqrt(np.maximum(np.diag(best.covariance), 0.0))
